@@ -1,0 +1,192 @@
+#include "graph/frame_graph.h"
+
+#include <glm/gtc/packing.hpp>
+
+#include <cstring>
+
+namespace ssgi::graph {
+
+const vk::Image& PassContext::image(ImageRef ref) const { return graph.image(ref); }
+
+FrameGraph::FrameGraph(vk::Context& ctx) : ctx_(ctx) {}
+
+FrameGraph::~FrameGraph() {
+    vkDeviceWaitIdle(ctx_.device);
+    for (Resource& r : resources_) vk::destroyImage(ctx_, r.image);
+    if (queryPool_) vkDestroyQueryPool(ctx_.device, queryPool_, nullptr);
+}
+
+uint32_t FrameGraph::addResource(const std::string& name, VkFormat format, VkExtent2D extent,
+                                 VkImageUsageFlags usage, bool transient) {
+    Resource r;
+    r.image = vk::createImage(ctx_, name, format, extent, usage | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+    r.transient = transient;
+    resources_.push_back(r);
+    return uint32_t(resources_.size() - 1);
+}
+
+ImageRef FrameGraph::createImage(const std::string& name, VkFormat format, VkExtent2D extent,
+                                 VkImageUsageFlags usage) {
+    return {ImageRef::Kind::Plain, addResource(name, format, extent, usage, true)};
+}
+
+uint32_t FrameGraph::createHistory(const std::string& name, VkFormat format, VkExtent2D extent,
+                                   VkImageUsageFlags usage) {
+    History h;
+    h.resources[0] = addResource(name + " A", format, extent, usage, false);
+    h.resources[1] = addResource(name + " B", format, extent, usage, false);
+    histories_.push_back(h);
+    return uint32_t(histories_.size() - 1);
+}
+
+void FrameGraph::resetHistory() {
+    for (History& h : histories_) h.valid = false;
+}
+
+uint32_t FrameGraph::resolve(ImageRef ref) const {
+    switch (ref.kind) {
+    case ImageRef::Kind::Plain:
+        return ref.index;
+    case ImageRef::Kind::HistoryCurrent:
+        return histories_[ref.index].resources[histories_[ref.index].currentSlot];
+    case ImageRef::Kind::HistoryPrevious:
+        return histories_[ref.index].resources[1 - histories_[ref.index].currentSlot];
+    }
+    return ref.index;
+}
+
+const vk::Image& FrameGraph::image(ImageRef ref) const { return resources_[resolve(ref)].image; }
+
+ImageRef FrameGraph::find(const std::string& name) const {
+    for (uint32_t i = 0; i < resources_.size(); ++i)
+        if (resources_[i].image.name == name) return {ImageRef::Kind::Plain, i};
+    return {};
+}
+
+void FrameGraph::addPass(const std::string& name, PassKind kind, std::vector<ImageUse> uses,
+                         RecordFn record) {
+    passes_.push_back({name, kind, std::move(uses), std::move(record)});
+}
+
+void FrameGraph::record(VkCommandBuffer cmd) {
+    const uint32_t queriesNeeded = uint32_t(2 * passes_.size());
+    if (queryCapacity_ < queriesNeeded) {
+        if (queryPool_) vkDestroyQueryPool(ctx_.device, queryPool_, nullptr);
+        VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+        info.queryType = VK_QUERY_TYPE_TIMESTAMP;
+        info.queryCount = queriesNeeded;
+        VK_CHECK(vkCreateQueryPool(ctx_.device, &info, nullptr, &queryPool_));
+        queryCapacity_ = queriesNeeded;
+    }
+    vkCmdResetQueryPool(cmd, queryPool_, 0, queryCapacity_);
+
+    std::vector<bool> touched(resources_.size(), false);
+    lastBarriers_.clear();
+    for (uint32_t p = 0; p < passes_.size(); ++p) {
+        const Pass& pass = passes_[p];
+        std::vector<VkImageMemoryBarrier2> barriers;
+        for (const ImageUse& use : pass.uses) {
+            const uint32_t id = resolve(use.image);
+            Resource& r = resources_[id];
+            const bool discard = r.transient && !touched[id];
+            touched[id] = true;
+            if (auto b = transition(r.state, use.use, pass.kind, discard, r.image.image,
+                                    r.image.aspect)) {
+                barriers.push_back(*b);
+                lastBarriers_.push_back({pass.name, r.image.name, b->oldLayout, b->newLayout,
+                                         b->srcStageMask, b->dstStageMask, b->srcAccessMask,
+                                         b->dstAccessMask});
+            }
+        }
+        if (!barriers.empty()) {
+            VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+            dep.imageMemoryBarrierCount = uint32_t(barriers.size());
+            dep.pImageMemoryBarriers = barriers.data();
+            vkCmdPipelineBarrier2(cmd, &dep);
+        }
+        if (ctx_.cmdBeginLabel) {
+            VkDebugUtilsLabelEXT label{VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT};
+            label.pLabelName = pass.name.c_str();
+            ctx_.cmdBeginLabel(cmd, &label);
+        }
+        vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queryPool_, 2 * p);
+        pass.record(PassContext{cmd, *this});
+        vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queryPool_, 2 * p + 1);
+        if (ctx_.cmdEndLabel) ctx_.cmdEndLabel(cmd);
+    }
+}
+
+void FrameGraph::endFrame() {
+    std::vector<uint64_t> stamps(2 * passes_.size());
+    if (!stamps.empty())
+        VK_CHECK(vkGetQueryPoolResults(ctx_.device, queryPool_, 0, uint32_t(stamps.size()),
+                                       stamps.size() * sizeof(uint64_t), stamps.data(),
+                                       sizeof(uint64_t),
+                                       VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+    const double period = ctx_.properties.limits.timestampPeriod; // ns per tick
+    timings_.clear();
+    for (uint32_t p = 0; p < passes_.size(); ++p)
+        timings_.push_back(
+            {passes_[p].name, double(stamps[2 * p + 1] - stamps[2 * p]) * period * 1e-6});
+    for (History& h : histories_) {
+        h.currentSlot = 1 - h.currentSlot;
+        h.valid = true;
+    }
+}
+
+std::vector<float> FrameGraph::download(ImageRef ref) {
+    const uint32_t id = resolve(ref);
+    Resource& r = resources_[id];
+    const VkExtent2D e = r.image.extent;
+    const uint32_t texel = vk::formatTexelSize(r.image.format);
+    vk::Buffer staging =
+        vk::createBuffer(ctx_, VkDeviceSize(e.width) * e.height * texel,
+                         VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+    ctx_.submitAndWait([&](VkCommandBuffer cmd) {
+        if (auto b = transition(r.state, Use::TransferSrc, PassKind::Transfer, false,
+                                r.image.image, r.image.aspect)) {
+            VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+            dep.imageMemoryBarrierCount = 1;
+            dep.pImageMemoryBarriers = &*b;
+            vkCmdPipelineBarrier2(cmd, &dep);
+        }
+        VkBufferImageCopy region{};
+        region.imageSubresource = {r.image.aspect, 0, 0, 1};
+        region.imageExtent = {e.width, e.height, 1};
+        vkCmdCopyImageToBuffer(cmd, r.image.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                               staging.buffer, 1, &region);
+    });
+
+    const size_t count = size_t(e.width) * e.height;
+    std::vector<float> rgba(count * 4, 0.0f);
+    const auto* bytes = static_cast<const uint8_t*>(staging.mapped);
+    for (size_t i = 0; i < count; ++i) {
+        float* out = &rgba[4 * i];
+        switch (r.image.format) {
+        case VK_FORMAT_R32G32B32A32_SFLOAT:
+            std::memcpy(out, bytes + 16 * i, 16);
+            break;
+        case VK_FORMAT_R16G16B16A16_SFLOAT: {
+            uint16_t h[4];
+            std::memcpy(h, bytes + 8 * i, 8);
+            for (int c = 0; c < 4; ++c) out[c] = glm::unpackHalf1x16(h[c]);
+            break;
+        }
+        case VK_FORMAT_R8G8B8A8_UNORM:
+        case VK_FORMAT_R8G8B8A8_SRGB:
+            for (int c = 0; c < 4; ++c) out[c] = bytes[4 * i + c] / 255.0f;
+            break;
+        case VK_FORMAT_D32_SFLOAT:
+        case VK_FORMAT_R32_SFLOAT:
+            std::memcpy(out, bytes + 4 * i, 4);
+            out[3] = 1.0f;
+            break;
+        default:
+            throw vk::VulkanError("download: unsupported format for " + r.image.name);
+        }
+    }
+    vk::destroyBuffer(ctx_, staging);
+    return rgba;
+}
+
+} // namespace ssgi::graph

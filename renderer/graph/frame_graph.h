@@ -1,0 +1,121 @@
+// A small frame graph: passes run in the order they are added; each declares the images it
+// reads and writes, and the graph records the vkCmdPipelineBarrier2 between them. History images
+// are a graph feature: a pair that swaps each frame, contents kept, with "no history" on the
+// first frame and after a reset. Every pass is wrapped in a debug label and a timestamp pair.
+#pragma once
+
+#include "graph/barriers.h"
+#include "vk/resources.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace ssgi::graph {
+
+// Names an image as a pass sees it: a plain image, or one side of a history pair, resolved to a
+// real image each frame.
+struct ImageRef {
+    enum class Kind { Plain, HistoryPrevious, HistoryCurrent };
+    Kind kind = Kind::Plain;
+    uint32_t index = UINT32_MAX;
+    bool valid() const { return index != UINT32_MAX; }
+};
+
+struct ImageUse {
+    ImageRef image;
+    Use use;
+};
+
+struct PassTiming {
+    std::string name;
+    double milliseconds = 0.0;
+};
+
+// One barrier the graph emitted, for inspection (tests, --profile).
+struct BarrierRecord {
+    std::string pass, image;
+    VkImageLayout oldLayout, newLayout;
+    VkPipelineStageFlags2 srcStages, dstStages;
+    VkAccessFlags2 srcAccess, dstAccess;
+};
+
+class FrameGraph;
+
+// What a pass's record function gets: the command buffer and the images behind its refs.
+struct PassContext {
+    VkCommandBuffer cmd;
+    const FrameGraph& graph;
+    const vk::Image& image(ImageRef ref) const;
+};
+
+using RecordFn = std::function<void(const PassContext&)>;
+
+class FrameGraph {
+public:
+    explicit FrameGraph(vk::Context& ctx);
+    ~FrameGraph();
+    FrameGraph(const FrameGraph&) = delete;
+    FrameGraph& operator=(const FrameGraph&) = delete;
+
+    // An image whose contents live within one frame: the graph discards them at its first use.
+    ImageRef createImage(const std::string& name, VkFormat format, VkExtent2D extent,
+                         VkImageUsageFlags usage);
+    // A history pair: previous() is last frame's current(); contents are never discarded.
+    uint32_t createHistory(const std::string& name, VkFormat format, VkExtent2D extent,
+                           VkImageUsageFlags usage);
+    static ImageRef previous(uint32_t history) { return {ImageRef::Kind::HistoryPrevious, history}; }
+    static ImageRef current(uint32_t history) { return {ImageRef::Kind::HistoryCurrent, history}; }
+    // False on the first frame and after resetHistory(): previous() holds nothing to read.
+    bool hasHistory(uint32_t history) const { return histories_[history].valid; }
+    void resetHistory();
+
+    void addPass(const std::string& name, PassKind kind, std::vector<ImageUse> uses,
+                 RecordFn record);
+
+    // Records every pass of one frame (barriers, labels, timestamps) into cmd.
+    void record(VkCommandBuffer cmd);
+    // After the frame's submission has completed: reads the timestamps and swaps histories.
+    void endFrame();
+    const std::vector<PassTiming>& timings() const { return timings_; }
+    size_t passCount() const { return passes_.size(); }
+    // The barriers recorded by the last record() call, in order.
+    const std::vector<BarrierRecord>& lastBarriers() const { return lastBarriers_; }
+
+    const vk::Image& image(ImageRef ref) const;
+    // Copies an image to the host as RGBA float (depth: R = depth), after the last frame.
+    std::vector<float> download(ImageRef ref);
+    ImageRef find(const std::string& name) const;
+
+private:
+    struct Resource {
+        vk::Image image;
+        ImageState state;
+        bool transient = true;
+    };
+    struct History {
+        uint32_t resources[2];
+        uint32_t currentSlot = 0;
+        bool valid = false;
+    };
+    struct Pass {
+        std::string name;
+        PassKind kind;
+        std::vector<ImageUse> uses;
+        RecordFn record;
+    };
+    uint32_t resolve(ImageRef ref) const;
+    uint32_t addResource(const std::string& name, VkFormat format, VkExtent2D extent,
+                         VkImageUsageFlags usage, bool transient);
+
+    vk::Context& ctx_;
+    std::vector<Resource> resources_;
+    std::vector<History> histories_;
+    std::vector<Pass> passes_;
+    std::vector<PassTiming> timings_;
+    std::vector<BarrierRecord> lastBarriers_;
+    VkQueryPool queryPool_ = VK_NULL_HANDLE;
+    uint32_t queryCapacity_ = 0;
+};
+
+} // namespace ssgi::graph

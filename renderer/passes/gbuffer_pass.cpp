@@ -1,0 +1,10 @@
+// gbuffer: the camera's view of the scene, what every screen-space pass reads.
+#include "passes/pass_setup.h"
+
+namespace ssgi {
+
+SceneTargets addGBufferPass(PassSetup& s) {
+    return addScenePass(s, "gbuffer", "gbuffer", s.size, VK_FORMAT_R8G8B8A8_UNORM);
+}
+
+} // namespace ssgi

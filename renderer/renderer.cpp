@@ -1,0 +1,108 @@
+#include "renderer.h"
+
+#include "scene/camera.h"
+#include "shared.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace ssgi {
+
+const std::vector<std::string>& viewNames() {
+    // Order matches the VIEW_* values in shared.h.
+    static const std::vector<std::string> names = {"final",  "albedo",   "normal",    "depth",
+                                                   "direct", "rsm-flux", "rsm-normal"};
+    return names;
+}
+
+Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& options)
+    : ctx_(ctx), scene_(scene) {
+    const uint32_t limit = ctx.properties.limits.maxImageDimension2D;
+    if (options.width == 0 || options.height == 0 || options.width > limit ||
+        options.height > limit)
+        throw InputError("image size " + std::to_string(options.width) + "x" +
+                         std::to_string(options.height) + " is outside 1.." +
+                         std::to_string(limit) + " (this device's largest 2D image)");
+    const auto& views = viewNames();
+    auto view = std::find(views.begin(), views.end(), options.view);
+    if (view == views.end()) {
+        std::string list;
+        for (const auto& v : views) list += " " + v;
+        throw InputError("unknown view '" + options.view + "' (views:" + list + ")");
+    }
+    const uint32_t rsmSize = uint32_t(scene.setting("shadow_map_size", 1024));
+    if (rsmSize == 0 || rsmSize > limit)
+        throw InputError("shadow_map_size " + std::to_string(rsmSize) + " is outside 1.." +
+                         std::to_string(limit));
+
+    sceneGpu_ = std::make_unique<SceneGpu>(ctx, scene);
+    graph_ = std::make_unique<graph::FrameGraph>(ctx);
+    setup_.reset(new PassSetup{ctx, *graph_, *sceneGpu_});
+    setup_->frameUniforms = vk::createBuffer(ctx, sizeof(shader::FrameUniforms),
+                                             VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+    setup_->nearestSampler =
+        vk::createSampler(ctx, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+    setup_->linearSampler =
+        vk::createSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+    setup_->size = {options.width, options.height};
+    setup_->rsmSize = {rsmSize, rsmSize};
+
+    // The frame, in order: rasterise the camera's and the light's views, light the G-buffer,
+    // composite and tonemap.
+    GBufferAndRsm scenes;
+    scenes.gbuffer = addGBufferPass(*setup_);
+    scenes.rsm = addRsmPass(*setup_);
+    graph::ImageRef direct = addDirectPass(*setup_, scenes);
+    addCompositePass(*setup_, scenes, direct, int(view - views.begin()));
+}
+
+Renderer::~Renderer() {
+    vkDeviceWaitIdle(ctx_.device);
+    graph_.reset();
+    for (vk::Pipeline& p : setup_->pipelines) vk::destroyPipeline(ctx_, p);
+    vk::destroyBuffer(ctx_, setup_->frameUniforms);
+    vkDestroySampler(ctx_.device, setup_->nearestSampler, nullptr);
+    vkDestroySampler(ctx_.device, setup_->linearSampler, nullptr);
+}
+
+void Renderer::updateUniforms(const Camera& camera) {
+    const VkExtent2D size = setup_->size;
+    const float aspect = float(size.width) / float(size.height);
+    const LightFrustum light = lightFrustum(scene_.light, scene_.bounds);
+    shader::FrameUniforms u{};
+    u.view = viewMatrix(camera);
+    u.projection = projectionMatrix(camera, aspect);
+    u.viewProjection = u.projection * u.view;
+    u.inverseViewProjection = glm::inverse(u.viewProjection);
+    u.previousViewProjection = frameIndex_ == 0 ? u.viewProjection : previousViewProjection_;
+    u.lightViewProjection = light.viewProjection;
+    u.cameraPosition = glm::vec4(camera.position, 1.0f);
+    const SpotLight& l = scene_.light;
+    u.lightPosition = glm::vec4(l.position, l.radius);
+    u.lightDirection = glm::vec4(glm::normalize(l.direction), std::cos(l.outerConeAngle));
+    u.lightColor = glm::vec4(l.color * l.intensity, std::cos(l.innerConeAngle));
+    u.lightFrustum = glm::vec4(light.znear, light.zfar, light.tanHalfFov, float(setup_->rsmSize.width));
+    u.skyZenith = glm::vec4(scene_.sky.zenith, 0.0f);
+    u.skyHorizon = glm::vec4(scene_.sky.horizon, 0.0f);
+    u.skyGround = glm::vec4(scene_.sky.ground, 0.0f);
+    u.viewport = glm::vec4(size.width, size.height, 1.0f / size.width, 1.0f / size.height);
+    u.params = glm::vec4(scene_.setting("exposure", 1.0), scene_.setting("shadow_bias", 1.5),
+                         float(frameIndex_), glm::length(scene_.bounds.size()));
+    std::memcpy(setup_->frameUniforms.mapped, &u, sizeof(u));
+    previousViewProjection_ = u.viewProjection;
+}
+
+void Renderer::renderFrame(const Camera& camera) {
+    updateUniforms(camera);
+    ctx_.submitAndWait([&](VkCommandBuffer cmd) { graph_->record(cmd); });
+    graph_->endFrame();
+    ++frameIndex_;
+}
+
+std::vector<float> Renderer::readImage(const std::string& name) {
+    graph::ImageRef ref = graph_->find(name);
+    if (!ref.valid()) throw InputError("no image named '" + name + "' in the frame");
+    return graph_->download(ref);
+}
+
+} // namespace ssgi

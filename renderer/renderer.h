@@ -1,0 +1,51 @@
+// The frame: wires the passes into the graph in declared order and renders frames of a scene.
+#pragma once
+
+#include "graph/frame_graph.h"
+#include "passes/pass_setup.h"
+#include "scene/scene.h"
+#include "scene_gpu.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace ssgi {
+
+// Names of the debug views the composite can show in place of the final image.
+const std::vector<std::string>& viewNames();
+
+struct RenderOptions {
+    uint32_t width = 512, height = 512;
+    std::string view = "final";
+};
+
+class Renderer {
+public:
+    // Throws InputError for absurd options (size 0, beyond the device's limit, unknown view).
+    Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& options);
+    ~Renderer();
+
+    // Renders one frame from `camera`, waits for it and collects its pass timings.
+    void renderFrame(const Camera& camera);
+    const std::vector<graph::PassTiming>& timings() const { return graph_->timings(); }
+
+    // Reads an image of the last frame by name ("hdr", "ldr", "direct", "gbuffer.position",
+    // "gbuffer.normal", "gbuffer.albedo", "gbuffer.depth", "rsm.flux", ...) as RGBA floats.
+    std::vector<float> readImage(const std::string& name);
+    VkExtent2D size() const { return setup_->size; }
+    const graph::FrameGraph& frameGraph() const { return *graph_; }
+
+private:
+    void updateUniforms(const Camera& camera);
+
+    vk::Context& ctx_;
+    const Scene& scene_;
+    std::unique_ptr<SceneGpu> sceneGpu_;
+    std::unique_ptr<graph::FrameGraph> graph_;
+    std::unique_ptr<PassSetup> setup_;
+    uint32_t frameIndex_ = 0;
+    glm::mat4 previousViewProjection_{1.0f};
+};
+
+} // namespace ssgi

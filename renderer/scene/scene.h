@@ -1,0 +1,139 @@
+// The scene model: no more than a scene needs. Diffuse surfaces, one spot light, a sky, a
+// camera and a camera path, plus the settings the methods read. Loaders fill it; the renderer
+// and the reference path tracer read it.
+#pragma once
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include <cstdint>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace ssgi {
+
+// Any problem with input (file missing, malformed, unknown key, absurd value). The message
+// names the file and the problem; programs print it and exit non-zero.
+struct InputError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+struct Vertex {
+    glm::vec3 position; // object space
+    glm::vec3 normal;   // object space, unit length
+    glm::vec2 uv;
+};
+static_assert(sizeof(Vertex) == 32);
+
+// Lambertian: albedo = baseColorFactor * baseColorTexture (texture is sRGB-encoded).
+struct Material {
+    std::string name;
+    glm::vec4 baseColorFactor{1.0f};
+    int baseColorTexture = -1; // index into Scene::textures, -1 = none
+    bool alphaMask = false;    // glTF alphaMode MASK
+    float alphaCutoff = 0.5f;
+};
+
+// 8-bit RGBA, sRGB-encoded, rows top to bottom.
+struct Texture {
+    std::string name;
+    uint32_t width = 0, height = 0;
+    std::vector<uint8_t> rgba;
+};
+
+// One triangle list with one material (a glTF primitive or a procedural primitive).
+struct Mesh {
+    std::vector<Vertex> vertices;
+    std::vector<uint32_t> indices;
+    int material = 0;
+};
+
+// A mesh placed in the world (glTF node transform, or identity for primitives).
+struct Instance {
+    int mesh = 0;
+    glm::mat4 transform{1.0f};
+};
+
+struct Aabb {
+    glm::vec3 min{1e30f};
+    glm::vec3 max{-1e30f};
+    void extend(glm::vec3 p) {
+        min = glm::min(min, p);
+        max = glm::max(max, p);
+    }
+    bool empty() const { return min.x > max.x; }
+    glm::vec3 center() const { return 0.5f * (min + max); }
+    glm::vec3 size() const { return max - min; }
+};
+
+// The one light: a spot light whose emitting disk has `radius` (0 = point light). Radiant
+// intensity along the axis is `intensity * color` (W/sr); it falls smoothly to 0 between the
+// inner and outer cone half-angles (glTF KHR_lights_punctual spot rule).
+struct SpotLight {
+    glm::vec3 position{0.0f, 1.0f, 0.0f};
+    glm::vec3 direction{0.0f, -1.0f, 0.0f}; // unit
+    glm::vec3 color{1.0f};
+    float intensity = 1.0f;
+    float innerConeAngle = 0.0f;          // radians, half-angle
+    float outerConeAngle = 0.7853982f;    // radians, half-angle, < 90 degrees
+    float radius = 0.0f;                  // disk radius (soft shadows); 0 = point
+};
+
+// Radiance of the sky seen from the scene: a vertical gradient from horizon to zenith (equal
+// colours give a constant sky). Below the horizon the sky is `ground`.
+struct Sky {
+    glm::vec3 zenith{0.0f};
+    glm::vec3 horizon{0.0f};
+    glm::vec3 ground{0.0f};
+};
+
+// Pinhole camera: orientation rotates the camera's -Z (view direction) and +Y (up) into world.
+struct Camera {
+    glm::vec3 position{0.0f, 0.0f, 3.0f};
+    glm::quat orientation{1.0f, 0.0f, 0.0f, 0.0f};
+    float yfov = 0.6981317f; // radians, vertical field of view
+    float znear = 0.01f;     // derived from the scene bounds when the file does not say
+    float zfar = 100.0f;
+};
+
+struct CameraKey {
+    float time = 0.0f; // seconds
+    Camera camera;
+};
+
+// Keyframes sorted by time; interpolated (position linear, orientation slerp, fov linear).
+struct CameraPath {
+    std::vector<CameraKey> keys;
+    bool empty() const { return keys.empty(); }
+};
+
+struct Scene {
+    std::string sourcePath; // the file it was loaded from
+    std::vector<Mesh> meshes;
+    std::vector<Material> materials;
+    std::vector<Texture> textures;
+    std::vector<Instance> instances;
+    SpotLight light;
+    Sky sky;
+    Camera camera;
+    CameraPath cameraPath;
+    Aabb bounds; // world space, over all instances
+    // Method settings by name (numbers only), already checked against the known keys.
+    std::map<std::string, double> settings;
+
+    double setting(const std::string& key, double fallback) const {
+        auto it = settings.find(key);
+        return it == settings.end() ? fallback : it->second;
+    }
+};
+
+// Loads a scene description file (.json) or a bare glTF (.gltf/.glb, with a default light and
+// camera derived from its bounds). Throws InputError naming the file and the problem.
+Scene loadScene(const std::string& path);
+
+// The settings a scene file may name, with their defaults; an unknown key is an error.
+const std::map<std::string, double>& knownSettings();
+
+} // namespace ssgi

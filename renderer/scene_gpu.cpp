@@ -1,0 +1,73 @@
+#include "scene_gpu.h"
+
+#include "shared.h"
+
+namespace ssgi {
+
+SceneGpu::SceneGpu(vk::Context& ctx, const Scene& scene) : ctx_(ctx), scene_(scene) {
+    for (const Mesh& mesh : scene.meshes) {
+        MeshBuffers b;
+        // Meshes without indices (flat-shaded, one vertex per corner) draw their vertices in order.
+        std::vector<uint32_t> sequential;
+        if (mesh.indices.empty())
+            for (uint32_t i = 0; i < mesh.vertices.size(); ++i) sequential.push_back(i);
+        const std::vector<uint32_t>& indices = mesh.indices.empty() ? sequential : mesh.indices;
+        if (!indices.empty()) {
+            b.vertices = vk::createBufferWithData(ctx, mesh.vertices.data(),
+                                                  mesh.vertices.size() * sizeof(Vertex),
+                                                  VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+            b.indices = vk::createBufferWithData(ctx, indices.data(),
+                                                 indices.size() * sizeof(uint32_t),
+                                                 VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+            b.indexCount = uint32_t(indices.size());
+        }
+        meshes_.push_back(b);
+    }
+    for (const Texture& t : scene.textures)
+        textures_.push_back(vk::createTexture(ctx, t.name, VK_FORMAT_R8G8B8A8_SRGB,
+                                              {t.width, t.height}, t.rgba.data(), t.rgba.size()));
+    const uint8_t white[4] = {255, 255, 255, 255};
+    whiteTexture_ = vk::createTexture(ctx, "white", VK_FORMAT_R8G8B8A8_SRGB, {1, 1}, white, 4);
+    sampler_ = vk::createSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT);
+}
+
+SceneGpu::~SceneGpu() {
+    vkDeviceWaitIdle(ctx_.device);
+    for (MeshBuffers& m : meshes_) {
+        vk::destroyBuffer(ctx_, m.vertices);
+        vk::destroyBuffer(ctx_, m.indices);
+    }
+    for (vk::Image& t : textures_) vk::destroyImage(ctx_, t);
+    vk::destroyImage(ctx_, whiteTexture_);
+    vkDestroySampler(ctx_.device, sampler_, nullptr);
+}
+
+void SceneGpu::draw(VkCommandBuffer cmd, const vk::Pipeline& pipeline, VkBuffer frameUniforms,
+                    VkDeviceSize frameUniformsSize) const {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline);
+    for (const Instance& instance : scene_.instances) {
+        const MeshBuffers& mesh = meshes_[instance.mesh];
+        if (mesh.indexCount == 0) continue;
+        const Material& material = scene_.materials[scene_.meshes[instance.mesh].material];
+        const bool textured = material.baseColorTexture >= 0;
+        shader::DrawConstants constants{};
+        constants.model = instance.transform;
+        constants.baseColorFactor = material.baseColorFactor;
+        constants.material = {textured ? 1.0f : 0.0f,
+                              material.alphaMask ? material.alphaCutoff : 0.0f, 0.0f, 0.0f};
+        vk::Descriptors()
+            .uniformBuffer(0, frameUniforms, frameUniformsSize)
+            .sampledImage(1, textured ? textures_[material.baseColorTexture].view
+                                      : whiteTexture_.view,
+                          sampler_)
+            .push(ctx_, cmd, pipeline);
+        vkCmdPushConstants(cmd, pipeline.layout, pipeline.stages, 0, sizeof(constants),
+                           &constants);
+        VkDeviceSize offset = 0;
+        vkCmdBindVertexBuffers(cmd, 0, 1, &mesh.vertices.buffer, &offset);
+        vkCmdBindIndexBuffer(cmd, mesh.indices.buffer, 0, VK_INDEX_TYPE_UINT32);
+        vkCmdDrawIndexed(cmd, mesh.indexCount, 1, 0, 0, 0);
+    }
+}
+
+} // namespace ssgi

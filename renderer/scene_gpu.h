@@ -1,0 +1,38 @@
+// The scene on the device: one vertex and index buffer per mesh, the base-colour textures, and
+// the draw list (one draw per instance) shared by every raster pass.
+#pragma once
+
+#include "scene/scene.h"
+#include "vk/pipeline.h"
+#include "vk/resources.h"
+
+#include <vector>
+
+namespace ssgi {
+
+class SceneGpu {
+public:
+    SceneGpu(vk::Context& ctx, const Scene& scene);
+    ~SceneGpu();
+    SceneGpu(const SceneGpu&) = delete;
+    SceneGpu& operator=(const SceneGpu&) = delete;
+
+    // Draws every instance with `pipeline` (set 0: binding 0 = frame uniforms, binding 1 = the
+    // draw's base-colour texture; push constants = DrawConstants).
+    void draw(VkCommandBuffer cmd, const vk::Pipeline& pipeline, VkBuffer frameUniforms,
+              VkDeviceSize frameUniformsSize) const;
+
+private:
+    struct MeshBuffers {
+        vk::Buffer vertices, indices;
+        uint32_t indexCount = 0;
+    };
+    vk::Context& ctx_;
+    const Scene& scene_;
+    std::vector<MeshBuffers> meshes_;
+    std::vector<vk::Image> textures_;
+    vk::Image whiteTexture_;
+    VkSampler sampler_ = VK_NULL_HANDLE;
+};
+
+} // namespace ssgi

@@ -1,0 +1,75 @@
+// The Vulkan instance, device and queue: Vulkan 1.3 with dynamic rendering, synchronization2
+// and push descriptors. Picks a discrete GPU when present, else the first device (lavapipe on a
+// machine without a GPU); a name substring (flag or SSGI_DEVICE) selects one explicitly.
+#pragma once
+
+#include <vulkan/vulkan.h>
+
+#include <functional>
+#include <stdexcept>
+#include <string>
+
+namespace ssgi::vk {
+
+// A Vulkan call failed, or no usable device exists. The message names the call.
+struct VulkanError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+const char* resultName(VkResult result);
+
+#define VK_CHECK(call)                                                                             \
+    do {                                                                                           \
+        VkResult vkCheckResult_ = (call);                                                          \
+        if (vkCheckResult_ != VK_SUCCESS)                                                          \
+            throw ::ssgi::vk::VulkanError(std::string(#call) + " failed: " +                       \
+                                          ::ssgi::vk::resultName(vkCheckResult_));                 \
+    } while (0)
+
+struct ContextOptions {
+    bool validation = false;  // Khronos validation layer with synchronization validation
+    std::string deviceName;   // substring of the device name to pick; empty = automatic
+};
+
+class Context {
+public:
+    explicit Context(const ContextOptions& options);
+    ~Context();
+    Context(const Context&) = delete;
+    Context& operator=(const Context&) = delete;
+
+    VkInstance instance = VK_NULL_HANDLE;
+    VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
+    VkDevice device = VK_NULL_HANDLE;
+    VkQueue queue = VK_NULL_HANDLE;
+    uint32_t queueFamily = 0;
+    VkCommandPool commandPool = VK_NULL_HANDLE;
+    VkPhysicalDeviceProperties properties{};
+    VkPhysicalDeviceMemoryProperties memoryProperties{};
+    std::string driverName; // e.g. "llvmpipe" + driver info
+    bool validationEnabled = false;
+
+    // Validation messages (warnings and errors) seen so far; tests require zero.
+    uint32_t validationMessageCount() const { return validationMessages_; }
+
+    // Records with `record` into a fresh command buffer, submits and waits.
+    void submitAndWait(const std::function<void(VkCommandBuffer)>& record);
+
+    // Debug-utils entry points (null when the extension is absent).
+    PFN_vkCmdBeginDebugUtilsLabelEXT cmdBeginLabel = nullptr;
+    PFN_vkCmdEndDebugUtilsLabelEXT cmdEndLabel = nullptr;
+    PFN_vkSetDebugUtilsObjectNameEXT setObjectName = nullptr;
+    PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet = nullptr;
+
+    void nameObject(VkObjectType type, uint64_t handle, const std::string& name) const;
+
+private:
+    VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+    uint32_t validationMessages_ = 0;
+    static VkBool32 VKAPI_PTR onMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                         VkDebugUtilsMessageTypeFlagsEXT types,
+                                         const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                         void* user);
+};
+
+} // namespace ssgi::vk

@@ -1,0 +1,73 @@
+// Pipelines built from the SPIR-V the build compiles, with one push-descriptor set (set 0) per
+// pipeline, an optional second set (the scene's textures), and push constants.
+#pragma once
+
+#include "vk/context.h"
+
+#include <deque>
+#include <string>
+#include <vector>
+
+namespace ssgi::vk {
+
+struct Pipeline {
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    VkDescriptorSetLayout pushSetLayout = VK_NULL_HANDLE;
+    VkPipelineBindPoint bindPoint = VK_PIPELINE_BIND_POINT_COMPUTE;
+    uint32_t pushConstantSize = 0;
+    VkShaderStageFlags stages = 0;
+};
+
+// Structural settings (kernel sizes, variants) go in as specialization constants 0..n-1.
+struct Specialization {
+    std::vector<int32_t> values;
+};
+
+Pipeline createComputePipeline(Context& ctx, const std::string& shader,
+                               const std::vector<VkDescriptorType>& bindings,
+                               uint32_t pushConstantSize, const Specialization& spec = {});
+
+struct GraphicsPipelineDesc {
+    std::string vertexShader, fragmentShader;
+    std::vector<VkFormat> colorFormats;
+    VkFormat depthFormat = VK_FORMAT_UNDEFINED;
+    std::vector<VkDescriptorType> bindings; // set 0, push descriptors
+    VkDescriptorSetLayout textureSetLayout = VK_NULL_HANDLE; // set 1, optional
+    uint32_t pushConstantSize = 0;
+};
+
+// Vertex input is ssgi::Vertex (position, normal, uv); no culling (our surfaces are two-sided).
+Pipeline createGraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& desc);
+void destroyPipeline(const Context& ctx, Pipeline& pipeline);
+
+// Descriptor writes for one push; binding numbers are the shader's.
+class Descriptors {
+public:
+    Descriptors& storageImage(uint32_t binding, VkImageView view);
+    Descriptors& sampledImage(uint32_t binding, VkImageView view, VkSampler sampler,
+                              VkImageLayout layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    Descriptors& uniformBuffer(uint32_t binding, VkBuffer buffer, VkDeviceSize size);
+    Descriptors& storageBuffer(uint32_t binding, VkBuffer buffer, VkDeviceSize size);
+    void push(const Context& ctx, VkCommandBuffer cmd, const Pipeline& pipeline);
+
+private:
+    std::vector<VkWriteDescriptorSet> writes_;
+    std::deque<VkDescriptorImageInfo> images_;
+    std::deque<VkDescriptorBufferInfo> buffers_;
+};
+
+// Binds, pushes constants (size checked against the pipeline) and dispatches enough 8x8 groups
+// to cover width x height.
+void dispatch(VkCommandBuffer cmd, const Pipeline& pipeline, uint32_t width, uint32_t height,
+              const void* pushConstants, uint32_t pushSize);
+
+template <typename T>
+void dispatch(VkCommandBuffer cmd, const Pipeline& pipeline, uint32_t width, uint32_t height,
+              const T& pushConstants) {
+    dispatch(cmd, pipeline, width, height, &pushConstants, sizeof(T));
+}
+
+VkSampler createSampler(const Context& ctx, VkFilter filter, VkSamplerAddressMode address);
+
+} // namespace ssgi::vk

@@ -1,0 +1,28 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// G-buffer: world position (w = 1 where there is geometry), world normal facing the camera
+// (surfaces are two-sided), Lambertian albedo.
+#include "shared.h"
+
+layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
+layout(set = 0, binding = 1) uniform sampler2D baseColorTexture;
+layout(push_constant) uniform DrawBlock { DrawConstants draw; };
+
+layout(location = 0) in vec3 worldPosition;
+layout(location = 1) in vec3 worldNormal;
+layout(location = 2) in vec2 uv;
+
+layout(location = 0) out vec4 outPosition;
+layout(location = 1) out vec4 outNormal;
+layout(location = 2) out vec4 outAlbedo;
+
+void main() {
+    vec4 albedo = draw.baseColorFactor;
+    if (draw.material.x > 0.5) albedo *= texture(baseColorTexture, uv);
+    if (albedo.a < draw.material.y) discard;
+    vec3 n = normalize(worldNormal);
+    if (dot(n, frame.cameraPosition.xyz - worldPosition) < 0.0) n = -n;
+    outPosition = vec4(worldPosition, 1.0);
+    outNormal = vec4(n, 0.0);
+    outAlbedo = vec4(albedo.rgb, 1.0);
+}

@@ -1,0 +1,39 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Reflective shadow map (Dachsbacher & Stamminger 2005): per texel the surface's world position,
+// its normal (facing the light) and the flux it reflects, each texel a virtual point light.
+#include "shared.h"
+#include "common.glsl"
+
+layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
+layout(set = 0, binding = 1) uniform sampler2D baseColorTexture;
+layout(push_constant) uniform DrawBlock { DrawConstants draw; };
+
+layout(location = 0) in vec3 worldPosition;
+layout(location = 1) in vec3 worldNormal;
+layout(location = 2) in vec2 uv;
+
+layout(location = 0) out vec4 outPosition;
+layout(location = 1) out vec4 outNormal;
+layout(location = 2) out vec4 outFlux;
+
+void main() {
+    vec4 albedo = draw.baseColorFactor;
+    if (draw.material.x > 0.5) albedo *= texture(baseColorTexture, uv);
+    if (albedo.a < draw.material.y) discard;
+    vec3 toLight = frame.lightPosition.xyz - worldPosition;
+    vec3 n = normalize(worldNormal);
+    if (dot(n, toLight) < 0.0) n = -n;
+    // Flux through this texel: radiant intensity times the texel's solid angle, which for a
+    // texel of a perspective map at angle theta off the axis is (texel area on the unit plane)
+    // * cos^3(theta). The surface reflects the fraction `albedo` of it.
+    vec3 fromLight = -normalize(toLight);
+    float cosAxis = dot(fromLight, frame.lightDirection.xyz);
+    float texelSize = 2.0 * frame.lightFrustum.z / frame.lightFrustum.w;
+    float solidAngle = texelSize * texelSize * cosAxis * cosAxis * cosAxis;
+    float spot = spotAttenuation(fromLight, frame.lightDirection.xyz, frame.lightDirection.w,
+                                 frame.lightColor.w);
+    outPosition = vec4(worldPosition, 1.0);
+    outNormal = vec4(n, 0.0);
+    outFlux = vec4(albedo.rgb * frame.lightColor.rgb * spot * solidAngle, 1.0);
+}

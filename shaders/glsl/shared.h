@@ -1,0 +1,64 @@
+// Structures shared by C++ and GLSL: one declaration, compiled by both. Members are only vec4,
+// mat4 and ivec4 so that std140 (uniforms) and std430 (push constants) lay them out exactly as
+// C++ does; the static_asserts hold the C++ side to the sizes the shaders expect.
+#ifndef SSGI_SHARED_H
+#define SSGI_SHARED_H
+
+#ifdef __cplusplus
+#include <glm/glm.hpp>
+namespace ssgi::shader {
+using vec4 = glm::vec4;
+using mat4 = glm::mat4;
+using ivec4 = glm::ivec4;
+#define SSGI_CHECK_SIZE(type, bytes) static_assert(sizeof(type) == bytes, #type " layout")
+#else
+#define SSGI_CHECK_SIZE(type, bytes)
+#endif
+
+// Everything a pass may need about the frame: cameras, the light, the sky. Set 0, binding 0.
+struct FrameUniforms {
+    mat4 view;
+    mat4 projection;
+    mat4 viewProjection;
+    mat4 inverseViewProjection;
+    mat4 previousViewProjection;
+    mat4 lightViewProjection;
+    vec4 cameraPosition; // xyz
+    vec4 lightPosition;  // xyz, w = disk radius
+    vec4 lightDirection; // xyz unit axis, w = cos(outer cone half-angle)
+    vec4 lightColor;     // rgb = colour * intensity (W/sr on the axis), w = cos(inner half-angle)
+    vec4 lightFrustum;   // x = near, y = far, z = tan(half fov), w = shadow-map size in texels
+    vec4 skyZenith;      // rgb radiance
+    vec4 skyHorizon;
+    vec4 skyGround;
+    vec4 viewport;       // x = width, y = height, z = 1/width, w = 1/height
+    vec4 params;         // x = exposure, y = shadow bias (texels), z = frame index, w = scene diagonal
+};
+SSGI_CHECK_SIZE(FrameUniforms, 6 * 64 + 10 * 16);
+
+// Per draw in the raster passes (push constants).
+struct DrawConstants {
+    mat4 model;
+    vec4 baseColorFactor;
+    vec4 material; // x = 1 when a base-colour texture is bound, y = alpha cutoff (0 = opaque)
+};
+SSGI_CHECK_SIZE(DrawConstants, 96);
+
+// Composite's choice of output (push constants): x = view (see VIEW_*).
+struct CompositeConstants {
+    ivec4 mode;
+};
+SSGI_CHECK_SIZE(CompositeConstants, 16);
+
+#define VIEW_FINAL 0
+#define VIEW_ALBEDO 1
+#define VIEW_NORMAL 2
+#define VIEW_DEPTH 3
+#define VIEW_DIRECT 4
+#define VIEW_RSM_FLUX 5
+#define VIEW_RSM_NORMAL 6
+
+#ifdef __cplusplus
+} // namespace ssgi::shader
+#endif
+#endif

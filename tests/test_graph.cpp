@@ -1,0 +1,156 @@
+// The frame graph: declared image uses -> emitted barriers (CPU), and history pairs on the device.
+#include "graph/frame_graph.h"
+#include "support.h"
+
+using namespace ssgi;
+using namespace ssgi::graph;
+
+namespace {
+
+const VkImage kImage = reinterpret_cast<VkImage>(uintptr_t(0x1234));
+const VkImageAspectFlags kColor = VK_IMAGE_ASPECT_COLOR_BIT;
+
+TEST(Barriers, FirstWriteDiscardsAndWaitsForNothing) {
+    ImageState s;
+    auto b = transition(s, Use::ColorAttachment, PassKind::Graphics, true, kImage, kColor);
+    ASSERT_TRUE(b);
+    EXPECT_EQ(b->oldLayout, VK_IMAGE_LAYOUT_UNDEFINED);
+    EXPECT_EQ(b->newLayout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    EXPECT_EQ(b->srcStageMask, VK_PIPELINE_STAGE_2_NONE);
+    EXPECT_EQ(b->srcAccessMask, VK_ACCESS_2_NONE);
+    EXPECT_EQ(b->dstStageMask, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT);
+    EXPECT_EQ(b->image, kImage);
+}
+
+TEST(Barriers, ReadAfterAttachmentWriteMakesTheWriteVisibleAndChangesLayout) {
+    ImageState s;
+    transition(s, Use::ColorAttachment, PassKind::Graphics, true, kImage, kColor);
+    auto b = transition(s, Use::Sampled, PassKind::Compute, false, kImage, kColor);
+    ASSERT_TRUE(b);
+    EXPECT_EQ(b->oldLayout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    EXPECT_EQ(b->newLayout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    EXPECT_EQ(b->srcStageMask, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT);
+    EXPECT_EQ(b->srcAccessMask, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+    EXPECT_EQ(b->dstStageMask, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    EXPECT_EQ(b->dstAccessMask, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+}
+
+TEST(Barriers, ReadAfterReadInTheSameStageNeedsNoBarrier) {
+    ImageState s;
+    transition(s, Use::StorageWrite, PassKind::Compute, true, kImage, kColor);
+    ASSERT_TRUE(transition(s, Use::Sampled, PassKind::Compute, false, kImage, kColor));
+    EXPECT_FALSE(transition(s, Use::Sampled, PassKind::Compute, false, kImage, kColor));
+}
+
+TEST(Barriers, ReadInAnotherStageChainsOnTheFirstReader) {
+    ImageState s;
+    transition(s, Use::ColorAttachment, PassKind::Graphics, true, kImage, kColor);
+    transition(s, Use::Sampled, PassKind::Compute, false, kImage, kColor);
+    auto b = transition(s, Use::Sampled, PassKind::Graphics, false, kImage, kColor);
+    ASSERT_TRUE(b);
+    EXPECT_EQ(b->oldLayout, b->newLayout);
+    EXPECT_EQ(b->srcStageMask, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    EXPECT_EQ(b->dstStageMask, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
+}
+
+TEST(Barriers, StorageWriteThenReadKeepsGeneralLayout) {
+    ImageState s;
+    transition(s, Use::StorageWrite, PassKind::Compute, true, kImage, kColor);
+    auto b = transition(s, Use::StorageRead, PassKind::Compute, false, kImage, kColor);
+    ASSERT_TRUE(b);
+    EXPECT_EQ(b->oldLayout, VK_IMAGE_LAYOUT_GENERAL);
+    EXPECT_EQ(b->newLayout, VK_IMAGE_LAYOUT_GENERAL);
+    EXPECT_EQ(b->srcAccessMask, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    EXPECT_EQ(b->dstAccessMask, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+}
+
+TEST(Barriers, WriteAfterWriteWaitsForTheEarlierWrite) {
+    ImageState s;
+    transition(s, Use::StorageWrite, PassKind::Compute, true, kImage, kColor);
+    auto b = transition(s, Use::StorageWrite, PassKind::Compute, false, kImage, kColor);
+    ASSERT_TRUE(b);
+    EXPECT_EQ(b->srcStageMask, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    EXPECT_EQ(b->srcAccessMask, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+}
+
+TEST(Barriers, WriteAfterReadWaitsForEveryReaderButFlushesNothing) {
+    ImageState s;
+    transition(s, Use::ColorAttachment, PassKind::Graphics, true, kImage, kColor);
+    transition(s, Use::Sampled, PassKind::Compute, false, kImage, kColor);
+    transition(s, Use::Sampled, PassKind::Graphics, false, kImage, kColor);
+    // Next frame: the transient image is discarded and drawn into again.
+    auto b = transition(s, Use::ColorAttachment, PassKind::Graphics, true, kImage, kColor);
+    ASSERT_TRUE(b);
+    EXPECT_EQ(b->oldLayout, VK_IMAGE_LAYOUT_UNDEFINED);
+    EXPECT_EQ(b->srcStageMask,
+              VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
+    EXPECT_EQ(b->srcAccessMask, VK_ACCESS_2_NONE);
+}
+
+TEST(Barriers, HistoryIsNeverDiscarded) {
+    ImageState s;
+    transition(s, Use::StorageWrite, PassKind::Compute, true, kImage, kColor);
+    transition(s, Use::Sampled, PassKind::Compute, false, kImage, kColor);
+    auto b = transition(s, Use::StorageReadWrite, PassKind::Compute, false, kImage, kColor);
+    ASSERT_TRUE(b);
+    EXPECT_EQ(b->oldLayout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    EXPECT_EQ(b->newLayout, VK_IMAGE_LAYOUT_GENERAL);
+}
+
+TEST(Barriers, DepthAttachmentUsesBothFragmentTestStages) {
+    UseInfo info = useInfo(Use::DepthAttachment, PassKind::Graphics);
+    EXPECT_EQ(info.layout, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
+    EXPECT_EQ(info.stages, VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
+                               VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT);
+    EXPECT_TRUE(info.writes);
+}
+
+// History on the device: each frame clears the current image to the frame number and copies
+// the previous one into a plain image; contents must survive the swap, under sync validation.
+class HistoryTest : public test::VulkanTest {};
+
+TEST_F(HistoryTest, PairSwapsKeepsContentsAndReportsNoHistoryFirst) {
+    vk::Context& ctx = test::context();
+    FrameGraph graph(ctx);
+    const VkImageUsageFlags usage =
+        VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    const uint32_t history = graph.createHistory("value", VK_FORMAT_R32G32B32A32_SFLOAT, {4, 4}, usage);
+    const ImageRef copy = graph.createImage("copy", VK_FORMAT_R32G32B32A32_SFLOAT, {4, 4}, usage);
+    float frameValue = 0.0f;
+    graph.addPass("write current", PassKind::Transfer,
+                  {{FrameGraph::current(history), Use::TransferDst}},
+                  [&](const PassContext& pc) {
+                      VkClearColorValue value{{frameValue, 0, 0, 1}};
+                      VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+                      vkCmdClearColorImage(pc.cmd, pc.image(FrameGraph::current(history)).image,
+                                           VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &value, 1, &range);
+                  });
+    graph.addPass("copy previous", PassKind::Transfer,
+                  {{FrameGraph::previous(history), Use::TransferSrc}, {copy, Use::TransferDst}},
+                  [&](const PassContext& pc) {
+                      VkImageCopy region{};
+                      region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+                      region.dstSubresource = region.srcSubresource;
+                      region.extent = {4, 4, 1};
+                      vkCmdCopyImage(pc.cmd, pc.image(FrameGraph::previous(history)).image,
+                                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, pc.image(copy).image,
+                                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+                  });
+
+    EXPECT_FALSE(graph.hasHistory(history));
+    for (int frame = 1; frame <= 3; ++frame) {
+        frameValue = float(frame);
+        ctx.submitAndWait([&](VkCommandBuffer cmd) { graph.record(cmd); });
+        graph.endFrame();
+        EXPECT_TRUE(graph.hasHistory(history));
+        // After the swap, previous() is what this frame wrote.
+        EXPECT_FLOAT_EQ(graph.download(FrameGraph::previous(history))[0], float(frame));
+        if (frame >= 2) EXPECT_FLOAT_EQ(graph.download(copy)[0], float(frame - 1));
+    }
+    graph.resetHistory();
+    EXPECT_FALSE(graph.hasHistory(history));
+    ASSERT_EQ(graph.timings().size(), 2u);
+    EXPECT_EQ(graph.timings()[0].name, "write current");
+}
+
+} // namespace

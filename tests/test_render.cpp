@@ -1,0 +1,189 @@
+// Image tests on the Vulkan device: what a reader can state about the frame, checked against
+// independent geometry computed on the CPU. Validation and synchronization validation are on.
+#include "renderer.h"
+#include "scene/camera.h"
+#include "support.h"
+
+#include <cmath>
+
+using namespace ssgi;
+
+namespace {
+
+struct Frame {
+    uint32_t width = 0, height = 0;
+    std::vector<float> direct, position, normal, hdr, ldr;
+    float luminance(const std::vector<float>& rgba, size_t pixel) const {
+        return 0.2126f * rgba[4 * pixel] + 0.7152f * rgba[4 * pixel + 1] +
+               0.0722f * rgba[4 * pixel + 2];
+    }
+    glm::vec3 at(const std::vector<float>& rgba, size_t pixel) const {
+        return {rgba[4 * pixel], rgba[4 * pixel + 1], rgba[4 * pixel + 2]};
+    }
+};
+
+Frame render(const Scene& scene, uint32_t width, uint32_t height) {
+    Renderer renderer(test::context(), scene, {width, height, "final"});
+    renderer.renderFrame(scene.camera);
+    Frame f;
+    f.width = width;
+    f.height = height;
+    f.direct = renderer.readImage("direct");
+    f.position = renderer.readImage("gbuffer.position");
+    f.normal = renderer.readImage("gbuffer.normal");
+    f.hdr = renderer.readImage("hdr");
+    f.ldr = renderer.readImage("ldr");
+    return f;
+}
+
+// Möller-Trumbore: does the segment from `origin` to `target` cross any triangle of the scene?
+bool segmentBlocked(const Scene& scene, glm::vec3 origin, glm::vec3 target) {
+    const glm::vec3 d = target - origin;
+    for (const Instance& inst : scene.instances) {
+        const Mesh& mesh = scene.meshes[inst.mesh];
+        const size_t count = mesh.indices.empty() ? mesh.vertices.size() : mesh.indices.size();
+        for (size_t i = 0; i + 2 < count; i += 3) {
+            glm::vec3 v[3];
+            for (int k = 0; k < 3; ++k) {
+                uint32_t idx = mesh.indices.empty() ? uint32_t(i + k) : mesh.indices[i + k];
+                v[k] = glm::vec3(inst.transform * glm::vec4(mesh.vertices[idx].position, 1.0f));
+            }
+            glm::vec3 e1 = v[1] - v[0], e2 = v[2] - v[0];
+            glm::vec3 p = glm::cross(d, e2);
+            float det = glm::dot(e1, p);
+            if (std::abs(det) < 1e-12f) continue;
+            glm::vec3 s = origin - v[0];
+            float u = glm::dot(s, p) / det;
+            if (u < 0 || u > 1) continue;
+            glm::vec3 q = glm::cross(s, e1);
+            float w = glm::dot(d, q) / det;
+            if (w < 0 || u + w > 1) continue;
+            float t = glm::dot(e2, q) / det;
+            if (t > 1e-4f && t < 1.0f - 1e-4f) return true;
+        }
+    }
+    return false;
+}
+
+class RenderTest : public test::VulkanTest {};
+
+// The lit patch of a narrow spot is inside its cone, its core is lit, and the mirror-image
+// spot on the other side of the floor stays dark.
+TEST_F(RenderTest, LightFallsWhereTheSpotPoints) {
+    Scene scene = loadScene(test::sourcePath("tests/scenes/spot-on-floor.json"));
+    Frame f = render(scene, 256, 256);
+    const SpotLight& light = scene.light;
+    const glm::vec3 target(1, 0, 0.5f);
+    size_t lit = 0, insideInner = 0, litInsideInner = 0, litOutsideOuter = 0;
+    for (size_t i = 0; i < size_t(f.width) * f.height; ++i) {
+        if (f.position[4 * i + 3] == 0.0f) continue;
+        glm::vec3 p = f.at(f.position, i);
+        float angle = std::acos(glm::dot(glm::normalize(p - light.position), light.direction));
+        bool isLit = f.luminance(f.direct, i) > 0.0f;
+        lit += isLit;
+        if (angle < light.innerConeAngle) {
+            ++insideInner;
+            litInsideInner += isLit;
+        }
+        // Half a degree of slack for a pixel's footprint at the cone's edge.
+        if (angle > light.outerConeAngle + glm::radians(0.5f)) litOutsideOuter += isLit;
+    }
+    EXPECT_GT(insideInner, 100u) << "the spot's core must cover many pixels";
+    EXPECT_EQ(litInsideInner, insideInner);
+    EXPECT_EQ(litOutsideOuter, 0u);
+    EXPECT_GT(lit, insideInner);
+
+    // The pixel where the target projects is lit; its mirror image across the floor's centre
+    // is not.
+    glm::mat4 vp = projectionMatrix(scene.camera, 1.0f) * viewMatrix(scene.camera);
+    for (float sign : {1.0f, -1.0f}) {
+        glm::vec3 uvd;
+        ASSERT_TRUE(projectToTexture(vp, sign * target, uvd));
+        size_t pixel = size_t(uvd.y * f.height) * f.width + size_t(uvd.x * f.width);
+        if (sign > 0)
+            EXPECT_GT(f.luminance(f.direct, pixel), 0.1f);
+        else
+            EXPECT_EQ(f.luminance(f.direct, pixel), 0.0f);
+    }
+}
+
+// On the Cornell box's floor, the pixels in shadow are exactly those from which the segment to
+// the light crosses a block, up to the pixels along the shadow's edge.
+TEST_F(RenderTest, ShadowOfTheBlocksLiesWhereTheLightsGeometryPutsIt) {
+    Scene scene = loadScene(test::sourcePath("scenes/cornell-box.json"));
+    Frame f = render(scene, 192, 192);
+    size_t floor = 0, agree = 0, expectedShadow = 0, renderedShadow = 0;
+    for (size_t i = 0; i < size_t(f.width) * f.height; ++i) {
+        glm::vec3 p = f.at(f.position, i), n = f.at(f.normal, i);
+        if (f.position[4 * i + 3] == 0.0f || std::abs(p.y) > 1e-3f || n.y < 0.99f) continue;
+        ++floor;
+        bool blocked = segmentBlocked(scene, p + 1e-4f * n, scene.light.position);
+        bool dark = f.luminance(f.direct, i) == 0.0f;
+        expectedShadow += blocked;
+        renderedShadow += dark;
+        agree += blocked == dark;
+    }
+    ASSERT_GT(floor, 5000u);
+    EXPECT_GT(expectedShadow, floor / 20) << "the blocks must cast a sizeable shadow";
+    // Measured: see the README's test table; disagreement is the one-pixel shadow edge.
+    EXPECT_GT(double(agree) / floor, 0.985) << "expected " << expectedShadow << " rendered "
+                                            << renderedShadow << " of " << floor;
+}
+
+// An empty box, lit and seen along its plane of symmetry, renders mirror-symmetric.
+TEST_F(RenderTest, EmptyBoxUnderACentredLightIsMirrorSymmetric) {
+    Scene scene = loadScene(test::sourcePath("tests/scenes/empty-box.json"));
+    Frame f = render(scene, 128, 128);
+    double difference = 0.0, total = 0.0;
+    float worst = 0.0f;
+    for (uint32_t y = 0; y < f.height; ++y)
+        for (uint32_t x = 0; x < f.width; ++x) {
+            size_t a = size_t(y) * f.width + x, b = size_t(y) * f.width + (f.width - 1 - x);
+            float la = f.luminance(f.hdr, a), lb = f.luminance(f.hdr, b);
+            difference += std::abs(la - lb);
+            total += la;
+            worst = std::max(worst, std::abs(la - lb));
+        }
+    ASSERT_GT(total, 0.0);
+    EXPECT_LT(difference / total, 0.01) << "mean asymmetry relative to mean brightness";
+    // And it is lit: the floor under the light is bright, the corners of the ceiling dark.
+    EXPECT_GT(f.luminance(f.hdr, size_t(f.height * 0.85) * f.width + f.width / 2), 0.05f);
+}
+
+TEST_F(RenderTest, FrameReportsEveryPassInOrderWithTimings) {
+    Scene scene = loadScene(test::sourcePath("tests/scenes/empty-box.json"));
+    Renderer renderer(test::context(), scene, {64, 64, "final"});
+    renderer.renderFrame(scene.camera);
+    renderer.renderFrame(scene.camera);
+    std::vector<std::string> names;
+    for (const auto& t : renderer.timings()) {
+        names.push_back(t.name);
+        EXPECT_GE(t.milliseconds, 0.0);
+    }
+    EXPECT_EQ(names, (std::vector<std::string>{"gbuffer", "rsm", "direct", "composite"}));
+    // The second frame's barriers: each G-buffer target goes from being sampled by last frame's
+    // compute passes back to an attachment, contents discarded.
+    size_t found = 0;
+    for (const auto& b : renderer.frameGraph().lastBarriers())
+        if (b.pass == "gbuffer" && b.image == "gbuffer.albedo") {
+            ++found;
+            EXPECT_EQ(b.oldLayout, VK_IMAGE_LAYOUT_UNDEFINED);
+            EXPECT_EQ(b.newLayout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+            EXPECT_TRUE(b.srcStages & VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+        }
+    EXPECT_EQ(found, 1u);
+}
+
+TEST_F(RenderTest, AbsurdSizesAreRejectedWithTheLimitNamed) {
+    Scene scene = loadScene(test::sourcePath("tests/scenes/empty-box.json"));
+    EXPECT_THROW(Renderer(test::context(), scene, {0, 64, "final"}), InputError);
+    try {
+        Renderer r(test::context(), scene, {100000, 64, "final"});
+        FAIL() << "a 100000-pixel-wide image must be refused";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("largest 2D image"), std::string::npos);
+    }
+    EXPECT_THROW(Renderer(test::context(), scene, {64, 64, "no-such-view"}), InputError);
+}
+
+} // namespace
