@@ -22,16 +22,17 @@ void writeImage(const std::string& path, uint32_t width, uint32_t height,
     const fs::path parent = fs::path(path).parent_path();
     std::error_code ec;
     if (!parent.empty()) fs::create_directories(parent, ec);
-    if (ec) throw InputError(path + ": cannot create folder " + parent.string() + ": " + ec.message());
+    if (ec)
+        throw InputError(path + ": cannot create folder " + parent.string() + ": " + ec.message());
 
     // The temporary keeps the extension so that OpenImageIO picks the same format for it.
-    const fs::path tmp = parent / (".tmp-" + std::to_string(getpid()) + "-" +
-                                   fs::path(path).filename().string());
+    const fs::path tmp =
+        parent / (".tmp-" + std::to_string(getpid()) + "-" + fs::path(path).filename().string());
     auto out = OIIO::ImageOutput::create(path);
     if (!out) throw InputError(path + ": no writer for this format: " + OIIO::geterror());
     const int channels = exr ? 3 : 4;
-    OIIO::ImageSpec spec(int(width), int(height), channels, exr ? OIIO::TypeDesc::HALF
-                                                                : OIIO::TypeDesc::UINT8);
+    OIIO::ImageSpec spec(int(width), int(height), channels,
+                         exr ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::UINT8);
     if (exr) spec.attribute("compression", "zip");
     if (!out->open(tmp.string(), spec)) throw InputError(path + ": " + out->geterror());
     std::vector<float> pixels(size_t(width) * height * channels);

@@ -27,7 +27,8 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
     auto view = std::find(views.begin(), views.end(), options.view);
     if (view == views.end()) {
         std::string list;
-        for (const auto& v : views) list += " " + v;
+        for (const auto& v : views)
+            list += " " + v;
         throw InputError("unknown view '" + options.view + "' (views:" + list + ")");
     }
     const uint32_t rsmSize = uint32_t(scene.setting("shadow_map_size", 1024));
@@ -59,7 +60,8 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
 Renderer::~Renderer() {
     vkDeviceWaitIdle(ctx_.device);
     graph_.reset();
-    for (vk::Pipeline& p : setup_->pipelines) vk::destroyPipeline(ctx_, p);
+    for (vk::Pipeline& p : setup_->pipelines)
+        vk::destroyPipeline(ctx_, p);
     vk::destroyBuffer(ctx_, setup_->frameUniforms);
     vkDestroySampler(ctx_.device, setup_->nearestSampler, nullptr);
     vkDestroySampler(ctx_.device, setup_->linearSampler, nullptr);
@@ -81,7 +83,8 @@ void Renderer::updateUniforms(const Camera& camera) {
     u.lightPosition = glm::vec4(l.position, l.radius);
     u.lightDirection = glm::vec4(glm::normalize(l.direction), std::cos(l.outerConeAngle));
     u.lightColor = glm::vec4(l.color * l.intensity, std::cos(l.innerConeAngle));
-    u.lightFrustum = glm::vec4(light.znear, light.zfar, light.tanHalfFov, float(setup_->rsmSize.width));
+    u.lightFrustum =
+        glm::vec4(light.znear, light.zfar, light.tanHalfFov, float(setup_->rsmSize.width));
     u.skyZenith = glm::vec4(scene_.sky.zenith, 0.0f);
     u.skyHorizon = glm::vec4(scene_.sky.horizon, 0.0f);
     u.skyGround = glm::vec4(scene_.sky.ground, 0.0f);

@@ -10,15 +10,16 @@ SceneGpu::SceneGpu(vk::Context& ctx, const Scene& scene) : ctx_(ctx), scene_(sce
         // Meshes without indices (flat-shaded, one vertex per corner) draw their vertices in order.
         std::vector<uint32_t> sequential;
         if (mesh.indices.empty())
-            for (uint32_t i = 0; i < mesh.vertices.size(); ++i) sequential.push_back(i);
+            for (uint32_t i = 0; i < mesh.vertices.size(); ++i)
+                sequential.push_back(i);
         const std::vector<uint32_t>& indices = mesh.indices.empty() ? sequential : mesh.indices;
         if (!indices.empty()) {
             b.vertices = vk::createBufferWithData(ctx, mesh.vertices.data(),
                                                   mesh.vertices.size() * sizeof(Vertex),
                                                   VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-            b.indices = vk::createBufferWithData(ctx, indices.data(),
-                                                 indices.size() * sizeof(uint32_t),
-                                                 VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+            b.indices =
+                vk::createBufferWithData(ctx, indices.data(), indices.size() * sizeof(uint32_t),
+                                         VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
             b.indexCount = uint32_t(indices.size());
         }
         meshes_.push_back(b);
@@ -37,7 +38,8 @@ SceneGpu::~SceneGpu() {
         vk::destroyBuffer(ctx_, m.vertices);
         vk::destroyBuffer(ctx_, m.indices);
     }
-    for (vk::Image& t : textures_) vk::destroyImage(ctx_, t);
+    for (vk::Image& t : textures_)
+        vk::destroyImage(ctx_, t);
     vk::destroyImage(ctx_, whiteTexture_);
     vkDestroySampler(ctx_.device, sampler_, nullptr);
 }
@@ -57,12 +59,11 @@ void SceneGpu::draw(VkCommandBuffer cmd, const vk::Pipeline& pipeline, VkBuffer 
                               material.alphaMask ? material.alphaCutoff : 0.0f, 0.0f, 0.0f};
         vk::Descriptors()
             .uniformBuffer(0, frameUniforms, frameUniformsSize)
-            .sampledImage(1, textured ? textures_[material.baseColorTexture].view
-                                      : whiteTexture_.view,
+            .sampledImage(1,
+                          textured ? textures_[material.baseColorTexture].view : whiteTexture_.view,
                           sampler_)
             .push(ctx_, cmd, pipeline);
-        vkCmdPushConstants(cmd, pipeline.layout, pipeline.stages, 0, sizeof(constants),
-                           &constants);
+        vkCmdPushConstants(cmd, pipeline.layout, pipeline.stages, 0, sizeof(constants), &constants);
         VkDeviceSize offset = 0;
         vkCmdBindVertexBuffers(cmd, 0, 1, &mesh.vertices.buffer, &offset);
         vkCmdBindIndexBuffer(cmd, mesh.indices.buffer, 0, VK_INDEX_TYPE_UINT32);

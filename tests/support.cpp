@@ -5,8 +5,8 @@
 namespace ssgi::test {
 
 vk::Context& context() {
-    static std::unique_ptr<vk::Context> ctx = std::make_unique<vk::Context>(
-        vk::ContextOptions{/*validation=*/true, /*deviceName=*/""});
+    static std::unique_ptr<vk::Context> ctx =
+        std::make_unique<vk::Context>(vk::ContextOptions{/*validation=*/true, /*deviceName=*/""});
     return *ctx;
 }
 

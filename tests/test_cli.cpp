@@ -23,7 +23,8 @@ Result run(const std::string& arguments, const std::string& environment = "") {
     FILE* pipe = popen(command.c_str(), "r");
     if (!pipe) return r;
     std::array<char, 4096> buffer;
-    while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) r.output.append(buffer.data(), n);
+    while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe))
+        r.output.append(buffer.data(), n);
     int status = pclose(pipe);
     r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return r;
@@ -32,8 +33,9 @@ Result run(const std::string& arguments, const std::string& environment = "") {
 class Cli : public ::testing::Test {
 protected:
     void SetUp() override {
-        dir = fs::temp_directory_path() / ("ssgi-cli-" + std::to_string(getpid()) + "-" +
-                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        dir = fs::temp_directory_path() /
+              ("ssgi-cli-" + std::to_string(getpid()) + "-" +
+               ::testing::UnitTest::GetInstance()->current_test_info()->name());
         fs::remove_all(dir);
         fs::create_directories(dir);
     }
@@ -66,7 +68,8 @@ TEST_F(Cli, EverySceneRenders) {
         EXPECT_EQ(w, 96u);
         EXPECT_EQ(h, 72u);
         double sum = 0.0;
-        for (size_t i = 0; i < pixels.size(); i += 4) sum += pixels[i] + pixels[i + 1] + pixels[i + 2];
+        for (size_t i = 0; i < pixels.size(); i += 4)
+            sum += pixels[i] + pixels[i + 1] + pixels[i + 2];
         EXPECT_GT(sum / (w * h * 3), 0.02) << entry.path() << " rendered (nearly) black";
         EXPECT_TRUE(fs::exists(fs::path(png).replace_extension(".exr")));
     }
@@ -117,7 +120,8 @@ TEST_F(Cli, BadInputGetsAClearErrorAndNoOutput) {
         EXPECT_NE(r.status, 0) << c.arguments;
         EXPECT_NE(r.output.find("error: "), std::string::npos) << c.arguments << "\n" << r.output;
         EXPECT_NE(r.output.find(c.expected), std::string::npos)
-            << "'" << c.expected << "' not named for: " << c.arguments << "\n" << r.output;
+            << "'" << c.expected << "' not named for: " << c.arguments << "\n"
+            << r.output;
         EXPECT_FALSE(fs::exists(dir / "bad.png")) << c.arguments;
     }
     expectNoTemporaries();

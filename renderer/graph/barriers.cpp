@@ -63,10 +63,10 @@ std::optional<VkImageMemoryBarrier2> transition(ImageState& state, Use use, Pass
         state.layout = next.layout;
         if (next.writes) {
             state.writeStages = next.stages;
-            state.writeAccess = next.access & (VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
-                                               VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT |
-                                               VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
-                                               VK_ACCESS_2_TRANSFER_WRITE_BIT);
+            state.writeAccess =
+                next.access &
+                (VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT |
+                 VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT);
             state.readStages = 0;
             state.readAccess = 0;
         } else {

@@ -6,13 +6,16 @@
 
 namespace ssgi::graph {
 
-const vk::Image& PassContext::image(ImageRef ref) const { return graph.image(ref); }
+const vk::Image& PassContext::image(ImageRef ref) const {
+    return graph.image(ref);
+}
 
 FrameGraph::FrameGraph(vk::Context& ctx) : ctx_(ctx) {}
 
 FrameGraph::~FrameGraph() {
     vkDeviceWaitIdle(ctx_.device);
-    for (Resource& r : resources_) vk::destroyImage(ctx_, r.image);
+    for (Resource& r : resources_)
+        vk::destroyImage(ctx_, r.image);
     if (queryPool_) vkDestroyQueryPool(ctx_.device, queryPool_, nullptr);
 }
 
@@ -40,7 +43,8 @@ uint32_t FrameGraph::createHistory(const std::string& name, VkFormat format, VkE
 }
 
 void FrameGraph::resetHistory() {
-    for (History& h : histories_) h.valid = false;
+    for (History& h : histories_)
+        h.valid = false;
 }
 
 uint32_t FrameGraph::resolve(ImageRef ref) const {
@@ -55,7 +59,9 @@ uint32_t FrameGraph::resolve(ImageRef ref) const {
     return ref.index;
 }
 
-const vk::Image& FrameGraph::image(ImageRef ref) const { return resources_[resolve(ref)].image; }
+const vk::Image& FrameGraph::image(ImageRef ref) const {
+    return resources_[resolve(ref)].image;
+}
 
 ImageRef FrameGraph::find(const std::string& name) const {
     for (uint32_t i = 0; i < resources_.size(); ++i)
@@ -119,10 +125,9 @@ void FrameGraph::record(VkCommandBuffer cmd) {
 void FrameGraph::endFrame() {
     std::vector<uint64_t> stamps(2 * passes_.size());
     if (!stamps.empty())
-        VK_CHECK(vkGetQueryPoolResults(ctx_.device, queryPool_, 0, uint32_t(stamps.size()),
-                                       stamps.size() * sizeof(uint64_t), stamps.data(),
-                                       sizeof(uint64_t),
-                                       VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+        VK_CHECK(vkGetQueryPoolResults(
+            ctx_.device, queryPool_, 0, uint32_t(stamps.size()), stamps.size() * sizeof(uint64_t),
+            stamps.data(), sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
     const double period = ctx_.properties.limits.timestampPeriod; // ns per tick
     timings_.clear();
     for (uint32_t p = 0; p < passes_.size(); ++p)
@@ -139,12 +144,11 @@ std::vector<float> FrameGraph::download(ImageRef ref) {
     Resource& r = resources_[id];
     const VkExtent2D e = r.image.extent;
     const uint32_t texel = vk::formatTexelSize(r.image.format);
-    vk::Buffer staging =
-        vk::createBuffer(ctx_, VkDeviceSize(e.width) * e.height * texel,
-                         VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+    vk::Buffer staging = vk::createBuffer(ctx_, VkDeviceSize(e.width) * e.height * texel,
+                                          VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     ctx_.submitAndWait([&](VkCommandBuffer cmd) {
-        if (auto b = transition(r.state, Use::TransferSrc, PassKind::Transfer, false,
-                                r.image.image, r.image.aspect)) {
+        if (auto b = transition(r.state, Use::TransferSrc, PassKind::Transfer, false, r.image.image,
+                                r.image.aspect)) {
             VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
             dep.imageMemoryBarrierCount = 1;
             dep.pImageMemoryBarriers = &*b;
@@ -169,12 +173,14 @@ std::vector<float> FrameGraph::download(ImageRef ref) {
         case VK_FORMAT_R16G16B16A16_SFLOAT: {
             uint16_t h[4];
             std::memcpy(h, bytes + 8 * i, 8);
-            for (int c = 0; c < 4; ++c) out[c] = glm::unpackHalf1x16(h[c]);
+            for (int c = 0; c < 4; ++c)
+                out[c] = glm::unpackHalf1x16(h[c]);
             break;
         }
         case VK_FORMAT_R8G8B8A8_UNORM:
         case VK_FORMAT_R8G8B8A8_SRGB:
-            for (int c = 0; c < 4; ++c) out[c] = bytes[4 * i + c] / 255.0f;
+            for (int c = 0; c < 4; ++c)
+                out[c] = bytes[4 * i + c] / 255.0f;
             break;
         case VK_FORMAT_D32_SFLOAT:
         case VK_FORMAT_R32_SFLOAT:

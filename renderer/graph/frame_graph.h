@@ -64,7 +64,9 @@ public:
     // A history pair: previous() is last frame's current(); contents are never discarded.
     uint32_t createHistory(const std::string& name, VkFormat format, VkExtent2D extent,
                            VkImageUsageFlags usage);
-    static ImageRef previous(uint32_t history) { return {ImageRef::Kind::HistoryPrevious, history}; }
+    static ImageRef previous(uint32_t history) {
+        return {ImageRef::Kind::HistoryPrevious, history};
+    }
     static ImageRef current(uint32_t history) { return {ImageRef::Kind::HistoryCurrent, history}; }
     // False on the first frame and after resetHistory(): previous() holds nothing to read.
     bool hasHistory(uint32_t history) const { return histories_[history].valid; }

@@ -8,11 +8,11 @@ graph::ImageRef addDirectPass(PassSetup& s, const GBufferAndRsm& in) {
         s.graph.createImage("direct", VK_FORMAT_R16G16B16A16_SFLOAT, s.size,
                             VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
     const VkDescriptorType sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    s.pipelines.push_back(vk::createComputePipeline(
-        s.ctx, "direct.comp",
-        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, sampled, sampled, sampled, sampled,
-         VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-        0));
+    s.pipelines.push_back(
+        vk::createComputePipeline(s.ctx, "direct.comp",
+                                  {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, sampled, sampled, sampled,
+                                   sampled, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+                                  0));
     const vk::Pipeline pipeline = s.pipelines.back();
 
     using graph::Use;

@@ -18,8 +18,8 @@ struct PassSetup {
     vk::Buffer frameUniforms;
     VkSampler nearestSampler = VK_NULL_HANDLE;
     VkSampler linearSampler = VK_NULL_HANDLE;
-    VkExtent2D size{};     // the output image
-    VkExtent2D rsmSize{};  // the reflective shadow map
+    VkExtent2D size{};                   // the output image
+    VkExtent2D rsmSize{};                // the reflective shadow map
     std::vector<vk::Pipeline> pipelines; // destroyed with the renderer
 };
 

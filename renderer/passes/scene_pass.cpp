@@ -7,12 +7,15 @@ namespace ssgi {
 
 SceneTargets addScenePass(PassSetup& s, const std::string& name, const std::string& shader,
                           VkExtent2D extent, VkFormat thirdFormat) {
-    const VkImageUsageFlags color = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    const VkImageUsageFlags color =
+        VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     SceneTargets t;
-    t.position = s.graph.createImage(name + ".position", VK_FORMAT_R32G32B32A32_SFLOAT, extent, color);
+    t.position =
+        s.graph.createImage(name + ".position", VK_FORMAT_R32G32B32A32_SFLOAT, extent, color);
     t.normal = s.graph.createImage(name + ".normal", VK_FORMAT_R16G16B16A16_SFLOAT, extent, color);
-    t.third = s.graph.createImage(name + (thirdFormat == VK_FORMAT_R8G8B8A8_UNORM ? ".albedo" : ".flux"),
-                                  thirdFormat, extent, color);
+    t.third =
+        s.graph.createImage(name + (thirdFormat == VK_FORMAT_R8G8B8A8_UNORM ? ".albedo" : ".flux"),
+                            thirdFormat, extent, color);
     t.depth = s.graph.createImage(name + ".depth", VK_FORMAT_D32_SFLOAT, extent,
                                   VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT |
                                       VK_IMAGE_USAGE_SAMPLED_BIT);

@@ -32,12 +32,14 @@ glm::quat lookRotation(const glm::vec3& direction, const glm::vec3& up) {
 
 LightFrustum lightFrustum(const SpotLight& light, const Aabb& bounds) {
     LightFrustum f;
-    const glm::vec3 up = std::abs(light.direction.y) > 0.99f ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
+    const glm::vec3 up =
+        std::abs(light.direction.y) > 0.99f ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
     f.view = glm::lookAtRH(light.position, light.position + light.direction, up);
     // Far plane: the farthest bounds corner along the axis; near: what depth precision allows.
     float farthest = 0.0f;
     for (int i = 0; i < 8; ++i) {
-        glm::vec3 corner((i & 1) ? bounds.max.x : bounds.min.x, (i & 2) ? bounds.max.y : bounds.min.y,
+        glm::vec3 corner((i & 1) ? bounds.max.x : bounds.min.x,
+                         (i & 2) ? bounds.max.y : bounds.min.y,
                          (i & 4) ? bounds.max.z : bounds.min.z);
         farthest = std::max(farthest, glm::dot(corner - light.position, light.direction));
     }
@@ -69,7 +71,8 @@ Camera cameraAt(const CameraPath& path, float t) {
     if (t <= keys.front().time) return keys.front().camera;
     if (t >= keys.back().time) return keys.back().camera;
     size_t i = 1;
-    while (keys[i].time < t) ++i;
+    while (keys[i].time < t)
+        ++i;
     const CameraKey& a = keys[i - 1];
     const CameraKey& b = keys[i];
     const float s = (t - a.time) / std::max(b.time - a.time, 1e-6f);

@@ -76,9 +76,9 @@ struct SpotLight {
     glm::vec3 direction{0.0f, -1.0f, 0.0f}; // unit
     glm::vec3 color{1.0f};
     float intensity = 1.0f;
-    float innerConeAngle = 0.0f;          // radians, half-angle
-    float outerConeAngle = 0.7853982f;    // radians, half-angle, < 90 degrees
-    float radius = 0.0f;                  // disk radius (soft shadows); 0 = point
+    float innerConeAngle = 0.0f;       // radians, half-angle
+    float outerConeAngle = 0.7853982f; // radians, half-angle, < 90 degrees
+    float radius = 0.0f;               // disk radius (soft shadows); 0 = point
 };
 
 // Radiance of the sky seen from the scene: a vertical gradient from horizon to zenith (equal

@@ -49,8 +49,9 @@ static bool hasLayer(const char* name) {
     vkEnumerateInstanceLayerProperties(&count, nullptr);
     std::vector<VkLayerProperties> layers(count);
     vkEnumerateInstanceLayerProperties(&count, layers.data());
-    return std::any_of(layers.begin(), layers.end(),
-                       [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
+    return std::any_of(layers.begin(), layers.end(), [&](const VkLayerProperties& l) {
+        return std::strcmp(l.layerName, name) == 0;
+    });
 }
 
 static bool hasDeviceExtension(VkPhysicalDevice device, const char* name) {
@@ -101,9 +102,10 @@ static VkPhysicalDevice pickDevice(VkInstance instance, const std::string& wante
         }
     }
     if (best == VK_NULL_HANDLE) {
-        std::string msg = "no usable Vulkan device (need Vulkan 1.3, graphics+compute queue with "
-                          "timestamps, VK_KHR_push_descriptor)";
+        std::string msg = "no usable Vulkan device";
         if (!wanted.empty()) msg += " named '" + wanted + "'";
+        msg += " (need Vulkan 1.3, a graphics+compute queue with timestamps, "
+               "VK_KHR_push_descriptor)";
         msg += seen.empty() ? "; no Vulkan device found at all (is mesa-vulkan-drivers installed?)"
                             : "; devices seen: " + seen;
         throw VulkanError(msg);
@@ -163,8 +165,8 @@ Context::Context(const ContextOptions& options) {
     }
     cmdBeginLabel = (PFN_vkCmdBeginDebugUtilsLabelEXT)vkGetInstanceProcAddr(
         instance, "vkCmdBeginDebugUtilsLabelEXT");
-    cmdEndLabel =
-        (PFN_vkCmdEndDebugUtilsLabelEXT)vkGetInstanceProcAddr(instance, "vkCmdEndDebugUtilsLabelEXT");
+    cmdEndLabel = (PFN_vkCmdEndDebugUtilsLabelEXT)vkGetInstanceProcAddr(
+        instance, "vkCmdEndDebugUtilsLabelEXT");
     setObjectName = (PFN_vkSetDebugUtilsObjectNameEXT)vkGetInstanceProcAddr(
         instance, "vkSetDebugUtilsObjectNameEXT");
 

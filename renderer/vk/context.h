@@ -22,13 +22,13 @@ const char* resultName(VkResult result);
     do {                                                                                           \
         VkResult vkCheckResult_ = (call);                                                          \
         if (vkCheckResult_ != VK_SUCCESS)                                                          \
-            throw ::ssgi::vk::VulkanError(std::string(#call) + " failed: " +                       \
-                                          ::ssgi::vk::resultName(vkCheckResult_));                 \
+            throw ::ssgi::vk::VulkanError(std::string(#call) +                                     \
+                                          " failed: " + ::ssgi::vk::resultName(vkCheckResult_));   \
     } while (0)
 
 struct ContextOptions {
-    bool validation = false;  // Khronos validation layer with synchronization validation
-    std::string deviceName;   // substring of the device name to pick; empty = automatic
+    bool validation = false; // Khronos validation layer with synchronization validation
+    std::string deviceName;  // substring of the device name to pick; empty = automatic
 };
 
 class Context {
@@ -67,9 +67,9 @@ private:
     VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
     uint32_t validationMessages_ = 0;
     static VkBool32 VKAPI_PTR onMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
-                                         VkDebugUtilsMessageTypeFlagsEXT types,
-                                         const VkDebugUtilsMessengerCallbackDataEXT* data,
-                                         void* user);
+                                        VkDebugUtilsMessageTypeFlagsEXT types,
+                                        const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                        void* user);
 };
 
 } // namespace ssgi::vk

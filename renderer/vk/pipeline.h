@@ -32,7 +32,7 @@ struct GraphicsPipelineDesc {
     std::string vertexShader, fragmentShader;
     std::vector<VkFormat> colorFormats;
     VkFormat depthFormat = VK_FORMAT_UNDEFINED;
-    std::vector<VkDescriptorType> bindings; // set 0, push descriptors
+    std::vector<VkDescriptorType> bindings;                  // set 0, push descriptors
     VkDescriptorSetLayout textureSetLayout = VK_NULL_HANDLE; // set 1, optional
     uint32_t pushConstantSize = 0;
 };

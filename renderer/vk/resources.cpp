@@ -150,8 +150,8 @@ Image createTexture(Context& ctx, const std::string& name, VkFormat format, VkEx
         VkBufferImageCopy region{};
         region.imageSubresource = {img.aspect, 0, 0, 1};
         region.imageExtent = {extent.width, extent.height, 1};
-        vkCmdCopyBufferToImage(cmd, staging.buffer, img.image,
-                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+        vkCmdCopyBufferToImage(cmd, staging.buffer, img.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                               1, &region);
 
         VkImageMemoryBarrier2 toRead = toDst;
         toRead.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
