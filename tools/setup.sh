@@ -8,7 +8,7 @@ packages=(
   g++ cmake ninja-build pkg-config
   mesa-vulkan-drivers libvulkan-dev vulkan-validationlayers glslang-tools
   libglm-dev libglfw3-dev libtinygltf-dev nlohmann-json3-dev libopenimageio-dev
-  libgtest-dev
+  libgtest-dev libembree-dev
 )
 missing=()
 for p in "${packages[@]}"; do

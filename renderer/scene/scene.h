@@ -133,6 +133,10 @@ struct Scene {
 // camera derived from its bounds). Throws InputError naming the file and the problem.
 Scene loadScene(const std::string& path);
 
+// The ambient-occlusion radius in scene units: the "ao_radius" setting, else 5% of the scene's
+// bounding-box diagonal. The real-time AO and the reference's AO use the same value.
+float aoRadius(const Scene& scene);
+
 // The settings a scene file may name, with their defaults; an unknown key is an error.
 const std::map<std::string, double>& knownSettings();
 
