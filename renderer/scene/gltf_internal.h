@@ -1,0 +1,41 @@
+// Internals of the scene loaders, shared between their source files.
+#pragma once
+
+#include "scene/gltf_loader.h"
+#include "scene/scene.h"
+
+#include <tiny_gltf.h>
+
+#include <set>
+#include <string>
+
+namespace ssgi {
+
+// The whole file as bytes; InputError naming it when it is missing or unreadable.
+std::string readInputFile(const std::string& path);
+
+// Says each kind of warning once per file: a model with 500 skinned nodes gets one line.
+class GltfWarnings {
+public:
+    explicit GltfWarnings(std::string file) : file_(std::move(file)) {}
+    void once(const std::string& message);
+
+private:
+    std::string file_;
+    std::set<std::string> said_;
+};
+
+// Triangle data out of glTF accessors (gltf_mesh.cpp), with every offset, stride, count and
+// index checked, so that a malformed file is an InputError, never a read past a buffer's end.
+// The Mesh of one TRIANGLES primitive, vertices in object space, material left at 0. Without a
+// NORMAL attribute the triangles are un-indexed and get their face normals (glTF's flat rule).
+// `where` names the primitive in messages ("mesh 3 primitive 0").
+Mesh buildPrimitiveMesh(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
+                        const std::string& file, const std::string& where, GltfWarnings& warnings);
+
+// Walks the file's default scene (gltf_nodes.cpp): one Instance per (node, primitive), meshes
+// built once per glTF (mesh, primitive), glTF material m becoming scene material firstMaterial+m.
+GltfViewpoint importNodes(const tinygltf::Model& model, const std::string& file, float scale,
+                          int firstMaterial, Scene& scene, GltfWarnings& warnings);
+
+} // namespace ssgi

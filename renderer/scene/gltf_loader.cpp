@@ -1,0 +1,186 @@
+#include "scene/gltf_loader.h"
+
+#include "scene/gltf_internal.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <tiny_gltf.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+
+namespace ssgi {
+
+std::string readInputFile(const std::string& path) {
+    std::error_code error;
+    if (!std::filesystem::exists(path, error)) throw InputError(path + ": file not found");
+    if (!std::filesystem::is_regular_file(path, error))
+        throw InputError(path + ": not a regular file");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path + ": cannot open file for reading");
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.bad()) throw InputError(path + ": read error");
+    return bytes;
+}
+
+namespace {
+
+[[noreturn]] void fail(const std::string& file, const std::string& problem) {
+    throw InputError(file + ": " + problem);
+}
+
+std::string withoutTrailingSpace(std::string text) {
+    while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back())))
+        text.pop_back();
+    return text;
+}
+
+tinygltf::Model readModel(const std::string& path) {
+    const std::string bytes = readInputFile(path);
+    std::string baseDir = std::filesystem::path(path).parent_path().string();
+    if (baseDir.empty()) baseDir = ".";
+    tinygltf::TinyGLTF reader;
+    tinygltf::Model model;
+    std::string error, warning;
+    // Sniff the content rather than trust the extension: a .gltf holding GLB bytes still loads.
+    const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+    const bool ok =
+        binary ? reader.LoadBinaryFromMemory(&model, &error, &warning,
+                                             reinterpret_cast<const unsigned char*>(bytes.data()),
+                                             static_cast<unsigned>(bytes.size()), baseDir)
+               : reader.LoadASCIIFromString(&model, &error, &warning, bytes.data(),
+                                            static_cast<unsigned>(bytes.size()), baseDir);
+    error = withoutTrailingSpace(error);
+    warning = withoutTrailingSpace(warning);
+    if (!ok) {
+        std::string message = "not a valid glTF file" + (error.empty() ? "" : ": " + error);
+        if (!warning.empty()) message += " (" + warning + ")";
+        fail(path, message);
+    }
+    if (!warning.empty()) GltfWarnings(path).once(warning);
+    for (const std::string& extension : model.extensionsRequired)
+        if (extension != "KHR_lights_punctual" && extension != "KHR_materials_emissive_strength")
+            fail(path, "requires the unsupported extension " + extension);
+    return model;
+}
+
+// 8-bit RGBA from whatever the image decoder produced; sRGB bytes are kept as they are because
+// the renderer decodes them in the sampler.
+Texture convertImage(const tinygltf::Image& image, const std::string& file, size_t index) {
+    const std::string what =
+        "image " + std::to_string(index) + (image.name.empty() ? "" : " '" + image.name + "'");
+    if (image.width <= 0 || image.height <= 0 || image.image.empty())
+        fail(file, what + " could not be decoded");
+    if (image.component < 1 || image.component > 4 || (image.bits != 8 && image.bits != 16))
+        fail(file, what + " has " + std::to_string(image.component) + " channels of " +
+                       std::to_string(image.bits) + " bits; 1-4 channels of 8 or 16 expected");
+    const size_t pixels = size_t(image.width) * size_t(image.height);
+    const size_t channels = size_t(image.component), bytesPerChannel = size_t(image.bits) / 8;
+    if (image.image.size() != pixels * channels * bytesPerChannel)
+        fail(file, what + ": decoded size does not match its dimensions");
+    auto channel = [&](size_t pixel, size_t c) -> uint8_t {
+        const uint8_t* p = image.image.data() + (pixel * channels + c) * bytesPerChannel;
+        if (bytesPerChannel == 1) return *p;
+        uint16_t wide;
+        std::memcpy(&wide, p, 2);
+        return uint8_t((uint32_t(wide) * 255u + 32767u) / 65535u);
+    };
+    Texture texture;
+    texture.name = image.name;
+    texture.width = uint32_t(image.width);
+    texture.height = uint32_t(image.height);
+    texture.rgba.resize(pixels * 4);
+    for (size_t i = 0; i < pixels; ++i) {
+        uint8_t* out = &texture.rgba[i * 4];
+        const bool gray = channels <= 2;
+        out[0] = channel(i, 0);
+        out[1] = gray ? out[0] : channel(i, 1);
+        out[2] = gray ? out[0] : channel(i, 2);
+        out[3] = channels == 2 ? channel(i, 1) : channels == 4 ? channel(i, 3) : 255;
+    }
+    return texture;
+}
+
+// Scene texture index for each glTF texture (-1 where it has no usable image). Every texture is
+// converted, and an image shared by several textures only once.
+std::vector<int> convertTextures(const tinygltf::Model& model, const std::string& file,
+                                 Scene& scene, GltfWarnings& warnings) {
+    std::map<int, int> sceneTextureOfImage;
+    std::vector<int> sceneTextureOf;
+    for (size_t t = 0; t < model.textures.size(); ++t) {
+        const int image = model.textures[t].source;
+        if (image < 0) {
+            warnings.once("glTF textures without a PNG or JPEG source are ignored");
+            sceneTextureOf.push_back(-1);
+            continue;
+        }
+        if (size_t(image) >= model.images.size())
+            fail(file, "texture " + std::to_string(t) + " refers to image " +
+                           std::to_string(image) + ", which does not exist");
+        auto [it, isNew] = sceneTextureOfImage.try_emplace(image, int(scene.textures.size()));
+        if (isNew) scene.textures.push_back(convertImage(model.images[size_t(image)], file, t));
+        sceneTextureOf.push_back(it->second);
+    }
+    return sceneTextureOf;
+}
+
+void warnAboutIgnoredMaterialData(const tinygltf::Material& material, GltfWarnings& warnings) {
+    const auto& pbr = material.pbrMetallicRoughness;
+    if (material.normalTexture.index >= 0) warnings.once("glTF normal textures are ignored");
+    if (material.occlusionTexture.index >= 0) warnings.once("glTF occlusion textures are ignored");
+    bool emissive = material.emissiveTexture.index >= 0;
+    for (double e : material.emissiveFactor)
+        emissive = emissive || e > 0.0;
+    if (emissive) warnings.once("glTF emission is ignored");
+    if (pbr.metallicFactor > 0.0 || pbr.metallicRoughnessTexture.index >= 0)
+        warnings.once("glTF metallic-roughness data is ignored (every surface is diffuse)");
+    if (material.alphaMode == "BLEND") warnings.once("glTF alphaMode BLEND is drawn as OPAQUE");
+    if (pbr.baseColorTexture.index >= 0 && pbr.baseColorTexture.texCoord != 0)
+        warnings.once("glTF texCoord sets other than 0 are ignored");
+    for (const auto& extension : material.extensions)
+        if (extension.first != "KHR_materials_emissive_strength") // said with emission
+            warnings.once("glTF material extension " + extension.first + " is ignored");
+}
+
+void convertMaterials(const tinygltf::Model& model, const std::string& file,
+                      const std::vector<int>& sceneTextureOf, Scene& scene,
+                      GltfWarnings& warnings) {
+    for (size_t m = 0; m < model.materials.size(); ++m) {
+        const tinygltf::Material& source = model.materials[m];
+        const auto& pbr = source.pbrMetallicRoughness;
+        warnAboutIgnoredMaterialData(source, warnings);
+        Material material;
+        material.name = source.name;
+        if (pbr.baseColorFactor.size() != 4)
+            fail(file, "material " + std::to_string(m) + ": baseColorFactor needs 4 numbers");
+        for (int c = 0; c < 4; ++c)
+            material.baseColorFactor[c] = float(pbr.baseColorFactor[c]);
+        const int texture = pbr.baseColorTexture.index;
+        if (texture >= int(sceneTextureOf.size()))
+            fail(file, "material " + std::to_string(m) + " refers to texture " +
+                           std::to_string(texture) + ", which does not exist");
+        if (texture >= 0) material.baseColorTexture = sceneTextureOf[size_t(texture)];
+        material.alphaMask = source.alphaMode == "MASK";
+        material.alphaCutoff = float(source.alphaCutoff);
+        scene.materials.push_back(material);
+    }
+}
+
+} // namespace
+
+GltfViewpoint loadGltf(const std::string& path, float scale, Scene& scene) {
+    const tinygltf::Model model = readModel(path);
+    GltfWarnings warnings(path);
+    if (!model.skins.empty()) warnings.once("glTF skins are ignored");
+    if (!model.animations.empty()) warnings.once("glTF animations are ignored");
+    const int firstMaterial = int(scene.materials.size());
+    const std::vector<int> sceneTextureOf = convertTextures(model, path, scene, warnings);
+    convertMaterials(model, path, sceneTextureOf, scene, warnings);
+    return importNodes(model, path, scale, firstMaterial, scene, warnings);
+}
+
+} // namespace ssgi

@@ -1,0 +1,212 @@
+// loadScene(): a scene description file, or a bare glTF, into the scene model. What the files
+// leave out (light, camera, clip planes) is derived from the scene's bounds.
+#include "scene/gltf_internal.h"
+#include "scene/primitives.h"
+#include "scene/scene_json.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+
+namespace ssgi {
+
+const std::map<std::string, double>& knownSettings() {
+    static const std::map<std::string, double> settings = {
+        {"shadow_map_size", 1024.0}, // RSM resolution in texels per side, 16..8192
+        {"exposure", 1.0},           // multiplies radiance before tonemapping
+        {"shadow_bias", 1.5},        // depth bias in shadow-map texels
+    };
+    return settings;
+}
+
+namespace {
+
+[[noreturn]] void fail(const std::string& file, const std::string& problem) {
+    throw InputError(file + ": " + problem);
+}
+
+Aabb worldBounds(const Scene& scene) {
+    Aabb bounds;
+    for (const Instance& instance : scene.instances)
+        for (const Vertex& vertex : scene.meshes[size_t(instance.mesh)].vertices)
+            bounds.extend(glm::vec3(instance.transform * glm::vec4(vertex.position, 1.0f)));
+    return bounds;
+}
+
+// Straight down from just below the top of the bounds (so a closed room's ceiling does not hide
+// it), bright enough for an irradiance of about 1 on the floor beneath it.
+SpotLight defaultLight(const Aabb& bounds) {
+    const glm::vec3 size = bounds.size();
+    SpotLight light;
+    light.position = bounds.center() +
+                     glm::vec3(0.0f, std::max(0.45f * size.y, 0.05f * glm::length(size)), 0.0f);
+    light.direction = glm::vec3(0.0f, -1.0f, 0.0f);
+    light.outerConeAngle = glm::radians(60.0f);
+    light.innerConeAngle = 0.0f;
+    const float toFloor = light.position.y - bounds.min.y;
+    light.intensity = toFloor * toFloor;
+    return light;
+}
+
+// From +Z towards the centre, far enough that the bounding sphere fits a 45 degree view.
+// Clip planes are left at 0 for fillClipPlanes().
+Camera defaultCamera(const Aabb& bounds) {
+    Camera camera;
+    camera.yfov = glm::radians(45.0f);
+    const float radius = 0.5f * glm::length(bounds.size());
+    camera.position =
+        bounds.center() + glm::vec3(0.0f, 0.0f, radius / std::sin(0.5f * camera.yfov));
+    camera.orientation = glm::quat(1.0f, 0.0f, 0.0f, 0.0f); // identity already looks down -Z
+    camera.znear = camera.zfar = 0.0f;
+    return camera;
+}
+
+// Clip planes not given (0) are fitted to the bounds seen from the camera: far beyond the
+// farthest corner, near as far out as depth precision needs.
+void fillClipPlanes(Camera& camera, const Aabb& bounds) {
+    float farthest = 0.0f;
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::vec3 p(corner & 1 ? bounds.max.x : bounds.min.x,
+                          corner & 2 ? bounds.max.y : bounds.min.y,
+                          corner & 4 ? bounds.max.z : bounds.min.z);
+        farthest = std::max(farthest, glm::distance(camera.position, p));
+    }
+    if (camera.zfar <= 0.0f) camera.zfar = std::max(2.0f * farthest, 2.0f * camera.znear);
+    if (camera.znear <= 0.0f)
+        camera.znear = std::max(camera.zfar / 1e4f, 1e-4f * glm::length(bounds.size()));
+    if (camera.znear >= camera.zfar) camera.znear = camera.zfar * 1e-4f;
+}
+
+Camera applyCameraSpec(const CameraSpec& spec, Camera camera, const std::string& file) {
+    if (spec.position) camera.position = *spec.position;
+    std::optional<glm::vec3> forward;
+    if (spec.target) {
+        forward = *spec.target - camera.position;
+        if (glm::length(*forward) == 0.0f)
+            fail(file, "'" + spec.where + ".target' equals the camera position");
+    } else if (spec.direction) {
+        forward = *spec.direction;
+    }
+    if (forward || spec.up) {
+        const glm::vec3 view =
+            glm::normalize(forward.value_or(camera.orientation * glm::vec3(0.0f, 0.0f, -1.0f)));
+        const glm::vec3 up = glm::normalize(spec.up.value_or(glm::vec3(0.0f, 1.0f, 0.0f)));
+        if (std::abs(glm::dot(view, up)) > 0.999999f)
+            fail(file, "'" + spec.where + "': the view direction is parallel to 'up'");
+        camera.orientation = glm::quatLookAtRH(view, up);
+    }
+    if (spec.yfovDegrees) camera.yfov = glm::radians(*spec.yfovDegrees);
+    if (spec.znear) camera.znear = *spec.znear;
+    if (spec.zfar) camera.zfar = *spec.zfar;
+    return camera;
+}
+
+SpotLight applyLightSpec(const LightSpec& spec, SpotLight light, const std::string& file) {
+    if (spec.position) light.position = *spec.position;
+    if (spec.target) {
+        const glm::vec3 toTarget = *spec.target - light.position;
+        if (glm::length(toTarget) == 0.0f) fail(file, "'light.target' equals the light position");
+        light.direction = glm::normalize(toTarget);
+    } else if (spec.direction) {
+        light.direction = glm::normalize(*spec.direction);
+    }
+    if (spec.color) light.color = *spec.color;
+    if (spec.intensity) light.intensity = *spec.intensity;
+    if (spec.radius) light.radius = *spec.radius;
+    if (spec.coneDegrees) {
+        light.outerConeAngle = glm::radians(*spec.coneDegrees);
+        light.innerConeAngle = glm::radians(spec.innerConeDegrees.value_or(0.0f));
+    } else if (spec.innerConeDegrees) {
+        light.innerConeAngle = glm::radians(*spec.innerConeDegrees);
+        if (light.innerConeAngle >= light.outerConeAngle)
+            fail(file, "'light.inner_cone_deg' must be less than the light's cone angle (" +
+                           std::to_string(glm::degrees(light.outerConeAngle)) + " degrees)");
+    }
+    return light;
+}
+
+void addObjects(const SceneDescription& description, const std::string& file, Scene& scene) {
+    const int firstMaterial = int(scene.materials.size());
+    scene.materials.insert(scene.materials.end(), description.materials.begin(),
+                           description.materials.end());
+    for (const ObjectSpec& object : description.objects) {
+        const auto named = std::find_if(
+            description.materials.begin(), description.materials.end(),
+            [&](const Material& material) { return material.name == object.material; });
+        const int material = firstMaterial + int(named - description.materials.begin());
+        Mesh mesh;
+        switch (object.type) {
+        case ObjectSpec::Type::Quad:
+            if (glm::length(quadNormal(object.corners)) == 0.0f)
+                fail(file, "'" + object.where + ".corners' enclose no area");
+            mesh = makeQuad(object.corners, material);
+            break;
+        case ObjectSpec::Type::Box:
+            mesh = makeBox(object.center, object.size, object.rotateYDegrees, material);
+            break;
+        case ObjectSpec::Type::Sphere:
+            mesh = makeSphere(object.center, object.radius, object.segments, material);
+            break;
+        }
+        scene.meshes.push_back(std::move(mesh));
+        scene.instances.push_back({int(scene.meshes.size()) - 1, glm::mat4(1.0f)});
+    }
+}
+
+Scene buildScene(const std::string& path, const SceneDescription& description) {
+    Scene scene;
+    scene.sourcePath = path;
+    GltfViewpoint viewpoint;
+    for (const std::string& gltfPath : description.gltfPaths) {
+        GltfViewpoint found;
+        try {
+            found = loadGltf(gltfPath, description.gltfScale, scene);
+        } catch (const InputError& error) {
+            if (gltfPath == path) throw;
+            fail(path, error.what()); // name the scene file as well as the glTF it refers to
+        }
+        if (!viewpoint.camera) viewpoint.camera = found.camera;
+        if (!viewpoint.light) viewpoint.light = found.light;
+    }
+    addObjects(description, path, scene);
+    scene.bounds = worldBounds(scene);
+    if (scene.bounds.empty()) fail(path, "the scene has no triangles");
+    if (glm::length(scene.bounds.size()) == 0.0f) fail(path, "all of the scene is at one point");
+
+    scene.light = viewpoint.light.value_or(defaultLight(scene.bounds));
+    if (description.light) scene.light = applyLightSpec(*description.light, scene.light, path);
+    scene.sky = description.sky;
+
+    // Path keys refine the scene camera as written, before its clip planes are derived, so a
+    // key that moves the camera gets clip planes fitted to where it is.
+    Camera camera = viewpoint.camera.value_or(defaultCamera(scene.bounds));
+    if (description.camera) camera = applyCameraSpec(*description.camera, camera, path);
+    for (const auto& [time, spec] : description.cameraPath) {
+        CameraKey key{time, applyCameraSpec(spec, camera, path)};
+        fillClipPlanes(key.camera, scene.bounds);
+        scene.cameraPath.keys.push_back(key);
+    }
+    fillClipPlanes(camera, scene.bounds);
+    scene.camera = camera;
+    scene.settings = description.settings;
+    return scene;
+}
+
+} // namespace
+
+Scene loadScene(const std::string& path) {
+    std::string extension = std::filesystem::path(path).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    SceneDescription description;
+    if (extension == ".gltf" || extension == ".glb")
+        description.gltfPaths = {path};
+    else if (extension == ".json")
+        description = readSceneDescription(path);
+    else
+        fail(path, "unsupported file type '" + extension + "' (expected .json, .gltf or .glb)");
+    return buildScene(path, description);
+}
+
+} // namespace ssgi

@@ -1,0 +1,392 @@
+// Scene loading: the default scene file, the shared glTF scenes, hand-written glTF files with
+// known answers, and every kind of bad input the loader must reject with a useful message.
+#include "scene/scene.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using ssgi::InputError;
+using ssgi::loadScene;
+using ssgi::Scene;
+
+namespace {
+
+const std::string kSourceDir = SSGI_SOURCE_DIR;
+const std::string kSharedScenes = kSourceDir + "/../shared/scenes/";
+
+size_t triangleCount(const Scene& scene) {
+    size_t triangles = 0;
+    for (const ssgi::Instance& instance : scene.instances)
+        triangles += scene.meshes[size_t(instance.mesh)].indices.size() / 3;
+    return triangles;
+}
+
+std::string base64(const std::vector<uint8_t>& bytes) {
+    static const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    for (size_t i = 0; i < bytes.size(); i += 3) {
+        uint32_t group = uint32_t(bytes[i]) << 16;
+        if (i + 1 < bytes.size()) group |= uint32_t(bytes[i + 1]) << 8;
+        if (i + 2 < bytes.size()) group |= bytes[i + 2];
+        for (size_t k = 0; k < 4; ++k)
+            out += i + k <= bytes.size() ? digits[(group >> (18 - 6 * k)) & 63] : '=';
+    }
+    return out;
+}
+
+// A glTF with one indexed triangle-list mesh (no normals) in an embedded base64 buffer.
+json triangleGltf(const std::vector<float>& positions, const std::vector<uint16_t>& indices,
+                  const json& nodes, const json& rootNodes) {
+    std::vector<uint8_t> bytes(positions.size() * 4 + indices.size() * 2);
+    std::memcpy(bytes.data(), positions.data(), positions.size() * 4);
+    std::memcpy(bytes.data() + positions.size() * 4, indices.data(), indices.size() * 2);
+    const size_t positionBytes = positions.size() * 4;
+    return {
+        {"asset", {{"version", "2.0"}}},
+        {"scene", 0},
+        {"scenes", {{{"nodes", rootNodes}}}},
+        {"nodes", nodes},
+        {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}, {"indices", 1}}}}}}},
+        {"buffers",
+         {{{"byteLength", bytes.size()},
+           {"uri", "data:application/octet-stream;base64," + base64(bytes)}}}},
+        {"bufferViews",
+         {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", positionBytes}},
+          {{"buffer", 0}, {"byteOffset", positionBytes}, {"byteLength", indices.size() * 2}}}},
+        {"accessors",
+         {{{"bufferView", 0},
+           {"componentType", 5126},
+           {"count", positions.size() / 3},
+           {"type", "VEC3"}},
+          {{"bufferView", 1},
+           {"componentType", 5123},
+           {"count", indices.size()},
+           {"type", "SCALAR"}}}},
+    };
+}
+
+const std::vector<float> kTriangle = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+
+class SceneFiles : public ::testing::Test {
+protected:
+    void SetUp() override {
+        std::random_device random;
+        dir_ = fs::temp_directory_path() / ("ssgi_test_scene_" + std::to_string(random()));
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    std::string write(const std::string& name, const std::string& text) const {
+        const std::string path = (dir_ / name).string();
+        std::ofstream(path, std::ios::binary) << text;
+        return path;
+    }
+    // Loading must fail with an InputError naming the file and every given detail.
+    void expectInputError(const std::string& path, const std::vector<std::string>& details) {
+        try {
+            loadScene(path);
+            ADD_FAILURE() << path << " loaded, expected an InputError";
+        } catch (const InputError& error) {
+            const std::string message = error.what();
+            EXPECT_NE(message.find(fs::path(path).filename().string()), std::string::npos)
+                << message;
+            for (const std::string& detail : details)
+                EXPECT_NE(message.find(detail), std::string::npos)
+                    << "'" << detail << "' not in: " << message;
+        }
+    }
+    // A scene file of one white quad plus `extra` top-level keys.
+    std::string quadScene(const std::string& name, const json& extra) const {
+        json scene = {{"materials", {{"white", {{"albedo", {0.8, 0.8, 0.8}}}}}},
+                      {"objects",
+                       {{{"type", "quad"},
+                         {"material", "white"},
+                         {"corners", {{1, 0, 0}, {0, 0, 0}, {0, 0, 1}, {1, 0, 1}}}}}}};
+        scene.update(extra);
+        return write(name, scene.dump());
+    }
+
+    fs::path dir_;
+};
+
+TEST(DefaultScene, CornellBoxLoadsAsWritten) {
+    const Scene scene = loadScene(kSourceDir + "/scenes/cornell-box.json");
+    EXPECT_EQ(scene.meshes.size(), 7u);
+    EXPECT_EQ(scene.instances.size(), 7u);
+    EXPECT_EQ(scene.materials.size(), 3u);
+    EXPECT_NEAR(scene.bounds.min.x, 0.0f, 1e-6f);
+    EXPECT_NEAR(scene.bounds.max.x, 0.556f, 1e-6f);
+    EXPECT_NEAR(scene.bounds.min.y, 0.0f, 1e-6f);
+    EXPECT_NEAR(scene.bounds.max.y, 0.5488f, 1e-6f);
+    EXPECT_NEAR(scene.bounds.max.z, 0.5592f, 1e-6f);
+
+    EXPECT_NEAR(glm::distance(scene.light.position, glm::vec3(0.278f, 0.5478f, 0.2795f)), 0, 1e-6);
+    EXPECT_NEAR(glm::distance(scene.light.direction, glm::vec3(0, -1, 0)), 0, 1e-6);
+    EXPECT_NEAR(glm::distance(scene.light.color, glm::vec3(1.0f, 0.85f, 0.6f)), 0, 1e-6);
+    EXPECT_FLOAT_EQ(scene.light.intensity, 1.5f);
+    EXPECT_NEAR(scene.light.outerConeAngle, glm::radians(70.0f), 1e-6);
+    EXPECT_NEAR(scene.light.innerConeAngle, glm::radians(35.0f), 1e-6);
+    EXPECT_FLOAT_EQ(scene.light.radius, 0.066f);
+
+    EXPECT_NEAR(glm::distance(scene.camera.position, glm::vec3(0.278f, 0.273f, -0.8f)), 0, 1e-6);
+    const glm::vec3 forward = scene.camera.orientation * glm::vec3(0, 0, -1);
+    const glm::vec3 up = scene.camera.orientation * glm::vec3(0, 1, 0);
+    EXPECT_NEAR(glm::distance(forward, glm::vec3(0, 0, 1)), 0, 1e-5);
+    EXPECT_NEAR(glm::distance(up, glm::vec3(0, 1, 0)), 0, 1e-5);
+    EXPECT_NEAR(scene.camera.yfov, glm::radians(39.3f), 1e-6);
+    EXPECT_GT(scene.camera.znear, 0.0f);
+    EXPECT_GT(scene.camera.zfar, glm::distance(scene.camera.position, scene.bounds.max));
+    EXPECT_EQ(scene.sky.zenith, glm::vec3(0.0f));
+}
+
+TEST(DefaultScene, PrimitivesFaceOutwardWithUnitNormals) {
+    const Scene scene = loadScene(kSourceDir + "/scenes/cornell-box.json");
+    // The floor's corners run counter-clockwise seen from above, the ceiling's from below.
+    EXPECT_NEAR(scene.meshes[0].vertices[0].normal.y, 1.0f, 1e-6f);
+    EXPECT_NEAR(scene.meshes[1].vertices[0].normal.y, -1.0f, 1e-6f);
+    for (size_t box : {5u, 6u}) {
+        const ssgi::Mesh& mesh = scene.meshes[box];
+        ASSERT_EQ(mesh.vertices.size(), 24u);
+        ASSERT_EQ(mesh.indices.size(), 36u);
+        glm::vec3 center(0.0f);
+        for (const ssgi::Vertex& v : mesh.vertices)
+            center += v.position / 24.0f;
+        for (size_t t = 0; t < mesh.indices.size(); t += 3) {
+            const glm::vec3 a = mesh.vertices[mesh.indices[t]].position;
+            const glm::vec3 b = mesh.vertices[mesh.indices[t + 1]].position;
+            const glm::vec3 c = mesh.vertices[mesh.indices[t + 2]].position;
+            const glm::vec3 face = glm::normalize(glm::cross(b - a, c - a));
+            EXPECT_GT(glm::dot(face, (a + b + c) / 3.0f - center), 0.0f);
+            EXPECT_NEAR(glm::dot(face, mesh.vertices[mesh.indices[t]].normal), 1.0f, 1e-5f);
+        }
+    }
+}
+
+struct SharedScene {
+    const char* file;
+    size_t triangles;
+};
+void PrintTo(const SharedScene& scene, std::ostream* out) {
+    *out << scene.file;
+}
+
+class SharedScenes : public ::testing::TestWithParam<SharedScene> {};
+
+TEST_P(SharedScenes, LoadBareWithTheReadmeTriangleCount) {
+    const std::string path = kSharedScenes + GetParam().file;
+    if (!fs::exists(path)) GTEST_SKIP() << path << " is not there";
+    const Scene scene = loadScene(path);
+    EXPECT_EQ(triangleCount(scene), GetParam().triangles);
+    EXPECT_FALSE(scene.bounds.empty());
+    EXPECT_LT(scene.light.outerConeAngle, glm::radians(89.0f));
+    EXPECT_LT(scene.camera.znear, scene.camera.zfar);
+    for (const ssgi::Mesh& mesh : scene.meshes) {
+        EXPECT_LT(size_t(mesh.material), scene.materials.size());
+        for (uint32_t index : mesh.indices)
+            ASSERT_LT(index, mesh.vertices.size());
+        for (const ssgi::Vertex& v : mesh.vertices)
+            ASSERT_NEAR(glm::length(v.normal), 1.0f, 1e-4f);
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Readme, SharedScenes,
+    ::testing::Values(SharedScene{"cornell-box.glb", 36},
+                      SharedScene{"cornell-box-sphere.glb", 2188}, SharedScene{"bunny.glb", 69451},
+                      SharedScene{"mori-knob.glb", 11970}, SharedScene{"sponza.glb", 66450},
+                      SharedScene{"sibenik.glb", 75283}, SharedScene{"conference.glb", 331179},
+                      SharedScene{"scrub-pine.glb", 527}),
+    [](const ::testing::TestParamInfo<SharedScene>& info) {
+        std::string name = info.param.file;
+        name = name.substr(0, name.find('.'));
+        std::replace(name.begin(), name.end(), '-', '_');
+        return name;
+    });
+
+TEST(SharedSceneDetails, CornellBoxWithoutNormalsIsFlatShaded) {
+    const std::string path = kSharedScenes + "cornell-box.glb";
+    if (!fs::exists(path)) GTEST_SKIP() << path << " is not there";
+    const Scene scene = loadScene(path);
+    for (const ssgi::Mesh& mesh : scene.meshes) {
+        for (size_t t = 0; t < mesh.indices.size(); t += 3) {
+            const ssgi::Vertex* v[3] = {&mesh.vertices[mesh.indices[t]],
+                                        &mesh.vertices[mesh.indices[t + 1]],
+                                        &mesh.vertices[mesh.indices[t + 2]]};
+            const glm::vec3 cross =
+                glm::cross(v[1]->position - v[0]->position, v[2]->position - v[0]->position);
+            if (glm::length(cross) < 1e-12f) continue; // degenerate: any normal will do
+            for (const ssgi::Vertex* corner : v)
+                EXPECT_NEAR(glm::distance(corner->normal, glm::normalize(cross)), 0.0f, 1e-5f);
+        }
+    }
+}
+
+TEST(SharedSceneDetails, SponzaLoadsItsTextures) {
+    const std::string path = kSharedScenes + "sponza.glb";
+    if (!fs::exists(path)) GTEST_SKIP() << path << " is not there";
+    const Scene scene = loadScene(path);
+    ASSERT_EQ(scene.textures.size(), 18u);
+    for (const ssgi::Texture& texture : scene.textures) {
+        EXPECT_GT(texture.width, 0u);
+        EXPECT_GT(texture.height, 0u);
+        EXPECT_EQ(texture.rgba.size(), size_t(texture.width) * texture.height * 4);
+    }
+    const bool textured =
+        std::any_of(scene.materials.begin(), scene.materials.end(),
+                    [](const ssgi::Material& m) { return m.baseColorTexture >= 0; });
+    EXPECT_TRUE(textured);
+}
+
+TEST(SceneFileSet, EverySceneFileLoads) {
+    size_t count = 0;
+    for (const auto& entry : fs::directory_iterator(kSourceDir + "/scenes")) {
+        if (entry.path().extension() != ".json") continue;
+        SCOPED_TRACE(entry.path().string());
+        const std::string text =
+            (std::ostringstream() << std::ifstream(entry.path()).rdbuf()).str();
+        if (text.find("shared/scenes") != std::string::npos && !fs::exists(kSharedScenes)) continue;
+        const Scene scene = loadScene(entry.path().string());
+        EXPECT_FALSE(scene.instances.empty());
+        for (size_t k = 1; k < scene.cameraPath.keys.size(); ++k)
+            EXPECT_LE(scene.cameraPath.keys[k - 1].time, scene.cameraPath.keys[k].time);
+        ++count;
+    }
+    EXPECT_GE(count, 1u);
+}
+
+TEST_F(SceneFiles, NodeTransformsGiveWorldBounds) {
+    // Root 0 is translated and has child 1, scaled by 2; root 2 is moved back in z.
+    const json nodes = {{{"mesh", 0}, {"translation", {10, 0, 0}}, {"children", {1}}},
+                        {{"mesh", 0}, {"scale", {2, 2, 2}}},
+                        {{"mesh", 0}, {"translation", {0, 0, -3}}}};
+    const std::string gltf =
+        write("tiny.gltf", triangleGltf(kTriangle, {0, 1, 2}, nodes, {0, 2}).dump());
+    const Scene scene = loadScene(gltf);
+    EXPECT_EQ(scene.meshes.size(), 1u); // one glTF mesh, instanced three times
+    EXPECT_EQ(scene.instances.size(), 3u);
+    EXPECT_NEAR(glm::distance(scene.bounds.min, glm::vec3(0, 0, -3)), 0, 1e-6);
+    EXPECT_NEAR(glm::distance(scene.bounds.max, glm::vec3(12, 2, 0)), 0, 1e-6);
+    EXPECT_EQ(scene.materials.size(), 1u); // the default material for a primitive without one
+
+    const std::string scaled =
+        write("scaled.json", json{{"gltf", "tiny.gltf"}, {"gltf_scale", 0.5}}.dump());
+    const Scene half = loadScene(scaled);
+    EXPECT_NEAR(glm::distance(half.bounds.min, glm::vec3(0, 0, -1.5f)), 0, 1e-6);
+    EXPECT_NEAR(glm::distance(half.bounds.max, glm::vec3(6, 1, 0)), 0, 1e-6);
+
+    // Each file's materials, then the scene file's, each block after the ones before it.
+    const json twice = {
+        {"gltf", {"tiny.gltf", "tiny.gltf"}},
+        {"materials", {{"red", {{"albedo", {1, 0, 0}}}}}},
+        {"objects",
+         {{{"type", "sphere"}, {"material", "red"}, {"center", {0, 5, 0}}, {"radius", 1}}}}};
+    const Scene both = loadScene(write("twice.json", twice.dump()));
+    ASSERT_EQ(both.meshes.size(), 3u);
+    for (int m = 0; m < 3; ++m)
+        EXPECT_EQ(both.meshes[size_t(m)].material, m);
+    EXPECT_EQ(both.materials[2].name, "red");
+}
+
+TEST_F(SceneFiles, GltfCameraAndSpotLightAreUsed) {
+    // Node 2 is turned -90 degrees about X, which points its -Z (the light's axis) down.
+    const json light = {{"KHR_lights_punctual", {{"light", 0}}}};
+    json gltf = triangleGltf(kTriangle, {0, 1, 2},
+                             {{{"mesh", 0}},
+                              {{"camera", 0}, {"translation", {0, 0, 5}}},
+                              {{"translation", {0, 4, 0}},
+                               {"rotation", {-0.70710678, 0, 0, 0.70710678}},
+                               {"extensions", light}}},
+                             {0, 1, 2});
+    gltf["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.5}, {"znear", 0.1}}}}};
+    gltf["extensionsUsed"] = {"KHR_lights_punctual"};
+    gltf["extensions"]["KHR_lights_punctual"]["lights"] = {
+        {{"type", "spot"}, {"intensity", 7}, {"spot", {{"outerConeAngle", 0.6}}}}};
+    const Scene scene = loadScene(write("viewpoint.gltf", gltf.dump()));
+    EXPECT_NEAR(glm::distance(scene.camera.position, glm::vec3(0, 0, 5)), 0, 1e-6);
+    EXPECT_FLOAT_EQ(scene.camera.yfov, 0.5f);
+    EXPECT_FLOAT_EQ(scene.camera.znear, 0.1f);
+    EXPECT_GT(scene.camera.zfar, 5.0f); // glTF's "infinite" far plane fitted to the bounds
+    EXPECT_NEAR(glm::distance(scene.light.position, glm::vec3(0, 4, 0)), 0, 1e-6);
+    EXPECT_NEAR(glm::distance(scene.light.direction, glm::vec3(0, -1, 0)), 0, 1e-5);
+    EXPECT_FLOAT_EQ(scene.light.intensity, 7.0f);
+    EXPECT_FLOAT_EQ(scene.light.outerConeAngle, 0.6f);
+}
+
+TEST_F(SceneFiles, MissingFile) {
+    expectInputError((dir_ / "no-such-scene.json").string(), {"not found"});
+}
+TEST_F(SceneFiles, MalformedJson) {
+    expectInputError(write("broken.json", "{\"camera\": {\"position\": [0, 1, 2],"),
+                     {"malformed JSON", "byte"});
+}
+TEST_F(SceneFiles, BadKeysAndValues) {
+    struct Case {
+        const char* file;
+        json keys; // added to a valid scene
+        std::string detail;
+    };
+    const Case cases[] = {
+        {"camra.json", {{"camra", json::object()}}, "unknown key 'camra' at top level"},
+        {"colour.json", {{"light", {{"colour", {1, 1, 1}}}}}, "unknown key 'colour' in 'light'"},
+        {"type.json", {{"light", {{"intensity", "bright"}}}}, "'light.intensity' must be a number"},
+        {"length.json", {{"camera", {{"position", {0, 1}}}}}, "'camera.position' must be an array"},
+        {"cone.json", {{"light", {{"cone_deg", 95}}}}, "'light.cone_deg' is 95"},
+        {"setting.json",
+         {{"settings", {{"shadow_map_sise", 512}}}},
+         "unknown setting 'shadow_map_sise'"},
+        {"size.json", {{"settings", {{"shadow_map_size", 0}}}}, "'settings.shadow_map_size' is 0"},
+    };
+    for (const Case& bad : cases) {
+        SCOPED_TRACE(bad.file);
+        expectInputError(quadScene(bad.file, bad.keys), {bad.detail});
+    }
+}
+TEST_F(SceneFiles, UnknownMaterialName) {
+    json scene = json::parse(std::ifstream(quadScene("tmp.json", json::object())));
+    scene["objects"][0]["material"] = "chrome";
+    expectInputError(write("material.json", scene.dump()), {"'objects[0].material'", "chrome"});
+}
+TEST_F(SceneFiles, UnsupportedExtension) {
+    expectInputError(write("scene.txt", "{}"), {"unsupported file type"});
+}
+TEST_F(SceneFiles, SettingsAreKept) {
+    const Scene scene =
+        loadScene(quadScene("ok.json", {{"settings", {{"shadow_map_size", 2048}}}}));
+    EXPECT_EQ(scene.setting("shadow_map_size", 0), 2048.0);
+    EXPECT_EQ(scene.setting("exposure", 1.0), 1.0);
+    EXPECT_EQ(ssgi::knownSettings().at("shadow_map_size"), 1024.0);
+}
+TEST_F(SceneFiles, TruncatedGlb) {
+    const std::string bunny = kSharedScenes + "bunny.glb";
+    if (!fs::exists(bunny)) GTEST_SKIP() << bunny << " is not there";
+    std::string bytes(1000, '\0');
+    std::ifstream(bunny, std::ios::binary).read(bytes.data(), 1000);
+    expectInputError(write("truncated.glb", bytes), {});
+}
+TEST_F(SceneFiles, IndexOutOfRange) {
+    const json gltf = triangleGltf(kTriangle, {0, 1, 7}, {{{"mesh", 0}}}, {0});
+    expectInputError(write("index.gltf", gltf.dump()), {"index 7", "out of range"});
+}
+TEST_F(SceneFiles, NanPosition) {
+    const json gltf = triangleGltf({0, 0, 0, NAN, 0, 0, 0, 1, 0}, {0, 1, 2}, {{{"mesh", 0}}}, {0});
+    expectInputError(write("nan.gltf", gltf.dump()), {"POSITION 1", "not a finite number"});
+}
+TEST_F(SceneFiles, GltfThatIsNotJson) {
+    expectInputError(write("garbage.gltf", "this is not a glTF file at all"), {});
+}
+TEST_F(SceneFiles, MissingGltfNamesBothFiles) {
+    expectInputError(write("refers.json", json{{"gltf", "absent.glb"}}.dump()),
+                     {"absent.glb", "not found"});
+}
+
+} // namespace
