@@ -31,7 +31,7 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
             list += " " + v;
         throw InputError("unknown view '" + options.view + "' (views:" + list + ")");
     }
-    const uint32_t rsmSize = uint32_t(scene.setting("shadow_map_size", 1024));
+    const uint32_t rsmSize = uint32_t(scene.setting("shadow_map_size"));
     if (rsmSize == 0 || rsmSize > limit)
         throw InputError("shadow_map_size " + std::to_string(rsmSize) + " is outside 1.." +
                          std::to_string(limit));
@@ -89,7 +89,7 @@ void Renderer::updateUniforms(const Camera& camera) {
     u.skyHorizon = glm::vec4(scene_.sky.horizon, 0.0f);
     u.skyGround = glm::vec4(scene_.sky.ground, 0.0f);
     u.viewport = glm::vec4(size.width, size.height, 1.0f / size.width, 1.0f / size.height);
-    u.params = glm::vec4(scene_.setting("exposure", 1.0), scene_.setting("shadow_bias", 1.5),
+    u.params = glm::vec4(scene_.setting("exposure"), scene_.setting("shadow_bias"),
                          float(frameIndex_), glm::length(scene_.bounds.size()));
     std::memcpy(setup_->frameUniforms.mapped, &u, sizeof(u));
     previousViewProjection_ = u.viewProjection;

@@ -344,7 +344,7 @@ TEST_F(SceneFiles, BadKeysAndValues) {
         {"setting.json",
          {{"settings", {{"shadow_map_sise", 512}}}},
          "unknown setting 'shadow_map_sise'"},
-        {"size.json", {{"settings", {{"shadow_map_size", 0}}}}, "'settings.shadow_map_size' is 0"},
+        {"size.json", {{"settings", {{"shadow_map_size", 0}}}}, "'shadow_map_size' is 0"},
     };
     for (const Case& bad : cases) {
         SCOPED_TRACE(bad.file);
@@ -364,7 +364,7 @@ TEST_F(SceneFiles, SettingsAreKept) {
         loadScene(quadScene("ok.json", {{"settings", {{"shadow_map_size", 2048}}}}));
     EXPECT_EQ(scene.setting("shadow_map_size", 0), 2048.0);
     EXPECT_EQ(scene.setting("exposure", 1.0), 1.0);
-    EXPECT_EQ(ssgi::knownSettings().at("shadow_map_size"), 1024.0);
+    EXPECT_EQ(ssgi::settingSpecs().at("shadow_map_size").defaultValue, 1024.0);
 }
 TEST_F(SceneFiles, TruncatedGlb) {
     const std::string bunny = kSharedScenes + "bunny.glb";

@@ -127,17 +127,30 @@ struct Scene {
         auto it = settings.find(key);
         return it == settings.end() ? fallback : it->second;
     }
+    // A setting's value, or its default from settingSpecs().
+    double setting(const std::string& key) const;
 };
 
 // Loads a scene description file (.json) or a bare glTF (.gltf/.glb, with a default light and
 // camera derived from its bounds). Throws InputError naming the file and the problem.
 Scene loadScene(const std::string& path);
 
-// The ambient-occlusion radius in scene units: the "ao_radius" setting, else 5% of the scene's
-// bounding-box diagonal. The real-time AO and the reference's AO use the same value.
+// The ambient-occlusion radius in scene units: the "ao_radius" setting when > 0, else 5% of the
+// scene's bounding-box diagonal. The real-time AO and the reference's AO use the same value.
 float aoRadius(const Scene& scene);
 
-// The settings a scene file may name, with their defaults; an unknown key is an error.
-const std::map<std::string, double>& knownSettings();
+// A method setting a scene file (or `render --set`) may name: its default, its range, and
+// whether it must be a whole number. An unknown key is an error.
+struct SettingSpec {
+    double defaultValue;
+    double min, max;
+    bool whole;
+    const char* meaning;
+};
+const std::map<std::string, SettingSpec>& settingSpecs();
+
+// Checks `value` for setting `key`; throws InputError "<where>: ..." naming the key and the
+// allowed range (or the known keys).
+double checkSetting(const std::string& where, const std::string& key, double value);
 
 } // namespace ssgi

@@ -11,15 +11,6 @@
 
 namespace ssgi {
 
-const std::map<std::string, double>& knownSettings() {
-    static const std::map<std::string, double> settings = {
-        {"shadow_map_size", 1024.0}, // RSM resolution in texels per side, 16..8192
-        {"exposure", 1.0},           // multiplies radiance before tonemapping
-        {"shadow_bias", 1.5},        // depth bias in shadow-map texels
-    };
-    return settings;
-}
-
 namespace {
 
 [[noreturn]] void fail(const std::string& file, const std::string& problem) {

@@ -220,31 +220,13 @@ ObjectSpec readObject(const JsonObject& in) {
     return object;
 }
 
-// Ranges of the settings that have one; every setting must at least be finite.
-const std::map<std::string, std::pair<Range, bool /*whole number*/>>& settingRanges() {
-    static const std::map<std::string, std::pair<Range, bool>> ranges = {
-        {"shadow_map_size", {{16.0, 8192.0}, true}},
-        {"exposure", {{0.0, 1e6, true}, false}},
-        {"shadow_bias", {{0.0, 1e4}, false}},
-    };
-    return ranges;
-}
-
 std::map<std::string, double> readSettings(const JsonObject& in) {
     std::map<std::string, double> settings;
     for (const auto& item : in.value().items()) {
         const std::string& key = item.key();
-        if (!knownSettings().count(key)) {
-            std::string known;
-            for (const auto& setting : knownSettings())
-                known += " " + setting.first;
-            throw InputError(in.file() + ": unknown setting '" + key +
-                             "' in 'settings' (known:" + known + ")");
-        }
-        auto range = settingRanges().find(key);
-        settings[key] = range == settingRanges().end() ? in.number(key.c_str(), {-1e300, 1e300})
-                        : range->second.second ? in.integer(key.c_str(), range->second.first)
-                                               : in.number(key.c_str(), range->second.first);
+        if (!item.value().is_number())
+            throw InputError(in.file() + ": setting '" + key + "' must be a number");
+        settings[key] = checkSetting(in.file(), key, item.value().get<double>());
     }
     return settings;
 }

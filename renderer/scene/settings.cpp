@@ -1,14 +1,66 @@
-// Settings whose defaults derive from the scene's own size, so a scene file names only what
-// differs and one default serves every scale.
+// The method settings: one table of defaults and ranges serves the scene file, `render --set`
+// and the passes. Lengths whose default is 0 are derived from the scene's own size, so a scene
+// file names only what differs and one default serves every scale.
 #include "scene/scene.h"
 
-#include <glm/glm.hpp>
+#include <cmath>
+#include <sstream>
 
 namespace ssgi {
 
+const std::map<std::string, SettingSpec>& settingSpecs() {
+    static const std::map<std::string, SettingSpec> specs = {
+        {"shadow_map_size", {1024, 16, 8192, true, "RSM resolution, texels per side"}},
+        {"exposure", {1.0, 1e-6, 1e6, false, "multiplies radiance before tonemapping"}},
+        {"shadow_bias", {1.5, 0, 100, false, "normal offset of the shadow lookup, in texels"}},
+        {"shadow_taps", {49, 1, 64, true, "PCF taps (1 = hard shadow; thesis: 49, or 9 + cache)"}},
+        {"ao", {1, 0, 1, true, "ambient occlusion on (1) or off (0)"}},
+        {"ao_variant", {0, 0, 2, true, "0 thesis (eq. 6-8), 1 Crytek/Mittring, 2 horizon (GTAO)"}},
+        {"ao_radius", {0, 0, 1e9, false, "AO radius in scene units; 0 = 5% of the scene diagonal"}},
+        {"ao_directions", {8, 1, 32, true, "AO sampling directions per pixel"}},
+        {"ao_steps", {4, 1, 32, true, "AO samples per direction (log-spaced, eq. 8)"}},
+        {"ao_attenuation_a", {1.0, 0, 1e3, false, "a in D(d) = 1 + a d + b d^2, d in AO radii"}},
+        {"ao_attenuation_b", {0.0, 0, 1e3, false, "b in D(d) = 1 + a d + b d^2, d in AO radii"}},
+        {"indirect", {1, 0, 1, true, "one-bounce indirect light from the RSM on (1) or off (0)"}},
+        {"indirect_vpls", {512, 1, 1024, true, "virtual point lights gathered per pixel"}},
+        {"indirect_radius", {0.3, 1e-3, 1, false, "VPL sampling radius, fraction of the RSM"}},
+        {"indirect_visibility", {1, 0, 1, true, "screen-space visibility test of each VPL"}},
+        {"indirect_visibility_steps", {6, 1, 32, true, "log-spaced steps of the visibility test"}},
+        {"ssdo", {0, 0, 1, true, "SSDO replaces AO: directional sky occlusion + one bounce"}},
+        {"ssdo_samples", {16, 1, 64, true, "SSDO hemisphere samples per pixel"}},
+        {"ssdo_radius", {0, 0, 1e9, false, "SSDO r_max in scene units; 0 = the AO radius"}},
+        {"ssdo_bounce", {1.0, 0, 1e3, false, "SSDO one-bounce strength (the paper's user factor)"}},
+    };
+    return specs;
+}
+
+double checkSetting(const std::string& where, const std::string& key, double value) {
+    auto it = settingSpecs().find(key);
+    if (it == settingSpecs().end()) {
+        std::string known;
+        for (const auto& spec : settingSpecs()) known += " " + spec.first;
+        throw InputError(where + ": unknown setting '" + key + "' (known:" + known + ")");
+    }
+    const SettingSpec& spec = it->second;
+    std::ostringstream problem;
+    problem << where << ": setting '" << key << "' is " << value << ", outside [" << spec.min
+            << ", " << spec.max << "]";
+    if (!std::isfinite(value) || value < spec.min || value > spec.max)
+        throw InputError(problem.str());
+    if (spec.whole && value != std::floor(value))
+        throw InputError(where + ": setting '" + key + "' must be a whole number");
+    return value;
+}
+
+double Scene::setting(const std::string& key) const {
+    auto it = settings.find(key);
+    return it != settings.end() ? it->second : settingSpecs().at(key).defaultValue;
+}
+
 float aoRadius(const Scene& scene) {
+    const double radius = scene.setting("ao_radius");
     const double derived = 0.05 * glm::length(scene.bounds.size());
-    return float(scene.setting("ao_radius", derived > 0.0 ? derived : 0.1));
+    return float(radius > 0.0 ? radius : (derived > 0.0 ? derived : 0.1));
 }
 
 } // namespace ssgi
