@@ -38,7 +38,7 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
 
     sceneGpu_ = std::make_unique<SceneGpu>(ctx, scene);
     graph_ = std::make_unique<graph::FrameGraph>(ctx);
-    setup_.reset(new PassSetup{ctx, *graph_, *sceneGpu_});
+    setup_.reset(new PassSetup{ctx, *graph_, *sceneGpu_, scene});
     setup_->frameUniforms = vk::createBuffer(ctx, sizeof(shader::FrameUniforms),
                                              VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
     setup_->nearestSampler =
@@ -53,7 +53,8 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
     GBufferAndRsm scenes;
     scenes.gbuffer = addGBufferPass(*setup_);
     scenes.rsm = addRsmPass(*setup_);
-    graph::ImageRef direct = addDirectPass(*setup_, scenes);
+    graph::ImageRef shadow = addShadowPass(*setup_, scenes);
+    graph::ImageRef direct = addDirectPass(*setup_, scenes, shadow);
     addCompositePass(*setup_, scenes, direct, int(view - views.begin()));
 }
 
@@ -78,6 +79,7 @@ void Renderer::updateUniforms(const Camera& camera) {
     u.inverseViewProjection = glm::inverse(u.viewProjection);
     u.previousViewProjection = frameIndex_ == 0 ? u.viewProjection : previousViewProjection_;
     u.lightViewProjection = light.viewProjection;
+    u.inverseLightViewProjection = glm::inverse(light.viewProjection);
     u.cameraPosition = glm::vec4(camera.position, 1.0f);
     const SpotLight& l = scene_.light;
     u.lightPosition = glm::vec4(l.position, l.radius);

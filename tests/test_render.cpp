@@ -107,10 +107,11 @@ TEST_F(RenderTest, LightFallsWhereTheSpotPoints) {
     }
 }
 
-// On the Cornell box's floor, the pixels in shadow are exactly those from which the segment to
-// the light crosses a block, up to the pixels along the shadow's edge.
+// On the Cornell box's floor, the pixels in hard shadow are exactly those from which the
+// segment to the light crosses a block, up to the pixels along the shadow's edge.
 TEST_F(RenderTest, ShadowOfTheBlocksLiesWhereTheLightsGeometryPutsIt) {
     Scene scene = loadScene(test::sourcePath("scenes/cornell-box.json"));
+    scene.settings["shadow_taps"] = 1; // the hard shadow test
     Frame f = render(scene, 192, 192);
     size_t floor = 0, agree = 0, expectedShadow = 0, renderedShadow = 0;
     for (size_t i = 0; i < size_t(f.width) * f.height; ++i) {
@@ -163,7 +164,7 @@ TEST_F(RenderTest, FrameReportsEveryPassInOrderWithTimings) {
         names.push_back(t.name);
         EXPECT_GE(t.milliseconds, 0.0);
     }
-    EXPECT_EQ(names, (std::vector<std::string>{"gbuffer", "rsm", "direct", "composite"}));
+    EXPECT_EQ(names, (std::vector<std::string>{"gbuffer", "rsm", "shadow", "direct", "composite"}));
     // The second frame's barriers: each G-buffer target goes from being sampled by last frame's
     // compute passes back to an attachment, contents discarded.
     size_t found = 0;

@@ -15,12 +15,22 @@ struct PassSetup {
     vk::Context& ctx;
     graph::FrameGraph& graph;
     const SceneGpu& scene;
+    const Scene& model; // settings, light, bounds
     vk::Buffer frameUniforms;
     VkSampler nearestSampler = VK_NULL_HANDLE;
     VkSampler linearSampler = VK_NULL_HANDLE;
     VkExtent2D size{};                   // the output image
     VkExtent2D rsmSize{};                // the reflective shadow map
     std::vector<vk::Pipeline> pipelines; // destroyed with the renderer
+    // This frame's turn and scale of every sampling pattern (GUIDE 2.2); set by the renderer.
+    float patternRotation = 0.0f;
+    float patternScale = 1.0f;
+
+    // A compute pipeline whose bindings are set 0's: binding 0 the frame uniforms, then
+    // `sampled` combined image samplers, then `storage` storage images.
+    const vk::Pipeline& computePipeline(const std::string& shader, uint32_t sampled,
+                                        uint32_t storage, uint32_t pushSize,
+                                        const vk::Specialization& spec = {});
 };
 
 // The G-buffer (camera view) and the reflective shadow map (light view) are the same kind of
@@ -39,8 +49,11 @@ SceneTargets addRsmPass(PassSetup& setup);
 struct GBufferAndRsm {
     SceneTargets gbuffer, rsm;
 };
-// direct: spot-light radiance with a hard shadow-map test.
-graph::ImageRef addDirectPass(PassSetup& setup, const GBufferAndRsm& inputs);
+// shadow: fraction of the spot light's disk each pixel sees (PCF/PCSS, or a hard test).
+graph::ImageRef addShadowPass(PassSetup& setup, const GBufferAndRsm& inputs);
+// direct: spot-light radiance times the shadow term.
+graph::ImageRef addDirectPass(PassSetup& setup, const GBufferAndRsm& inputs,
+                              graph::ImageRef shadow);
 
 struct CompositeOutputs {
     graph::ImageRef hdr, ldr;

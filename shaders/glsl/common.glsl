@@ -20,4 +20,26 @@ vec3 skyRadiance(vec3 direction, vec3 zenith, vec3 horizon, vec3 ground) {
     return direction.y >= 0.0 ? mix(horizon, zenith, direction.y) : ground;
 }
 
+// Per-pixel rotation of a sampling pattern (interleaved gradient noise, Jimenez 2014): plays
+// the role of the thesis's random-vector texture, decorrelating neighbouring pixels.
+float pixelRotation(ivec2 pixel) {
+    return 2.0 * PI * fract(52.9829189 * fract(0.06711056 * float(pixel.x) +
+                                               0.00583715 * float(pixel.y)));
+}
+
+// Point i of n on the unit disk, evenly spread (Vogel's golden-angle spiral), turned by
+// `rotation`.
+vec2 vogelDisk(int i, int n, float rotation) {
+    float r = sqrt((float(i) + 0.5) / float(n));
+    float theta = float(i) * 2.39996323 + rotation;
+    return r * vec2(cos(theta), sin(theta));
+}
+
+// A tangent frame around a unit normal.
+mat3 tangentFrame(vec3 n) {
+    vec3 helper = abs(n.y) < 0.999 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
+    vec3 t = normalize(cross(helper, n));
+    return mat3(t, cross(n, t), n);
+}
+
 #endif

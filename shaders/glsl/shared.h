@@ -23,6 +23,7 @@ struct FrameUniforms {
     mat4 inverseViewProjection;
     mat4 previousViewProjection;
     mat4 lightViewProjection;
+    mat4 inverseLightViewProjection;
     vec4 cameraPosition; // xyz
     vec4 lightPosition;  // xyz, w = disk radius
     vec4 lightDirection; // xyz unit axis, w = cos(outer cone half-angle)
@@ -34,7 +35,7 @@ struct FrameUniforms {
     vec4 viewport;       // x = width, y = height, z = 1/width, w = 1/height
     vec4 params;         // x = exposure, y = shadow bias (texels), z = frame index, w = scene diagonal
 };
-SSGI_CHECK_SIZE(FrameUniforms, 6 * 64 + 10 * 16);
+SSGI_CHECK_SIZE(FrameUniforms, 7 * 64 + 10 * 16);
 
 // Per draw in the raster passes (push constants).
 struct DrawConstants {
@@ -43,6 +44,32 @@ struct DrawConstants {
     vec4 material; // x = 1 when a base-colour texture is bound, y = alpha cutoff (0 = opaque)
 };
 SSGI_CHECK_SIZE(DrawConstants, 96);
+
+// Per-frame values of the screen-space passes (push constants). Structural settings (tap and
+// sample counts, variants) are specialization constants instead. `rotation` turns the
+// sampling pattern each frame and `scale` varies its size, so that successive frames take
+// different samples (GUIDE 2.2).
+struct ShadowConstants {
+    vec4 pattern; // x = rotation (radians), y = scale, z = normal offset (texels), w = unused
+};
+SSGI_CHECK_SIZE(ShadowConstants, 16);
+
+struct AoConstants {
+    vec4 pattern; // x = rotation, y = scale, z = AO radius (scene units), w = unused
+    vec4 falloff; // x = a, y = b of D(d) = 1 + a d + b d^2 (d in AO radii)
+};
+SSGI_CHECK_SIZE(AoConstants, 32);
+
+struct IndirectConstants {
+    vec4 pattern; // x = rotation, y = scale, z = sampling radius (fraction of the RSM), w = unused
+    ivec4 target; // xy = size of the image written, z = 1 when it is the half-resolution pass
+};
+SSGI_CHECK_SIZE(IndirectConstants, 32);
+
+struct SsdoConstants {
+    vec4 pattern; // x = rotation, y = scale, z = r_max (scene units), w = bounce strength
+};
+SSGI_CHECK_SIZE(SsdoConstants, 16);
 
 // Composite's choice of output (push constants): x = view (see VIEW_*).
 struct CompositeConstants {

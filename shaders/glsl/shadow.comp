@@ -1,0 +1,100 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Soft shadows by percentage-closer filtering of the RSM depth (thesis 3.4), with the kernel
+// tied to the light's disk: a blocker search estimates the occluders' mean distance, and the
+// penumbra a disk of that radius would cast (r (z_receiver - z_blocker) / z_blocker) sets the
+// filter's size (percentage-closer soft shadows). One tap is the hard shadow test.
+#include "shared.h"
+#include "common.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(constant_id = 0) const int TAPS = 49;
+
+layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
+layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
+layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
+layout(set = 0, binding = 3) uniform sampler2D rsmDepth;
+layout(set = 0, binding = 4, rgba16f) uniform writeonly image2D shadowImage;
+layout(push_constant) uniform ShadowBlock { ShadowConstants constants; };
+
+float shadowMapSize() { return frame.lightFrustum.w; }
+
+// Distance along the light's axis of the nearest surface the light sees through uv.
+float occluderDepth(vec2 uv) {
+    vec2 texel = clamp(uv * shadowMapSize(), vec2(0.0), vec2(shadowMapSize() - 1.0));
+    float depth = texelFetch(rsmDepth, ivec2(texel), 0).r;
+    return linearDepth(depth, frame.lightFrustum.x, frame.lightFrustum.y);
+}
+
+// Distance along the light's axis at which the light's ray through uv meets the receiver's
+// plane (point p, normal n): comparing against it instead of p's own depth keeps a filter
+// kernel on a sloped receiver from shadowing the receiver itself.
+float receiverPlaneDepth(vec2 uv, vec3 p, vec3 n, float fallback) {
+    vec4 far = frame.inverseLightViewProjection * vec4(uv * 2.0 - 1.0, 1.0, 1.0);
+    vec3 dir = normalize(far.xyz / far.w - frame.lightPosition.xyz);
+    float denom = dot(dir, n);
+    if (abs(denom) < 1e-4) return fallback;
+    float t = dot(p - frame.lightPosition.xyz, n) / denom;
+    return t > 0.0 ? t * dot(dir, frame.lightDirection.xyz) : fallback;
+}
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
+    vec4 position = texelFetch(gbufferPosition, pixel, 0);
+    if (position.w == 0.0) {
+        imageStore(shadowImage, pixel, vec4(1.0));
+        return;
+    }
+    vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
+    // Normal-offset lookup: a surface the light grazes covers less than a texel of the map.
+    float texelAngle = 2.0 * frame.lightFrustum.z / shadowMapSize();
+    float texelAtP = distance(position.xyz, frame.lightPosition.xyz) * texelAngle;
+    vec3 p = position.xyz + n * (constants.pattern.z * texelAtP);
+    vec4 clip = frame.lightViewProjection * vec4(p, 1.0);
+    vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
+    if (clip.w <= 0.0 || any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) {
+        imageStore(shadowImage, pixel, vec4(0.0)); // outside the light's cone
+        return;
+    }
+    float receiver = clip.w;
+    float bias = receiver * texelAngle; // one texel of depth quantisation
+    float rotation = pixelRotation(pixel) + constants.pattern.x;
+
+    if (TAPS == 1) {
+        float lit = receiver <= occluderDepth(uv) + bias ? 1.0 : 0.0;
+        imageStore(shadowImage, pixel, vec4(lit));
+        return;
+    }
+
+    // Blocker search: the disk seen from the receiver, as far as blockers at a fifth of the
+    // receiver's distance, in shadow-map uv; at least a few texels so PCF still antialiases.
+    float uvPerUnit = 1.0 / (2.0 * frame.lightFrustum.z * receiver);
+    float lightRadius = frame.lightPosition.w;
+    float maxRadius = 48.0 / shadowMapSize();
+    float minRadius = 1.5 / shadowMapSize();
+    float searchRadius = clamp(4.0 * lightRadius * uvPerUnit, minRadius, maxRadius);
+    float blockerSum = 0.0;
+    int blockers = 0;
+    for (int i = 0; i < TAPS; ++i) {
+        vec2 tap = uv + vogelDisk(i, TAPS, rotation) * searchRadius * constants.pattern.y;
+        float occluder = occluderDepth(tap);
+        if (occluder + bias < receiverPlaneDepth(tap, p, n, receiver)) {
+            blockerSum += occluder;
+            ++blockers;
+        }
+    }
+    if (blockers == 0) {
+        imageStore(shadowImage, pixel, vec4(1.0));
+        return;
+    }
+    float blocker = blockerSum / float(blockers);
+    float penumbra = lightRadius * max(receiver - blocker, 0.0) / max(blocker, 1e-6);
+    float filterRadius = clamp(penumbra * uvPerUnit, minRadius, maxRadius);
+    float lit = 0.0;
+    for (int i = 0; i < TAPS; ++i) {
+        vec2 tap = uv + vogelDisk(i, TAPS, rotation) * filterRadius * constants.pattern.y;
+        lit += occluderDepth(tap) + bias >= receiverPlaneDepth(tap, p, n, receiver) ? 1.0 : 0.0;
+    }
+    imageStore(shadowImage, pixel, vec4(lit / float(TAPS)));
+}
