@@ -10,8 +10,9 @@ namespace ssgi {
 
 const std::vector<std::string>& viewNames() {
     // Order matches the VIEW_* values in shared.h.
-    static const std::vector<std::string> names = {"final",  "albedo",   "normal",    "depth",
-                                                   "direct", "rsm-flux", "rsm-normal"};
+    static const std::vector<std::string> names = {"final",  "albedo",   "normal",     "depth",
+                                                   "direct", "rsm-flux", "rsm-normal", "shadow",
+                                                   "ao",     "indirect", "ssdo"};
     return names;
 }
 
@@ -53,9 +54,12 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
     GBufferAndRsm scenes;
     scenes.gbuffer = addGBufferPass(*setup_);
     scenes.rsm = addRsmPass(*setup_);
-    graph::ImageRef shadow = addShadowPass(*setup_, scenes);
-    graph::ImageRef direct = addDirectPass(*setup_, scenes, shadow);
-    addCompositePass(*setup_, scenes, direct, int(view - views.begin()));
+    LightingTerms terms;
+    terms.shadow = addShadowPass(*setup_, scenes);
+    terms.direct = addDirectPass(*setup_, scenes, terms.shadow);
+    if (scene.setting("ao") != 0.0 && scene.setting("ssdo") == 0.0)
+        terms.ao = addAoPass(*setup_, scenes);
+    addCompositePass(*setup_, scenes, terms, int(view - views.begin()));
 }
 
 Renderer::~Renderer() {

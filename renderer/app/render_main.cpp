@@ -28,6 +28,7 @@ const char* kUsage = R"(usage: render [SCENE] [options]
                         goes beside it as FILE.exr
   --view NAME           final, albedo, normal, depth, direct, rsm-flux, rsm-normal
   --time T              camera-path time in seconds (scenes with a camera_path)
+  --set KEY=VALUE       override a method setting (repeatable; see the README's settings)
   --profile             print a table of per-pass GPU milliseconds
   --profile-json FILE   write the timings, device and driver as JSON
   --device NAME         use the Vulkan device whose name contains NAME (or SSGI_DEVICE)
@@ -40,6 +41,7 @@ struct Args {
     uint32_t width = 512, height = 512, frames = 1;
     float time = -1.0f;
     bool profile = false, validation = false;
+    std::vector<std::pair<std::string, double>> settings; // --set, checked after loading
 };
 
 uint32_t parseCount(const std::string& option, const std::string& text) {
@@ -80,6 +82,14 @@ Args parseArgs(int argc, char** argv) {
             a.time = std::strtof(v.c_str(), &end);
             if (v.empty() || *end != '\0' || !(a.time >= 0.0f))
                 throw InputError("--time: '" + v + "' is not a time >= 0");
+        } else if (arg == "--set") {
+            std::string v = value(i);
+            size_t eq = v.find('=');
+            char* end = nullptr;
+            double number = eq == std::string::npos ? 0.0 : std::strtod(v.c_str() + eq + 1, &end);
+            if (eq == std::string::npos || eq + 1 == v.size() || *end != '\0')
+                throw InputError("--set: expected KEY=NUMBER, got '" + v + "'");
+            a.settings.push_back({v.substr(0, eq), number});
         } else if (arg == "--profile") {
             a.profile = true;
         } else if (arg == "--profile-json") {
@@ -134,6 +144,8 @@ void writeTextAtomically(const std::string& path, const std::string& text) {
 int run(int argc, char** argv) {
     Args args = parseArgs(argc, argv);
     Scene scene = loadScene(args.scene);
+    for (const auto& [key, value] : args.settings)
+        scene.settings[key] = checkSetting("--set", key, value);
     vk::Context ctx({args.validation, args.device});
     Renderer renderer(ctx, scene, {args.width, args.height, args.view});
 

@@ -6,42 +6,38 @@
 
 namespace ssgi {
 
-CompositeOutputs addCompositePass(PassSetup& s, const GBufferAndRsm& in, graph::ImageRef direct,
+CompositeOutputs addCompositePass(PassSetup& s, const GBufferAndRsm& in, const LightingTerms& terms,
                                   int view) {
     const VkImageUsageFlags storage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     CompositeOutputs out;
     out.hdr = s.graph.createImage("hdr", VK_FORMAT_R32G32B32A32_SFLOAT, s.size, storage);
     out.ldr = s.graph.createImage("ldr", VK_FORMAT_R8G8B8A8_UNORM, s.size, storage);
-    const VkDescriptorType sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    const VkDescriptorType image = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-    s.pipelines.push_back(
-        vk::createComputePipeline(s.ctx, "composite.comp",
-                                  {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, sampled, sampled, sampled,
-                                   sampled, sampled, sampled, image, image},
-                                  sizeof(shader::CompositeConstants)));
-    const vk::Pipeline pipeline = s.pipelines.back();
+    // Which terms exist is structural: the shader never reads the image bound in place of an
+    // effect that is off (the direct term, so that every binding holds a valid image).
+    const vk::Pipeline pipeline = s.computePipeline(
+        "composite.comp", 10, 2, sizeof(shader::CompositeConstants),
+        {{terms.ao.valid() ? 1 : 0, terms.indirect.valid() ? 1 : 0, terms.ssdo.valid() ? 1 : 0}});
+    auto orDirect = [&](graph::ImageRef ref) { return ref.valid() ? ref : terms.direct; };
+    const graph::ImageRef inputs[10] = {
+        in.gbuffer.position, in.gbuffer.normal,  in.gbuffer.third,         terms.direct,
+        terms.shadow,        orDirect(terms.ao), orDirect(terms.indirect), orDirect(terms.ssdo),
+        in.rsm.third,        in.rsm.normal};
 
-    using graph::Use;
-    s.graph.addPass("composite", graph::PassKind::Compute,
-                    {{in.gbuffer.position, Use::Sampled},
-                     {in.gbuffer.normal, Use::Sampled},
-                     {in.gbuffer.third, Use::Sampled},
-                     {direct, Use::Sampled},
-                     {in.rsm.third, Use::Sampled},
-                     {in.rsm.normal, Use::Sampled},
-                     {out.hdr, Use::StorageWrite},
-                     {out.ldr, Use::StorageWrite}},
-                    [&s, in, direct, out, pipeline, view](const graph::PassContext& pc) {
-                        vk::Descriptors()
-                            .uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size)
-                            .sampledImage(1, pc.image(in.gbuffer.position).view, s.nearestSampler)
-                            .sampledImage(2, pc.image(in.gbuffer.normal).view, s.nearestSampler)
-                            .sampledImage(3, pc.image(in.gbuffer.third).view, s.nearestSampler)
-                            .sampledImage(4, pc.image(direct).view, s.nearestSampler)
-                            .sampledImage(5, pc.image(in.rsm.third).view, s.linearSampler)
-                            .sampledImage(6, pc.image(in.rsm.normal).view, s.nearestSampler)
-                            .storageImage(7, pc.image(out.hdr).view)
-                            .storageImage(8, pc.image(out.ldr).view)
+    std::vector<graph::ImageUse> uses;
+    for (const graph::ImageRef& ref : inputs)
+        uses.push_back({ref, graph::Use::Sampled});
+    uses.push_back({out.hdr, graph::Use::StorageWrite});
+    uses.push_back({out.ldr, graph::Use::StorageWrite});
+    std::vector<graph::ImageRef> sampled(std::begin(inputs), std::end(inputs));
+    s.graph.addPass("composite", graph::PassKind::Compute, uses,
+                    [&s, sampled, out, pipeline, view](const graph::PassContext& pc) {
+                        vk::Descriptors d;
+                        d.uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size);
+                        for (uint32_t i = 0; i < sampled.size(); ++i)
+                            d.sampledImage(1 + i, pc.image(sampled[i]).view,
+                                           i >= 8 ? s.linearSampler : s.nearestSampler);
+                        d.storageImage(11, pc.image(out.hdr).view)
+                            .storageImage(12, pc.image(out.ldr).view)
                             .push(s.ctx, pc.cmd, pipeline);
                         shader::CompositeConstants constants{};
                         constants.mode.x = view;

@@ -55,11 +55,19 @@ graph::ImageRef addShadowPass(PassSetup& setup, const GBufferAndRsm& inputs);
 graph::ImageRef addDirectPass(PassSetup& setup, const GBufferAndRsm& inputs,
                               graph::ImageRef shadow);
 
+// ao: visibility of the hemisphere within the AO radius (1 = open).
+graph::ImageRef addAoPass(PassSetup& setup, const GBufferAndRsm& inputs);
+
+// The screen-space terms the composite adds up; an invalid ref is an effect turned off.
+struct LightingTerms {
+    graph::ImageRef direct, shadow, ao, indirect, ssdo;
+};
+
 struct CompositeOutputs {
     graph::ImageRef hdr, ldr;
 };
 // composite: HDR radiance, tonemapped sRGB image, or a debug view.
 CompositeOutputs addCompositePass(PassSetup& setup, const GBufferAndRsm& inputs,
-                                  graph::ImageRef direct, int view);
+                                  const LightingTerms& terms, int view);
 
 } // namespace ssgi

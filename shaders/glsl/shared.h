@@ -84,6 +84,10 @@ SSGI_CHECK_SIZE(CompositeConstants, 16);
 #define VIEW_DIRECT 4
 #define VIEW_RSM_FLUX 5
 #define VIEW_RSM_NORMAL 6
+#define VIEW_SHADOW 7
+#define VIEW_AO 8
+#define VIEW_INDIRECT 9
+#define VIEW_SSDO 10
 
 #ifdef __cplusplus
 } // namespace ssgi::shader

@@ -1,0 +1,203 @@
+// reference: renders the path-traced ground truth of a scene in one of the modes that match
+// the real-time effects, progressively, and writes it as linear EXR (cached by content).
+#include "image_io.h"
+#include "reference/cache.h"
+#include "scene/camera.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+
+namespace fs = std::filesystem;
+using namespace ssgi;
+using namespace ssgi::reference;
+
+namespace {
+
+const char* kUsage = R"(usage: reference [SCENE] [options]
+  SCENE                 scene file (.json) or glTF (.gltf/.glb); default scenes/cornell-box.json
+  --mode M              direct, ao, indirect, full or multi (default full)
+  --size WxH            image size (default 256x256)
+  --spp N               samples per pixel, at most (default 256)
+  --noise T             stop sooner once the estimated relative error is at most T (e.g. 0.01)
+  --seed S              random seed (default 1); same seed and options, same image
+  --threads N           worker threads (default: every hardware thread); the image is the same
+  --time T              camera-path time in seconds (scenes with a camera_path)
+  --jitter              random sub-pixel positions (full and multi only); without it every
+                        sample goes through the pixel centre, as the real-time G-buffer's does
+  --light-radius R      replace the light's disk radius (0: a point light, hard shadows)
+  --output FILE.exr     linear image (default out/<scene>-<mode>-ref.exr)
+  --png FILE.png        also a display image: the composite's exposure, tonemap and sRGB
+                        (AO is written as it is)
+  --cache DIR           reference cache (default $SSGI_REFERENCE_CACHE, else build/reference-cache)
+  --no-cache            render even when the cache holds the image, and store nothing
+  --quiet               no progress bar
+)";
+
+struct Args {
+    std::string scene, output, png, cacheDir = defaultCacheDir();
+    ReferenceOptions options;
+    float time = -1.0f, lightRadius = -1.0f;
+    bool useCache = true;
+};
+
+uint64_t parseWhole(const std::string& option, const std::string& text, uint64_t lo,
+                    uint64_t hi) {
+    char* end = nullptr;
+    const unsigned long long v = std::strtoull(text.c_str(), &end, 10);
+    if (text.empty() || text[0] == '-' || *end != '\0' || v < lo || v > hi)
+        throw InputError(option + ": '" + text + "' is not a whole number in " +
+                         std::to_string(lo) + ".." + std::to_string(hi));
+    return v;
+}
+
+double parseNumber(const std::string& option, const std::string& text, double lo, double hi) {
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0' || !(v >= lo && v <= hi))
+        throw InputError(option + ": '" + text + "' is not a number in [" + std::to_string(lo) +
+                         ", " + std::to_string(hi) + "]");
+    return v;
+}
+
+Args parseArgs(int argc, char** argv) {
+    Args a;
+    a.options.width = a.options.height = 256;
+    a.options.spp = 256;
+    a.options.progress = true;
+    auto value = [&](int& i) -> std::string {
+        if (i + 1 >= argc) throw InputError(std::string(argv[i]) + " needs a value");
+        return argv[++i];
+    };
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        if (arg == "--help" || arg == "-h") {
+            std::cout << kUsage;
+            std::exit(0);
+        } else if (arg == "--mode") {
+            a.options.mode = parseMode(value(i));
+        } else if (arg == "--size") {
+            const std::string v = value(i);
+            const size_t x = v.find('x');
+            if (x == std::string::npos) throw InputError("--size: expected WxH, got '" + v + "'");
+            a.options.width = uint32_t(parseWhole("--size", v.substr(0, x), 1, 16384));
+            a.options.height = uint32_t(parseWhole("--size", v.substr(x + 1), 1, 16384));
+        } else if (arg == "--spp") {
+            a.options.spp = uint32_t(parseWhole(arg, value(i), 1, 1u << 24));
+        } else if (arg == "--noise") {
+            a.options.noiseTarget = parseNumber(arg, value(i), 1e-6, 1.0);
+        } else if (arg == "--seed") {
+            a.options.seed = parseWhole(arg, value(i), 0, UINT64_MAX);
+        } else if (arg == "--threads") {
+            a.options.threads = unsigned(parseWhole(arg, value(i), 1, 1024));
+        } else if (arg == "--time") {
+            a.time = float(parseNumber(arg, value(i), 0.0, 1e9));
+        } else if (arg == "--jitter") {
+            a.options.jitter = true;
+        } else if (arg == "--light-radius") {
+            a.lightRadius = float(parseNumber(arg, value(i), 0.0, 1e9));
+        } else if (arg == "--output") {
+            a.output = value(i);
+        } else if (arg == "--png") {
+            a.png = value(i);
+        } else if (arg == "--cache") {
+            a.cacheDir = value(i);
+        } else if (arg == "--no-cache") {
+            a.useCache = false;
+        } else if (arg == "--quiet") {
+            a.options.progress = false;
+        } else if (arg.rfind("--", 0) == 0) {
+            throw InputError("unknown option " + arg + " (see reference --help)");
+        } else if (a.scene.empty()) {
+            a.scene = arg;
+        } else {
+            throw InputError("more than one scene given: " + a.scene + " and " + arg);
+        }
+    }
+    if (a.options.jitter && a.options.mode != Mode::Full && a.options.mode != Mode::Multi)
+        throw InputError("--jitter: only for --mode full or multi; the per-effect modes sample "
+                         "pixel centres so that their edges match the real-time image");
+    if (a.scene.empty()) {
+        a.scene = "scenes/cornell-box.json";
+        if (!fs::exists(a.scene))
+            a.scene = std::string(SSGI_SOURCE_DIR) + "/scenes/cornell-box.json";
+    }
+    if (a.output.empty())
+        a.output = "out/" + fs::path(a.scene).stem().string() + "-" +
+                   modeName(a.options.mode) + "-ref.exr";
+    if (fs::path(a.output).extension() != ".exr")
+        throw InputError("--output: '" + a.output + "' must end in .exr");
+    if (!a.png.empty() && fs::path(a.png).extension() != ".png")
+        throw InputError("--png: '" + a.png + "' must end in .png");
+    return a;
+}
+
+// The composite's display transform (composite.comp): exposure, Narkowicz's ACES fit, sRGB.
+float display(float linear, float exposure) {
+    const float x = linear * exposure;
+    const float mapped = std::clamp((x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f),
+                                    0.0f, 1.0f);
+    return mapped <= 0.0031308f ? mapped * 12.92f
+                                : 1.055f * std::pow(mapped, 1.0f / 2.4f) - 0.055f;
+}
+
+int run(int argc, char** argv) {
+    const Args args = parseArgs(argc, argv);
+    Scene scene = loadScene(args.scene);
+    if (args.lightRadius >= 0.0f) scene.light.radius = args.lightRadius;
+    Camera camera = scene.camera;
+    if (args.time >= 0.0f) {
+        if (scene.cameraPath.empty())
+            throw InputError(args.scene + ": --time given but the scene has no camera_path");
+        camera = cameraAt(scene.cameraPath, args.time);
+    }
+
+    const auto start = std::chrono::steady_clock::now();
+    bool fromCache = false;
+    const ReferenceImage image =
+        args.useCache ? cachedReference(scene, camera, args.options, args.cacheDir, &fromCache)
+                      : renderReference(scene, camera, args.options);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+    writeImage(args.output, image.width, image.height, image.rgba);
+    if (!args.png.empty()) {
+        std::vector<float> shown = image.rgba;
+        const float exposure = float(scene.setting("exposure", 1.0));
+        for (size_t i = 0; i < shown.size(); ++i) {
+            if (i % 4 == 3)
+                shown[i] = 1.0f;
+            else if (args.options.mode != Mode::Ao)
+                shown[i] = display(shown[i], exposure);
+        }
+        writeImage(args.png, image.width, image.height, shown);
+    }
+    std::printf("wrote %s%s%s (%ux%u, mode %s, %u spp, noise %.2f%%, %s in %.1f s)\n",
+                args.output.c_str(), args.png.empty() ? "" : " and ", args.png.c_str(),
+                image.width, image.height, modeName(args.options.mode), image.samples,
+                100.0 * image.noise, fromCache ? "from the cache" : "rendered", seconds);
+    if (image.nonFiniteSamples > 0) {
+        std::fprintf(stderr, "error: %llu samples were NaN or infinite and were dropped\n",
+                     (unsigned long long)image.nonFiniteSamples);
+        return 1;
+    }
+    return 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return run(argc, argv);
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 1;
+    }
+}

@@ -1,0 +1,30 @@
+// Reference images cached by content: the key hashes everything the image depends on (the
+// loaded scene's geometry, materials, textures, light, sky and settings, the camera, the mode,
+// size, sample count, noise target, seed, jitter and the estimators' version), so a second
+// request for the same image is a file read, and any change to any input is a new key.
+#pragma once
+
+#include "reference/render.h"
+
+#include <string>
+
+namespace ssgi::reference {
+
+// $SSGI_REFERENCE_CACHE, else build/reference-cache of the build tree.
+std::string defaultCacheDir();
+
+// 32 hex digits naming the image that these inputs produce.
+std::string referenceKey(const Scene& scene, const Camera& camera,
+                         const ReferenceOptions& options);
+
+// The image from `cacheDir` when it is there, else rendered and stored there (written whole
+// or not at all). `fromCache`, when given, says which it was. A cache that cannot be written
+// is reported on stderr and the rendered image returned all the same.
+ReferenceImage cachedReference(const Scene& scene, const Camera& camera,
+                               const ReferenceOptions& options,
+                               const std::string& cacheDir = defaultCacheDir(),
+                               bool* fromCache = nullptr);
+// The scene's own camera.
+ReferenceImage cachedReference(const Scene& scene, const ReferenceOptions& options);
+
+} // namespace ssgi::reference

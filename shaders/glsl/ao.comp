@@ -1,0 +1,50 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Screen-space ambient occlusion: the fraction of the hemisphere (cosine-weighted) that is open
+// within the AO radius. Three variants, chosen by specialization constant: the thesis's
+// (equations 6-8), Crytek's depth-only sphere test (Mittring 2007), and a horizon-based
+// estimate (GTAO, Jimenez et al. 2016) as the modern baseline.
+#include "shared.h"
+#include "common.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(constant_id = 0) const int VARIANT = 0;
+layout(constant_id = 1) const int DIRECTIONS = 8;
+layout(constant_id = 2) const int STEPS = 4;
+
+layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
+layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
+layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
+layout(set = 0, binding = 3, rgba16f) uniform writeonly image2D aoImage;
+layout(push_constant) uniform AoBlock { AoConstants constants; };
+
+#include "screen_space.glsl"
+
+vec4 positionAt(vec2 pixel) { return texelFetch(gbufferPosition, ivec2(pixel), 0); }
+
+#include "ao_thesis.glsl"
+#include "ao_crytek.glsl"
+#include "ao_horizon.glsl"
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
+    vec4 position = texelFetch(gbufferPosition, pixel, 0);
+    if (position.w == 0.0) {
+        imageStore(aoImage, pixel, vec4(1.0));
+        return;
+    }
+    vec3 p = position.xyz;
+    vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
+    float radius = constants.pattern.z * constants.pattern.y;
+    float radiusPixels = radius * pixelsPerUnit(viewDepth(p));
+    float rotation = pixelRotation(pixel) + constants.pattern.x;
+    vec2 center = vec2(pixel) + 0.5;
+    float visibility = 1.0;
+    if (radiusPixels >= 1.0) {
+        if (VARIANT == 0) visibility = thesisAo(center, p, n, radius, radiusPixels, rotation);
+        if (VARIANT == 1) visibility = crytekAo(p, n, radius, rotation);
+        if (VARIANT == 2) visibility = horizonAo(center, p, n, radius, radiusPixels, rotation);
+    }
+    imageStore(aoImage, pixel, vec4(clamp(visibility, 0.0, 1.0)));
+}

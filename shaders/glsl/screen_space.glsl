@@ -1,0 +1,29 @@
+// Screen-space lookups shared by the AO, SSDO and indirect passes: what the G-buffer holds at a
+// pixel, and how big a world-space length looks on screen.
+#ifndef SSGI_SCREEN_SPACE_GLSL
+#define SSGI_SCREEN_SPACE_GLSL
+
+// Distance along the camera's view axis.
+float viewDepth(vec3 world) { return -(frame.view * vec4(world, 1.0)).z; }
+
+// Pixels covered by one scene unit at the given view depth.
+float pixelsPerUnit(float depth) {
+    return abs(frame.projection[1][1]) * 0.5 * frame.viewport.y / max(depth, 1e-6);
+}
+
+bool insideViewport(vec2 pixel) {
+    return all(greaterThanEqual(pixel, vec2(0.0))) && all(lessThan(pixel, frame.viewport.xy));
+}
+
+// The camera's right and up axes in world space (rows of the view matrix).
+vec3 cameraRight() { return vec3(frame.view[0][0], frame.view[1][0], frame.view[2][0]); }
+vec3 cameraUp() { return vec3(frame.view[0][1], frame.view[1][1], frame.view[2][1]); }
+
+// World point -> pixel coordinates (x right, y down) and its view depth in z.
+vec3 projectToPixel(vec3 world) {
+    vec4 clip = frame.viewProjection * vec4(world, 1.0);
+    vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
+    return vec3(uv * frame.viewport.xy, clip.w);
+}
+
+#endif
