@@ -49,8 +49,9 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
     setup_->size = {options.width, options.height};
     setup_->rsmSize = {rsmSize, rsmSize};
 
-    // The frame, in order: rasterise the camera's and the light's views, light the G-buffer,
-    // composite and tonemap.
+    // The frame, in order: rasterise the camera's and the light's views; the shadow term and the
+    // direct light; ambient occlusion (or SSDO in its place); the indirect light at half
+    // resolution and its upsampling; composite and tonemap.
     GBufferAndRsm scenes;
     scenes.gbuffer = addGBufferPass(*setup_);
     scenes.rsm = addRsmPass(*setup_);
@@ -59,6 +60,8 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
     terms.direct = addDirectPass(*setup_, scenes, terms.shadow);
     if (scene.setting("ao") != 0.0 && scene.setting("ssdo") == 0.0)
         terms.ao = addAoPass(*setup_, scenes);
+    if (scene.setting("ssdo") != 0.0) terms.ssdo = addSsdoPass(*setup_, scenes, terms.direct);
+    if (scene.setting("indirect") != 0.0) terms.indirect = addIndirectPasses(*setup_, scenes);
     addCompositePass(*setup_, scenes, terms, int(view - views.begin()));
 }
 

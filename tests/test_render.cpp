@@ -164,7 +164,8 @@ TEST_F(RenderTest, FrameReportsEveryPassInOrderWithTimings) {
         names.push_back(t.name);
         EXPECT_GE(t.milliseconds, 0.0);
     }
-    EXPECT_EQ(names, (std::vector<std::string>{"gbuffer", "rsm", "shadow", "direct", "composite"}));
+    EXPECT_EQ(names, (std::vector<std::string>{"gbuffer", "rsm", "shadow", "direct", "ao", "indirect",
+                                              "upsample", "composite"}));
     // The second frame's barriers: each G-buffer target goes from being sampled by last frame's
     // compute passes back to an attachment, contents discarded.
     size_t found = 0;

@@ -58,6 +58,12 @@ graph::ImageRef addDirectPass(PassSetup& setup, const GBufferAndRsm& inputs,
 // ao: visibility of the hemisphere within the AO radius (1 = open).
 graph::ImageRef addAoPass(PassSetup& setup, const GBufferAndRsm& inputs);
 
+// indirect (half resolution) + upsample: one-bounce irradiance / pi from the RSM's VPLs.
+graph::ImageRef addIndirectPasses(PassSetup& setup, const GBufferAndRsm& inputs);
+
+// ssdo: directionally occluded sky light plus one bounce, as radiance.
+graph::ImageRef addSsdoPass(PassSetup& setup, const GBufferAndRsm& inputs, graph::ImageRef direct);
+
 // The screen-space terms the composite adds up; an invalid ref is an effect turned off.
 struct LightingTerms {
     graph::ImageRef direct, shadow, ao, indirect, ssdo;

@@ -1,0 +1,74 @@
+// indirect + upsample: one-bounce indirect light from the RSM's virtual point lights, gathered
+// at half resolution and brought to full resolution from geometry-compatible neighbours; the
+// pixels without one are gathered at full resolution (thesis 3.3 and ch. 4).
+#include "passes/pass_setup.h"
+
+#include "shared.h"
+
+namespace ssgi {
+
+graph::ImageRef addIndirectPasses(PassSetup& s, const GBufferAndRsm& in) {
+    const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    const VkExtent2D halfSize{(s.size.width + 1) / 2, (s.size.height + 1) / 2};
+    graph::ImageRef half =
+        s.graph.createImage("indirect.half", VK_FORMAT_R16G16B16A16_SFLOAT, halfSize, usage);
+    graph::ImageRef full =
+        s.graph.createImage("indirect", VK_FORMAT_R16G16B16A16_SFLOAT, s.size, usage);
+    const vk::Specialization spec{{int(s.model.setting("indirect_vpls")),
+                                   int(s.model.setting("indirect_visibility")),
+                                   int(s.model.setting("indirect_visibility_steps"))}};
+    const vk::Pipeline gather =
+        s.computePipeline("indirect.comp", 5, 1, sizeof(shader::IndirectConstants), spec);
+    const vk::Pipeline upsample =
+        s.computePipeline("upsample.comp", 6, 1, sizeof(shader::IndirectConstants), spec);
+
+    auto constants = [&s, halfSize]() {
+        shader::IndirectConstants c{};
+        c.pattern = {s.patternRotation, s.patternScale, float(s.model.setting("indirect_radius")),
+                     0.0f};
+        c.target = {int(halfSize.width), int(halfSize.height), 1, 0};
+        return c;
+    };
+    auto sceneInputs = [&s, in](const graph::PassContext& pc, vk::Descriptors& d) {
+        d.uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size)
+            .sampledImage(1, pc.image(in.gbuffer.position).view, s.nearestSampler)
+            .sampledImage(2, pc.image(in.gbuffer.normal).view, s.nearestSampler)
+            .sampledImage(3, pc.image(in.rsm.position).view, s.nearestSampler)
+            .sampledImage(4, pc.image(in.rsm.normal).view, s.nearestSampler)
+            .sampledImage(5, pc.image(in.rsm.third).view, s.nearestSampler);
+    };
+
+    using graph::Use;
+    const std::vector<graph::ImageUse> reads = {{in.gbuffer.position, Use::Sampled},
+                                                {in.gbuffer.normal, Use::Sampled},
+                                                {in.rsm.position, Use::Sampled},
+                                                {in.rsm.normal, Use::Sampled},
+                                                {in.rsm.third, Use::Sampled}};
+    std::vector<graph::ImageUse> gatherUses = reads;
+    gatherUses.push_back({half, Use::StorageWrite});
+    s.graph.addPass(
+        "indirect", graph::PassKind::Compute, gatherUses,
+        [&s, half, halfSize, gather, constants, sceneInputs](const graph::PassContext& pc) {
+            vk::Descriptors d;
+            sceneInputs(pc, d);
+            d.storageImage(6, pc.image(half).view).push(s.ctx, pc.cmd, gather);
+            vk::dispatch(pc.cmd, gather, halfSize.width, halfSize.height, constants());
+        });
+
+    std::vector<graph::ImageUse> upsampleUses = reads;
+    upsampleUses.push_back({half, Use::Sampled});
+    upsampleUses.push_back({full, Use::StorageWrite});
+    s.graph.addPass(
+        "upsample", graph::PassKind::Compute, upsampleUses,
+        [&s, half, full, upsample, constants, sceneInputs](const graph::PassContext& pc) {
+            vk::Descriptors d;
+            sceneInputs(pc, d);
+            d.sampledImage(6, pc.image(half).view, s.nearestSampler)
+                .storageImage(7, pc.image(full).view)
+                .push(s.ctx, pc.cmd, upsample);
+            vk::dispatch(pc.cmd, upsample, s.size.width, s.size.height, constants());
+        });
+    return full;
+}
+
+} // namespace ssgi

@@ -1,0 +1,42 @@
+// ssdo: screen-space directional occlusion of the sky plus one bounce of the direct-lit frame
+// (Ritschel et al. 2009); replaces sky x AO in the composite when on.
+#include "passes/pass_setup.h"
+
+#include "shared.h"
+
+namespace ssgi {
+
+graph::ImageRef addSsdoPass(PassSetup& s, const GBufferAndRsm& in, graph::ImageRef direct) {
+    graph::ImageRef ssdo =
+        s.graph.createImage("ssdo", VK_FORMAT_R16G16B16A16_SFLOAT, s.size,
+                            VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
+    const vk::Pipeline pipeline = s.computePipeline(
+        "ssdo.comp", 4, 1, sizeof(shader::SsdoConstants), {{int(s.model.setting("ssdo_samples"))}});
+    const double radius = s.model.setting("ssdo_radius");
+    const float rMax = radius > 0.0 ? float(radius) : aoRadius(s.model);
+
+    using graph::Use;
+    s.graph.addPass("ssdo", graph::PassKind::Compute,
+                    {{in.gbuffer.position, Use::Sampled},
+                     {in.gbuffer.normal, Use::Sampled},
+                     {in.gbuffer.third, Use::Sampled},
+                     {direct, Use::Sampled},
+                     {ssdo, Use::StorageWrite}},
+                    [&s, in, direct, ssdo, pipeline, rMax](const graph::PassContext& pc) {
+                        vk::Descriptors()
+                            .uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size)
+                            .sampledImage(1, pc.image(in.gbuffer.position).view, s.nearestSampler)
+                            .sampledImage(2, pc.image(in.gbuffer.normal).view, s.nearestSampler)
+                            .sampledImage(3, pc.image(in.gbuffer.third).view, s.nearestSampler)
+                            .sampledImage(4, pc.image(direct).view, s.nearestSampler)
+                            .storageImage(5, pc.image(ssdo).view)
+                            .push(s.ctx, pc.cmd, pipeline);
+                        shader::SsdoConstants constants{};
+                        constants.pattern = {s.patternRotation, s.patternScale, rMax,
+                                             float(s.model.setting("ssdo_bounce"))};
+                        vk::dispatch(pc.cmd, pipeline, s.size.width, s.size.height, constants);
+                    });
+    return ssdo;
+}
+
+} // namespace ssgi

@@ -1,0 +1,37 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// One-bounce indirect light gathered from the RSM's VPLs at half resolution: each half-res
+// pixel computes at the G-buffer sample of its 2x2 block's top-left pixel.
+#include "shared.h"
+#include "common.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(constant_id = 0) const int VPLS = 512;
+layout(constant_id = 1) const int VISIBILITY = 1;
+layout(constant_id = 2) const int VISIBILITY_STEPS = 6;
+
+layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
+layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
+layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
+layout(set = 0, binding = 3) uniform sampler2D rsmPosition;
+layout(set = 0, binding = 4) uniform sampler2D rsmNormal;
+layout(set = 0, binding = 5) uniform sampler2D rsmFlux;
+layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D halfIndirect;
+layout(push_constant) uniform IndirectBlock { IndirectConstants constants; };
+
+#include "screen_space.glsl"
+#include "indirect_gather.glsl"
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(pixel, constants.target.xy))) return;
+    ivec2 source = pixel * 2;
+    vec4 position = texelFetch(gbufferPosition, source, 0);
+    vec3 result = vec3(0.0);
+    if (position.w != 0.0) {
+        vec3 n = texelFetch(gbufferNormal, source, 0).xyz;
+        result = gatherIndirect(position.xyz, n, pixelRotation(pixel) + constants.pattern.x,
+                                constants.pattern.y, constants.pattern.z);
+    }
+    imageStore(halfIndirect, pixel, vec4(result, 1.0));
+}

@@ -1,0 +1,65 @@
+// One-bounce indirect light from the reflective shadow map (thesis 3.3; Dachsbacher and
+// Stamminger 2005): every RSM texel q is a virtual point light of flux Phi_q, and
+// E(p) = sum_q Phi_q max(0, n_p . D) max(0, n_q . -D) / (pi |q - p|^2), D = (q - p)/|q - p|
+// (equations 9-10 with the 1/pi of a diffuse emitter). VPLS texels are gathered around p's
+// projection in a polar pattern r = R xi1, theta = 2 pi xi2, whose density falls as 1/r; each
+// is weighted by its sample distance r to undo that density, so the sum estimates the sum over
+// every texel within R. An optional screen-space visibility test marches from p toward q at
+// log-spaced steps (equation 8) and rejects the VPL where a step lies behind the G-buffer.
+// Needs: frame, rsmPosition, rsmNormal, rsmFlux, gbufferPosition, VPLS, VISIBILITY,
+// VISIBILITY_STEPS, screen_space.glsl.
+
+// Whether the segment p -> q stays in front of what the camera sees.
+bool vplVisible(vec3 p, vec3 q) {
+    vec3 toVpl = q - p;
+    float far = length(toVpl);
+    float near = min(far, 0.01 * far + 1e-4);
+    vec3 direction = toVpl / far;
+    for (int i = 1; i < VISIBILITY_STEPS; ++i) { // the last step would be q itself
+        float distance = near * pow(far / near, float(i) / float(VISIBILITY_STEPS));
+        vec3 projected = projectToPixel(p + direction * distance);
+        if (projected.z <= 0.0 || !insideViewport(projected.xy)) continue;
+        vec4 stored = texelFetch(gbufferPosition, ivec2(projected.xy), 0);
+        if (stored.w == 0.0) continue;
+        float storedDepth = viewDepth(stored.xyz);
+        // Behind the visible surface (beyond a sliver for the depth of one pixel).
+        if (projected.z > storedDepth * 1.01) return false;
+    }
+    return true;
+}
+
+// Irradiance / pi at p (normal n) from the RSM's VPLs.
+vec3 gatherIndirect(vec3 p, vec3 n, float rotation, float radiusScale, float radius) {
+    vec4 clip = frame.lightViewProjection * vec4(p, 1.0);
+    if (clip.w <= 0.0) return vec3(0.0);
+    vec2 center = clip.xy / clip.w * 0.5 + 0.5;
+    float size = frame.lightFrustum.w;
+    float samplingRadius = radius * radiusScale; // in RSM uv
+    // Texels in the disk per sample: the sum over all texels ~ (texels per unit area) x area
+    // element of each sample, which for this pattern is 2 pi R r / VPLS.
+    float weightScale = size * size * 2.0 * PI * samplingRadius * samplingRadius / float(VPLS);
+    vec3 irradiance = vec3(0.0);
+    for (int i = 0; i < VPLS; ++i) {
+        float xi1 = (float(i) + 0.5) / float(VPLS);
+        float theta = float(i) * 2.39996323 + rotation;
+        vec2 uv = center + samplingRadius * xi1 * vec2(cos(theta), sin(theta));
+        if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) continue;
+        ivec2 texel = ivec2(uv * size);
+        vec4 q = texelFetch(rsmPosition, texel, 0);
+        if (q.w == 0.0) continue;
+        vec3 toVpl = q.xyz - p;
+        float distance2 = dot(toVpl, toVpl);
+        // Clamp the distance to the VPL's own footprint: a texel cannot deliver more than the
+        // disk it covers, which removes the 1/d^2 spike of VPLs right next to p.
+        float footprint = distance(q.xyz, frame.lightPosition.xyz) * 2.0 * frame.lightFrustum.z / size;
+        float d2 = max(distance2, footprint * footprint);
+        vec3 D = toVpl * inversesqrt(max(distance2, 1e-12));
+        float cosP = max(dot(n, D), 0.0);
+        float cosQ = max(dot(texelFetch(rsmNormal, texel, 0).xyz, -D), 0.0);
+        if (cosP * cosQ <= 0.0) continue;
+        if (VISIBILITY != 0 && !vplVisible(p, q.xyz)) continue;
+        vec3 flux = texelFetch(rsmFlux, texel, 0).rgb;
+        irradiance += flux * (cosP * cosQ / (PI * d2)) * xi1;
+    }
+    return irradiance * weightScale / PI;
+}

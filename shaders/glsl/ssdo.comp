@@ -1,0 +1,79 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Screen-space directional occlusion (Ritschel, Grosch, Seidel 2009, section 3). SAMPLES
+// directions w_i over p's hemisphere, each stepped a length in [0, r_max]; the step's end is an
+// occluder when it lies behind the depth stored where it projects.
+// Sky: L_dir = sum (rho/pi) L_sky(w_i) V(w_i) cos(theta_i) dw, estimated with cosine-weighted
+// directions, for which (cos/pdf) = pi and the sum becomes rho * mean(L_sky V).
+// Bounce: each occluding sample is a patch of area A_s = pi r_max^2 / N at the G-buffer point
+// it projects to, radiating that pixel's direct radiance L_pixel:
+// L_ind = sum (rho/pi) L_pixel (1 - V) A_s cos(theta_s) cos(theta_r) / d^2 (back-facing senders
+// skipped; d clamped below at the patch's own radius, sqrt(A_s / pi), in place of the paper's
+// clamp to 1 unit, so that one setting serves every scene scale), scaled by a user factor.
+#include "shared.h"
+#include "common.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(constant_id = 0) const int SAMPLES = 16;
+
+layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
+layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
+layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
+layout(set = 0, binding = 3) uniform sampler2D gbufferAlbedo;
+layout(set = 0, binding = 4) uniform sampler2D directRadiance;
+layout(set = 0, binding = 5, rgba16f) uniform writeonly image2D ssdoImage;
+layout(push_constant) uniform SsdoBlock { SsdoConstants constants; };
+
+#include "screen_space.glsl"
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
+    vec4 position = texelFetch(gbufferPosition, pixel, 0);
+    if (position.w == 0.0) {
+        imageStore(ssdoImage, pixel, vec4(0.0));
+        return;
+    }
+    vec3 p = position.xyz;
+    vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
+    vec3 albedo = texelFetch(gbufferAlbedo, pixel, 0).rgb;
+    float rMax = constants.pattern.z * constants.pattern.y;
+    float patchArea = PI * rMax * rMax / float(SAMPLES);
+    float minDistance2 = patchArea / PI;
+    mat3 frameToWorld = tangentFrame(n);
+    float rotation = pixelRotation(pixel) + constants.pattern.x;
+    // Step lengths are stratified too, offset per pixel so neighbours take different ones.
+    float stepOffset = fract(rotation * 0.1591549);
+
+    vec3 sky = vec3(0.0), bounce = vec3(0.0);
+    for (int i = 0; i < SAMPLES; ++i) {
+        vec2 disk = vogelDisk(i, SAMPLES, rotation);
+        vec3 local = vec3(disk, sqrt(max(1.0 - dot(disk, disk), 0.0))); // cosine-weighted
+        vec3 w = frameToWorld * local;
+        float stepLength = rMax * fract((float(i) + 0.5) / float(SAMPLES) + stepOffset);
+        vec3 projected = projectToPixel(p + w * stepLength);
+        bool occluded = false;
+        vec4 sender = vec4(0.0);
+        ivec2 senderPixel;
+        if (projected.z > 0.0 && insideViewport(projected.xy)) {
+            senderPixel = ivec2(projected.xy);
+            sender = texelFetch(gbufferPosition, senderPixel, 0);
+            occluded = sender.w != 0.0 && projected.z > viewDepth(sender.xyz);
+        }
+        if (!occluded) {
+            sky += skyRadiance(w, frame.skyZenith.rgb, frame.skyHorizon.rgb, frame.skyGround.rgb);
+            continue;
+        }
+        vec3 toReceiver = p - sender.xyz;
+        float d2 = dot(toReceiver, toReceiver);
+        vec3 dir = toReceiver * inversesqrt(max(d2, 1e-12));
+        vec3 senderNormal = texelFetch(gbufferNormal, senderPixel, 0).xyz;
+        float cosS = dot(senderNormal, dir);
+        float cosR = dot(n, -dir);
+        if (cosS <= 0.0 || cosR <= 0.0) continue; // back-facing sender, or behind the receiver
+        vec3 senderRadiance = texelFetch(directRadiance, senderPixel, 0).rgb;
+        bounce += senderRadiance * patchArea * cosS * cosR / max(d2, minDistance2);
+    }
+    vec3 radiance = albedo * sky / float(SAMPLES) + albedo / PI * bounce * constants.pattern.w;
+    imageStore(ssdoImage, pixel, vec4(radiance, 1.0));
+}

@@ -1,0 +1,66 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Half-resolution indirect light to full resolution (thesis ch. 4): each pixel interpolates
+// bilinearly among the four surrounding half-res samples whose G-buffer position and normal
+// are close to its own; a pixel with no such neighbour (an edge, thin geometry) gathers its
+// VPLs at full resolution instead. Alpha records which: 1 interpolated, 0 recomputed.
+#include "shared.h"
+#include "common.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(constant_id = 0) const int VPLS = 512;
+layout(constant_id = 1) const int VISIBILITY = 1;
+layout(constant_id = 2) const int VISIBILITY_STEPS = 6;
+
+layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
+layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
+layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
+layout(set = 0, binding = 3) uniform sampler2D rsmPosition;
+layout(set = 0, binding = 4) uniform sampler2D rsmNormal;
+layout(set = 0, binding = 5) uniform sampler2D rsmFlux;
+layout(set = 0, binding = 6) uniform sampler2D halfIndirect;
+layout(set = 0, binding = 7, rgba16f) uniform writeonly image2D indirectImage;
+layout(push_constant) uniform IndirectBlock { IndirectConstants constants; };
+
+#include "screen_space.glsl"
+#include "indirect_gather.glsl"
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
+    vec4 position = texelFetch(gbufferPosition, pixel, 0);
+    if (position.w == 0.0) {
+        imageStore(indirectImage, pixel, vec4(0.0, 0.0, 0.0, 1.0));
+        return;
+    }
+    vec3 p = position.xyz;
+    vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
+    // A neighbour is compatible within a few pixels' world footprint, on p's plane.
+    float footprint = 1.0 / pixelsPerUnit(viewDepth(p));
+    ivec2 halfSize = constants.target.xy;
+    ivec2 base = (pixel - 1) / 2; // half-res samples sit at even full-res pixels
+    vec2 f = (vec2(pixel) - vec2(base * 2)) * 0.5;
+    vec3 sum = vec3(0.0);
+    float weightSum = 0.0;
+    for (int j = 0; j < 4; ++j) {
+        ivec2 offset = ivec2(j & 1, j >> 1);
+        ivec2 h = clamp(base + offset, ivec2(0), halfSize - 1);
+        vec4 q = texelFetch(gbufferPosition, h * 2, 0);
+        if (q.w == 0.0) continue;
+        vec3 nq = texelFetch(gbufferNormal, h * 2, 0).xyz;
+        vec3 delta = q.xyz - p;
+        if (dot(n, nq) < 0.9 || length(delta) > 6.0 * footprint ||
+            abs(dot(n, delta)) > 1.5 * footprint)
+            continue;
+        float w = (offset.x == 1 ? f.x : 1.0 - f.x) * (offset.y == 1 ? f.y : 1.0 - f.y) + 1e-4;
+        sum += w * texelFetch(halfIndirect, h, 0).rgb;
+        weightSum += w;
+    }
+    if (weightSum > 0.0) {
+        imageStore(indirectImage, pixel, vec4(sum / weightSum, 1.0));
+    } else {
+        vec3 e = gatherIndirect(p, n, pixelRotation(pixel) + constants.pattern.x,
+                                constants.pattern.y, constants.pattern.z);
+        imageStore(indirectImage, pixel, vec4(e, 0.0));
+    }
+}
