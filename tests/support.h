@@ -2,7 +2,10 @@
 // validation on, and a fixture that fails any test during which the layer said anything.
 #pragma once
 
+#include "scene/scene.h"
 #include "vk/context.h"
+
+#include <glm/glm.hpp>
 
 #include <gtest/gtest.h>
 
@@ -15,6 +18,24 @@ vk::Context& context();
 
 std::string sourcePath(const std::string& relative); // a path inside the repository
 std::string sharedScene(const std::string& name);    // ../shared/scenes/NAME
+
+// One frame of a scene with the real-time renderer, and the images a test reads from it.
+struct Frame {
+    uint32_t width = 0, height = 0;
+    std::vector<float> direct, position, normal, albedo, hdr, ldr, ao, indirect, ssdo, shadow;
+    size_t pixels() const { return size_t(width) * height; }
+    static float luminance(const std::vector<float>& rgba, size_t pixel) {
+        return 0.2126f * rgba[4 * pixel] + 0.7152f * rgba[4 * pixel + 1] +
+               0.0722f * rgba[4 * pixel + 2];
+    }
+    static glm::vec3 at(const std::vector<float>& rgba, size_t pixel) {
+        return {rgba[4 * pixel], rgba[4 * pixel + 1], rgba[4 * pixel + 2]};
+    }
+    bool geometry(size_t pixel) const { return position[4 * pixel + 3] != 0.0f; }
+};
+// Renders `frames` frames from the scene's camera and reads back every image the frame made
+// (an effect that is off leaves its vector empty).
+Frame render(const Scene& scene, uint32_t width, uint32_t height, uint32_t frames = 1);
 
 class VulkanTest : public ::testing::Test {
 protected:

@@ -10,32 +10,6 @@ using namespace ssgi;
 
 namespace {
 
-struct Frame {
-    uint32_t width = 0, height = 0;
-    std::vector<float> direct, position, normal, hdr, ldr;
-    float luminance(const std::vector<float>& rgba, size_t pixel) const {
-        return 0.2126f * rgba[4 * pixel] + 0.7152f * rgba[4 * pixel + 1] +
-               0.0722f * rgba[4 * pixel + 2];
-    }
-    glm::vec3 at(const std::vector<float>& rgba, size_t pixel) const {
-        return {rgba[4 * pixel], rgba[4 * pixel + 1], rgba[4 * pixel + 2]};
-    }
-};
-
-Frame render(const Scene& scene, uint32_t width, uint32_t height) {
-    Renderer renderer(test::context(), scene, {width, height, "final"});
-    renderer.renderFrame(scene.camera);
-    Frame f;
-    f.width = width;
-    f.height = height;
-    f.direct = renderer.readImage("direct");
-    f.position = renderer.readImage("gbuffer.position");
-    f.normal = renderer.readImage("gbuffer.normal");
-    f.hdr = renderer.readImage("hdr");
-    f.ldr = renderer.readImage("ldr");
-    return f;
-}
-
 // Möller-Trumbore: does the segment from `origin` to `target` cross any triangle of the scene?
 bool segmentBlocked(const Scene& scene, glm::vec3 origin, glm::vec3 target) {
     const glm::vec3 d = target - origin;
@@ -71,7 +45,7 @@ class RenderTest : public test::VulkanTest {};
 // spot on the other side of the floor stays dark.
 TEST_F(RenderTest, LightFallsWhereTheSpotPoints) {
     Scene scene = loadScene(test::sourcePath("tests/scenes/spot-on-floor.json"));
-    Frame f = render(scene, 256, 256);
+    test::Frame f = test::render(scene, 256, 256);
     const SpotLight& light = scene.light;
     const glm::vec3 target(1, 0, 0.5f);
     size_t lit = 0, insideInner = 0, litInsideInner = 0, litOutsideOuter = 0;
@@ -112,7 +86,7 @@ TEST_F(RenderTest, LightFallsWhereTheSpotPoints) {
 TEST_F(RenderTest, ShadowOfTheBlocksLiesWhereTheLightsGeometryPutsIt) {
     Scene scene = loadScene(test::sourcePath("scenes/cornell-box.json"));
     scene.settings["shadow_taps"] = 1; // the hard shadow test
-    Frame f = render(scene, 192, 192);
+    test::Frame f = test::render(scene, 192, 192);
     size_t floor = 0, agree = 0, expectedShadow = 0, renderedShadow = 0;
     for (size_t i = 0; i < size_t(f.width) * f.height; ++i) {
         glm::vec3 p = f.at(f.position, i), n = f.at(f.normal, i);
@@ -137,7 +111,7 @@ TEST_F(RenderTest, ShadowOfTheBlocksLiesWhereTheLightsGeometryPutsIt) {
 // An empty box, lit and seen along its plane of symmetry, renders mirror-symmetric.
 TEST_F(RenderTest, EmptyBoxUnderACentredLightIsMirrorSymmetric) {
     Scene scene = loadScene(test::sourcePath("tests/scenes/empty-box.json"));
-    Frame f = render(scene, 128, 128);
+    test::Frame f = test::render(scene, 128, 128);
     double difference = 0.0, total = 0.0;
     float worst = 0.0f;
     for (uint32_t y = 0; y < f.height; ++y)
@@ -164,8 +138,8 @@ TEST_F(RenderTest, FrameReportsEveryPassInOrderWithTimings) {
         names.push_back(t.name);
         EXPECT_GE(t.milliseconds, 0.0);
     }
-    EXPECT_EQ(names, (std::vector<std::string>{"gbuffer", "rsm", "shadow", "direct", "ao", "indirect",
-                                              "upsample", "composite"}));
+    EXPECT_EQ(names, (std::vector<std::string>{"gbuffer", "rsm", "shadow", "direct", "ao",
+                                               "indirect", "upsample", "composite"}));
     // The second frame's barriers: each G-buffer target goes from being sampled by last frame's
     // compute passes back to an attachment, contents discarded.
     size_t found = 0;

@@ -12,10 +12,10 @@
 // Whether the segment p -> q stays in front of what the camera sees.
 bool vplVisible(vec3 p, vec3 q) {
     vec3 toVpl = q - p;
-    float far = length(toVpl);
+    float far = 0.99 * length(toVpl); // the last step stops just short of q's own surface
     float near = min(far, 0.01 * far + 1e-4);
-    vec3 direction = toVpl / far;
-    for (int i = 1; i < VISIBILITY_STEPS; ++i) { // the last step would be q itself
+    vec3 direction = toVpl / length(toVpl);
+    for (int i = 1; i <= VISIBILITY_STEPS; ++i) {
         float distance = near * pow(far / near, float(i) / float(VISIBILITY_STEPS));
         vec3 projected = projectToPixel(p + direction * distance);
         if (projected.z <= 0.0 || !insideViewport(projected.xy)) continue;
