@@ -82,7 +82,8 @@ TEST_F(Cli, ProfilePrintsEveryPassAndWritesJson) {
     Result r = run("--size 64x64 --frames 3 --profile --profile-json " + json + " --output " +
                    (dir / "out.png").string());
     ASSERT_EQ(r.status, 0) << r.output;
-    for (const char* pass : {"gbuffer", "rsm", "direct", "composite", "total", "device:"})
+    for (const char* pass : {"gbuffer", "rsm", "shadow", "direct", "ao", "indirect", "upsample",
+                             "composite", "total", "device:"})
         EXPECT_NE(r.output.find(pass), std::string::npos) << pass << " missing in\n" << r.output;
     std::ifstream in(json);
     std::string text((std::istreambuf_iterator<char>(in)), {});

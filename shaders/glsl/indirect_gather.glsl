@@ -31,10 +31,15 @@ bool vplVisible(vec3 p, vec3 q) {
 // Irradiance / pi at p (normal n) from the RSM's VPLs.
 vec3 gatherIndirect(vec3 p, vec3 n, float rotation, float radiusScale, float radius) {
     vec4 clip = frame.lightViewProjection * vec4(p, 1.0);
-    if (clip.w <= 0.0) return vec3(0.0);
-    vec2 center = clip.xy / clip.w * 0.5 + 0.5;
+    // The pattern is centred on p's projection (the map's centre when p is behind the light) and
+    // clamped into the map. With radius 0 it reaches the map's farthest corner, so that every
+    // VPL can be drawn (a ceiling above a downward spot sees only VPLs far from its projection);
+    // a radius > 0 is the RSM paper's r_max, cheaper and biased.
+    vec2 center = clip.w > 0.0 ? clip.xy / clip.w * 0.5 + 0.5 : vec2(0.5);
+    center = clamp(center, vec2(0.0), vec2(1.0));
+    vec2 farCorner = max(center, 1.0 - center);
+    float samplingRadius = radius > 0.0 ? radius * radiusScale : length(farCorner);
     float size = frame.lightFrustum.w;
-    float samplingRadius = radius * radiusScale; // in RSM uv
     // Texels in the disk per sample: the sum over all texels ~ (texels per unit area) x area
     // element of each sample, which for this pattern is 2 pi R r / VPLS.
     float weightScale = size * size * 2.0 * PI * samplingRadius * samplingRadius / float(VPLS);
