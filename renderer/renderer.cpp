@@ -4,6 +4,7 @@
 #include "shared.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 namespace ssgi {
@@ -55,13 +56,26 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
     GBufferAndRsm scenes;
     scenes.gbuffer = addGBufferPass(*setup_);
     scenes.rsm = addRsmPass(*setup_);
+    // Each cached effect: its pass computes what is not converged, its temporal pass blends
+    // that into the history, and the consumers read the blended value.
     LightingTerms terms;
-    terms.shadow = addShadowPass(*setup_, scenes);
+    EffectCache* shadowCache = createCache(*setup_, "shadow", "cache_tile_shadow", true);
+    terms.shadow =
+        addTemporalPass(*setup_, shadowCache, addShadowPass(*setup_, scenes, shadowCache), scenes);
     terms.direct = addDirectPass(*setup_, scenes, terms.shadow);
-    if (scene.setting("ao") != 0.0 && scene.setting("ssdo") == 0.0)
-        terms.ao = addAoPass(*setup_, scenes);
-    if (scene.setting("ssdo") != 0.0) terms.ssdo = addSsdoPass(*setup_, scenes, terms.direct);
-    if (scene.setting("indirect") != 0.0) terms.indirect = addIndirectPasses(*setup_, scenes);
+    if (scene.setting("ssdo") != 0.0) {
+        EffectCache* cache = createCache(*setup_, "ssdo", "cache_tile_ssdo", true);
+        terms.ssdo = addTemporalPass(*setup_, cache,
+                                     addSsdoPass(*setup_, scenes, terms.direct, cache), scenes);
+    } else if (scene.setting("ao") != 0.0) {
+        EffectCache* cache = createCache(*setup_, "ao", "cache_tile_ao", false);
+        terms.ao = addTemporalPass(*setup_, cache, addAoPass(*setup_, scenes, cache), scenes);
+    }
+    if (scene.setting("indirect") != 0.0) {
+        EffectCache* cache = createCache(*setup_, "indirect", "cache_tile_indirect", true);
+        terms.indirect =
+            addTemporalPass(*setup_, cache, addIndirectPasses(*setup_, scenes, cache), scenes);
+    }
     addCompositePass(*setup_, scenes, terms, int(view - views.begin()));
 }
 
@@ -105,6 +119,16 @@ void Renderer::updateUniforms(const Camera& camera) {
 }
 
 void Renderer::renderFrame(const Camera& camera) {
+    // Every frame turns the sampling patterns by a fixed angle and varies their size a little
+    // (golden-ratio sequence), so successive frames take different samples (GUIDE 2.2).
+    const float turn = glm::radians(float(scene_.setting("cache_rotation_deg")));
+    const float jitter = float(scene_.setting("cache_scale_jitter"));
+    setup_->patternRotation = std::fmod(float(frameIndex_) * turn, 2.0f * glm::pi<float>());
+    setup_->patternScale =
+        1.0f + jitter * (2.0f * std::fmod(float(frameIndex_) * 0.618034f, 1.0f) - 1.0f);
+    for (EffectCache& cache : setup_->caches)
+        cache.refreshTile =
+            cache.refresh && graph_->hasHistory(cache.value) ? int(cache.refresh->next()) : -1;
     updateUniforms(camera);
     ctx_.submitAndWait([&](VkCommandBuffer cmd) { graph_->record(cmd); });
     graph_->endFrame();

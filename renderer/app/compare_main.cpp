@@ -114,7 +114,9 @@ void writeTextAtomically(const std::string& path, const std::string& text) {
     }
 }
 
-nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nullptr; }
+nlohmann::json number(double v) {
+    return std::isfinite(v) ? nlohmann::json(v) : nullptr;
+}
 
 int run(int argc, char** argv) {
     const Args args = parseArgs(argc, argv);
@@ -152,7 +154,8 @@ int run(int argc, char** argv) {
                                {"mae", number(f.mae)},
                                {"ssim", number(f.ssim)}});
     }
-    if (nonFinite > 0) std::printf("%zu pixels of %s are NaN or infinite\n", nonFinite, args.test.c_str());
+    if (nonFinite > 0)
+        std::printf("%zu pixels of %s are NaN or infinite\n", nonFinite, args.test.c_str());
 
     if (!args.errorMap.empty()) {
         writeImage(args.errorMap, test.width, test.height, errorMap(test, reference));
@@ -165,8 +168,9 @@ int run(int argc, char** argv) {
                                   {"height", test.height},
                                   {"non_finite_pixels", nonFinite},
                                   {"regions", jsonRegions},
-                                  {"error_map", args.errorMap.empty() ? nlohmann::json(nullptr)
-                                                                      : nlohmann::json(args.errorMap)}};
+                                  {"error_map", args.errorMap.empty()
+                                                    ? nlohmann::json(nullptr)
+                                                    : nlohmann::json(args.errorMap)}};
         writeTextAtomically(args.json, j.dump(2) + "\n");
     }
     return 0;

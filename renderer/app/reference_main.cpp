@@ -45,8 +45,7 @@ struct Args {
     bool useCache = true;
 };
 
-uint64_t parseWhole(const std::string& option, const std::string& text, uint64_t lo,
-                    uint64_t hi) {
+uint64_t parseWhole(const std::string& option, const std::string& text, uint64_t lo, uint64_t hi) {
     char* end = nullptr;
     const unsigned long long v = std::strtoull(text.c_str(), &end, 10);
     if (text.empty() || text[0] == '-' || *end != '\0' || v < lo || v > hi)
@@ -127,8 +126,8 @@ Args parseArgs(int argc, char** argv) {
             a.scene = std::string(SSGI_SOURCE_DIR) + "/scenes/cornell-box.json";
     }
     if (a.output.empty())
-        a.output = "out/" + fs::path(a.scene).stem().string() + "-" +
-                   modeName(a.options.mode) + "-ref.exr";
+        a.output = "out/" + fs::path(a.scene).stem().string() + "-" + modeName(a.options.mode) +
+                   "-ref.exr";
     if (fs::path(a.output).extension() != ".exr")
         throw InputError("--output: '" + a.output + "' must end in .exr");
     if (!a.png.empty() && fs::path(a.png).extension() != ".png")
@@ -139,10 +138,9 @@ Args parseArgs(int argc, char** argv) {
 // The composite's display transform (composite.comp): exposure, Narkowicz's ACES fit, sRGB.
 float display(float linear, float exposure) {
     const float x = linear * exposure;
-    const float mapped = std::clamp((x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f),
-                                    0.0f, 1.0f);
-    return mapped <= 0.0031308f ? mapped * 12.92f
-                                : 1.055f * std::pow(mapped, 1.0f / 2.4f) - 0.055f;
+    const float mapped =
+        std::clamp((x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f), 0.0f, 1.0f);
+    return mapped <= 0.0031308f ? mapped * 12.92f : 1.055f * std::pow(mapped, 1.0f / 2.4f) - 0.055f;
 }
 
 int run(int argc, char** argv) {
@@ -176,10 +174,13 @@ int run(int argc, char** argv) {
         }
         writeImage(args.png, image.width, image.height, shown);
     }
-    std::printf("wrote %s%s%s (%ux%u, mode %s, %u spp, noise %.2f%%, %s in %.1f s)\n",
-                args.output.c_str(), args.png.empty() ? "" : " and ", args.png.c_str(),
-                image.width, image.height, modeName(args.options.mode), image.samples,
-                100.0 * image.noise, fromCache ? "from the cache" : "rendered", seconds);
+    char noise[32] = "not estimated";
+    if (std::isfinite(image.noise))
+        std::snprintf(noise, sizeof noise, "%.2f%%", 100.0 * image.noise);
+    std::printf("wrote %s%s%s (%ux%u, mode %s, %u spp, noise %s, %s in %.1f s)\n",
+                args.output.c_str(), args.png.empty() ? "" : " and ", args.png.c_str(), image.width,
+                image.height, modeName(args.options.mode), image.samples, noise,
+                fromCache ? "from the cache" : "rendered", seconds);
     if (image.nonFiniteSamples > 0) {
         std::fprintf(stderr, "error: %llu samples were NaN or infinite and were dropped\n",
                      (unsigned long long)image.nonFiniteSamples);

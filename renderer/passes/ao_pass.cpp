@@ -5,33 +5,37 @@
 
 namespace ssgi {
 
-graph::ImageRef addAoPass(PassSetup& s, const GBufferAndRsm& in) {
+graph::ImageRef addAoPass(PassSetup& s, const GBufferAndRsm& in, EffectCache* cache) {
     graph::ImageRef ao =
         s.graph.createImage("ao", VK_FORMAT_R16G16B16A16_SFLOAT, s.size,
                             VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
     const Scene& m = s.model;
     const vk::Pipeline pipeline =
-        s.computePipeline("ao.comp", 2, 1, sizeof(shader::AoConstants),
+        s.computePipeline("ao.comp", 3, 1, sizeof(shader::AoConstants),
                           {{int(m.setting("ao_variant")), int(m.setting("ao_directions")),
                             int(m.setting("ao_steps"))}});
+    const graph::ImageRef meta = cacheMetaInput(cache, in.gbuffer.position);
 
     using graph::Use;
     s.graph.addPass(
         "ao", graph::PassKind::Compute,
         {{in.gbuffer.position, Use::Sampled},
          {in.gbuffer.normal, Use::Sampled},
+         {meta, Use::Sampled},
          {ao, Use::StorageWrite}},
-        [&s, in, ao, pipeline](const graph::PassContext& pc) {
+        [&s, in, ao, meta, cache, pipeline](const graph::PassContext& pc) {
             vk::Descriptors()
                 .uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size)
                 .sampledImage(1, pc.image(in.gbuffer.position).view, s.nearestSampler)
                 .sampledImage(2, pc.image(in.gbuffer.normal).view, s.nearestSampler)
-                .storageImage(3, pc.image(ao).view)
+                .sampledImage(3, pc.image(meta).view, s.nearestSampler)
+                .storageImage(4, pc.image(ao).view)
                 .push(s.ctx, pc.cmd, pipeline);
             shader::AoConstants constants{};
             constants.pattern = {s.patternRotation, s.patternScale, aoRadius(s.model), 0.0f};
             constants.falloff = {float(s.model.setting("ao_attenuation_a")),
                                  float(s.model.setting("ao_attenuation_b")), 0.0f, 0.0f};
+            constants.cache = cacheConstants(s, cache);
             vk::dispatch(pc.cmd, pipeline, s.size.width, s.size.height, constants);
         });
     return ao;

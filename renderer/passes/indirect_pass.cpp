@@ -7,7 +7,7 @@
 
 namespace ssgi {
 
-graph::ImageRef addIndirectPasses(PassSetup& s, const GBufferAndRsm& in) {
+graph::ImageRef addIndirectPasses(PassSetup& s, const GBufferAndRsm& in, EffectCache* cache) {
     const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     const VkExtent2D halfSize{(s.size.width + 1) / 2, (s.size.height + 1) / 2};
     graph::ImageRef half =
@@ -18,32 +18,34 @@ graph::ImageRef addIndirectPasses(PassSetup& s, const GBufferAndRsm& in) {
                                    int(s.model.setting("indirect_visibility")),
                                    int(s.model.setting("indirect_visibility_steps"))}};
     const vk::Pipeline gather =
-        s.computePipeline("indirect.comp", 5, 1, sizeof(shader::IndirectConstants), spec);
+        s.computePipeline("indirect.comp", 6, 1, sizeof(shader::IndirectConstants), spec);
     const vk::Pipeline upsample =
-        s.computePipeline("upsample.comp", 6, 1, sizeof(shader::IndirectConstants), spec);
+        s.computePipeline("upsample.comp", 7, 1, sizeof(shader::IndirectConstants), spec);
 
-    auto constants = [&s, halfSize]() {
+    const graph::ImageRef meta = cacheMetaInput(cache, in.gbuffer.position);
+    auto constants = [&s, halfSize, cache]() {
         shader::IndirectConstants c{};
         c.pattern = {s.patternRotation, s.patternScale, float(s.model.setting("indirect_radius")),
                      0.0f};
-        c.target = {int(halfSize.width), int(halfSize.height), 1, 0};
+        c.target = {int(halfSize.width), int(halfSize.height), 0, 0};
+        c.cache = cacheConstants(s, cache);
         return c;
     };
-    auto sceneInputs = [&s, in](const graph::PassContext& pc, vk::Descriptors& d) {
+    auto sceneInputs = [&s, in, meta](const graph::PassContext& pc, vk::Descriptors& d) {
         d.uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size)
             .sampledImage(1, pc.image(in.gbuffer.position).view, s.nearestSampler)
             .sampledImage(2, pc.image(in.gbuffer.normal).view, s.nearestSampler)
             .sampledImage(3, pc.image(in.rsm.position).view, s.nearestSampler)
             .sampledImage(4, pc.image(in.rsm.normal).view, s.nearestSampler)
-            .sampledImage(5, pc.image(in.rsm.third).view, s.nearestSampler);
+            .sampledImage(5, pc.image(in.rsm.third).view, s.nearestSampler)
+            .sampledImage(6, pc.image(meta).view, s.nearestSampler);
     };
 
     using graph::Use;
-    const std::vector<graph::ImageUse> reads = {{in.gbuffer.position, Use::Sampled},
-                                                {in.gbuffer.normal, Use::Sampled},
-                                                {in.rsm.position, Use::Sampled},
-                                                {in.rsm.normal, Use::Sampled},
-                                                {in.rsm.third, Use::Sampled}};
+    const std::vector<graph::ImageUse> reads = {
+        {in.gbuffer.position, Use::Sampled}, {in.gbuffer.normal, Use::Sampled},
+        {in.rsm.position, Use::Sampled},     {in.rsm.normal, Use::Sampled},
+        {in.rsm.third, Use::Sampled},        {meta, Use::Sampled}};
     std::vector<graph::ImageUse> gatherUses = reads;
     gatherUses.push_back({half, Use::StorageWrite});
     s.graph.addPass(
@@ -51,7 +53,7 @@ graph::ImageRef addIndirectPasses(PassSetup& s, const GBufferAndRsm& in) {
         [&s, half, halfSize, gather, constants, sceneInputs](const graph::PassContext& pc) {
             vk::Descriptors d;
             sceneInputs(pc, d);
-            d.storageImage(6, pc.image(half).view).push(s.ctx, pc.cmd, gather);
+            d.storageImage(7, pc.image(half).view).push(s.ctx, pc.cmd, gather);
             vk::dispatch(pc.cmd, gather, halfSize.width, halfSize.height, constants());
         });
 
@@ -63,8 +65,8 @@ graph::ImageRef addIndirectPasses(PassSetup& s, const GBufferAndRsm& in) {
         [&s, half, full, upsample, constants, sceneInputs](const graph::PassContext& pc) {
             vk::Descriptors d;
             sceneInputs(pc, d);
-            d.sampledImage(6, pc.image(half).view, s.nearestSampler)
-                .storageImage(7, pc.image(full).view)
+            d.sampledImage(7, pc.image(half).view, s.nearestSampler)
+                .storageImage(8, pc.image(full).view)
                 .push(s.ctx, pc.cmd, upsample);
             vk::dispatch(pc.cmd, upsample, s.size.width, s.size.height, constants());
         });

@@ -5,11 +5,25 @@
 
 #include "graph/frame_graph.h"
 #include "scene_gpu.h"
+#include "shared.h"
+#include "tile_refresh.h"
 #include "vk/pipeline.h"
 
+#include <deque>
+#include <memory>
 #include <vector>
 
 namespace ssgi {
+
+// The temporal cache of one effect: its history (value, and world position + rotation count)
+// as two ping-pong pairs, its tiled refresh, and this frame's state.
+struct EffectCache {
+    std::string name;
+    uint32_t value = 0, meta = 0; // frame-graph history ids
+    std::unique_ptr<TileRefresh> refresh;
+    int refreshTile = -1;        // this frame's
+    bool lightDependent = false; // reset when the light changes
+};
 
 struct PassSetup {
     vk::Context& ctx;
@@ -25,6 +39,7 @@ struct PassSetup {
     // This frame's turn and scale of every sampling pattern (GUIDE 2.2); set by the renderer.
     float patternRotation = 0.0f;
     float patternScale = 1.0f;
+    std::deque<EffectCache> caches; // empty when caching is off
 
     // A compute pipeline whose bindings are set 0's: binding 0 the frame uniforms, then
     // `sampled` combined image samplers, then `storage` storage images.
@@ -41,6 +56,14 @@ struct SceneTargets {
 SceneTargets addScenePass(PassSetup& setup, const std::string& name, const std::string& shader,
                           VkExtent2D extent, VkFormat thirdFormat);
 
+// The temporal cache of an effect, when caching is on (nullptr otherwise).
+EffectCache* createCache(PassSetup& setup, const std::string& name, const std::string& tileSetting,
+                         bool lightDependent);
+// What an effect pass binds as its "historyMeta" input: last frame's meta of its cache, or
+// `fallback` (any image the pass reads anyway) without one.
+graph::ImageRef cacheMetaInput(const EffectCache* cache, graph::ImageRef fallback);
+shader::CacheConstants cacheConstants(const PassSetup& setup, const EffectCache* cache);
+
 // gbuffer: world position (w = 1 on geometry), normal, albedo, depth.
 SceneTargets addGBufferPass(PassSetup& setup);
 // rsm: light-view world position, normal, reflected flux, depth.
@@ -50,19 +73,26 @@ struct GBufferAndRsm {
     SceneTargets gbuffer, rsm;
 };
 // shadow: fraction of the spot light's disk each pixel sees (PCF/PCSS, or a hard test).
-graph::ImageRef addShadowPass(PassSetup& setup, const GBufferAndRsm& inputs);
+graph::ImageRef addShadowPass(PassSetup& setup, const GBufferAndRsm& inputs, EffectCache* cache);
 // direct: spot-light radiance times the shadow term.
 graph::ImageRef addDirectPass(PassSetup& setup, const GBufferAndRsm& inputs,
                               graph::ImageRef shadow);
 
 // ao: visibility of the hemisphere within the AO radius (1 = open).
-graph::ImageRef addAoPass(PassSetup& setup, const GBufferAndRsm& inputs);
+graph::ImageRef addAoPass(PassSetup& setup, const GBufferAndRsm& inputs, EffectCache* cache);
+
+// <effect>.temporal: blends an effect's value of this frame into its history; returns what
+// the effect's consumers read (the raw value when there is no cache).
+graph::ImageRef addTemporalPass(PassSetup& setup, EffectCache* cache, graph::ImageRef raw,
+                                const GBufferAndRsm& inputs);
 
 // indirect (half resolution) + upsample: one-bounce irradiance / pi from the RSM's VPLs.
-graph::ImageRef addIndirectPasses(PassSetup& setup, const GBufferAndRsm& inputs);
+graph::ImageRef addIndirectPasses(PassSetup& setup, const GBufferAndRsm& inputs,
+                                  EffectCache* cache);
 
 // ssdo: directionally occluded sky light plus one bounce, as radiance.
-graph::ImageRef addSsdoPass(PassSetup& setup, const GBufferAndRsm& inputs, graph::ImageRef direct);
+graph::ImageRef addSsdoPass(PassSetup& setup, const GBufferAndRsm& inputs, graph::ImageRef direct,
+                            EffectCache* cache);
 
 // The screen-space terms the composite adds up; an invalid ref is an effect turned off.
 struct LightingTerms {

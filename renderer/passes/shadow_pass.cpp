@@ -6,31 +6,35 @@
 
 namespace ssgi {
 
-graph::ImageRef addShadowPass(PassSetup& s, const GBufferAndRsm& in) {
+graph::ImageRef addShadowPass(PassSetup& s, const GBufferAndRsm& in, EffectCache* cache) {
     graph::ImageRef shadow =
         s.graph.createImage("shadow", VK_FORMAT_R16G16B16A16_SFLOAT, s.size,
                             VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
     const int taps = int(s.model.setting("shadow_taps"));
     const vk::Pipeline pipeline =
-        s.computePipeline("shadow.comp", 3, 1, sizeof(shader::ShadowConstants), {{taps}});
+        s.computePipeline("shadow.comp", 4, 1, sizeof(shader::ShadowConstants), {{taps}});
 
+    const graph::ImageRef meta = cacheMetaInput(cache, in.gbuffer.position);
     using graph::Use;
     s.graph.addPass("shadow", graph::PassKind::Compute,
                     {{in.gbuffer.position, Use::Sampled},
                      {in.gbuffer.normal, Use::Sampled},
                      {in.rsm.depth, Use::Sampled},
+                     {meta, Use::Sampled},
                      {shadow, Use::StorageWrite}},
-                    [&s, in, shadow, pipeline](const graph::PassContext& pc) {
+                    [&s, in, shadow, meta, cache, pipeline](const graph::PassContext& pc) {
                         vk::Descriptors()
                             .uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size)
                             .sampledImage(1, pc.image(in.gbuffer.position).view, s.nearestSampler)
                             .sampledImage(2, pc.image(in.gbuffer.normal).view, s.nearestSampler)
                             .sampledImage(3, pc.image(in.rsm.depth).view, s.nearestSampler)
-                            .storageImage(4, pc.image(shadow).view)
+                            .sampledImage(4, pc.image(meta).view, s.nearestSampler)
+                            .storageImage(5, pc.image(shadow).view)
                             .push(s.ctx, pc.cmd, pipeline);
                         shader::ShadowConstants constants{};
                         constants.pattern = {s.patternRotation, s.patternScale,
                                              float(s.model.setting("shadow_bias")), 0.0f};
+                        constants.cache = cacheConstants(s, cache);
                         vk::dispatch(pc.cmd, pipeline, s.size.width, s.size.height, constants);
                     });
     return shadow;

@@ -6,36 +6,42 @@
 
 namespace ssgi {
 
-graph::ImageRef addSsdoPass(PassSetup& s, const GBufferAndRsm& in, graph::ImageRef direct) {
+graph::ImageRef addSsdoPass(PassSetup& s, const GBufferAndRsm& in, graph::ImageRef direct,
+                            EffectCache* cache) {
     graph::ImageRef ssdo =
         s.graph.createImage("ssdo", VK_FORMAT_R16G16B16A16_SFLOAT, s.size,
                             VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
     const vk::Pipeline pipeline = s.computePipeline(
-        "ssdo.comp", 4, 1, sizeof(shader::SsdoConstants), {{int(s.model.setting("ssdo_samples"))}});
+        "ssdo.comp", 5, 1, sizeof(shader::SsdoConstants), {{int(s.model.setting("ssdo_samples"))}});
     const double radius = s.model.setting("ssdo_radius");
     const float rMax = radius > 0.0 ? float(radius) : aoRadius(s.model);
 
+    const graph::ImageRef meta = cacheMetaInput(cache, in.gbuffer.position);
     using graph::Use;
-    s.graph.addPass("ssdo", graph::PassKind::Compute,
-                    {{in.gbuffer.position, Use::Sampled},
-                     {in.gbuffer.normal, Use::Sampled},
-                     {in.gbuffer.third, Use::Sampled},
-                     {direct, Use::Sampled},
-                     {ssdo, Use::StorageWrite}},
-                    [&s, in, direct, ssdo, pipeline, rMax](const graph::PassContext& pc) {
-                        vk::Descriptors()
-                            .uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size)
-                            .sampledImage(1, pc.image(in.gbuffer.position).view, s.nearestSampler)
-                            .sampledImage(2, pc.image(in.gbuffer.normal).view, s.nearestSampler)
-                            .sampledImage(3, pc.image(in.gbuffer.third).view, s.nearestSampler)
-                            .sampledImage(4, pc.image(direct).view, s.nearestSampler)
-                            .storageImage(5, pc.image(ssdo).view)
-                            .push(s.ctx, pc.cmd, pipeline);
-                        shader::SsdoConstants constants{};
-                        constants.pattern = {s.patternRotation, s.patternScale, rMax,
-                                             float(s.model.setting("ssdo_bounce"))};
-                        vk::dispatch(pc.cmd, pipeline, s.size.width, s.size.height, constants);
-                    });
+    s.graph.addPass(
+        "ssdo", graph::PassKind::Compute,
+        {{in.gbuffer.position, Use::Sampled},
+         {in.gbuffer.normal, Use::Sampled},
+         {in.gbuffer.third, Use::Sampled},
+         {direct, Use::Sampled},
+         {meta, Use::Sampled},
+         {ssdo, Use::StorageWrite}},
+        [&s, in, direct, ssdo, meta, cache, pipeline, rMax](const graph::PassContext& pc) {
+            vk::Descriptors()
+                .uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size)
+                .sampledImage(1, pc.image(in.gbuffer.position).view, s.nearestSampler)
+                .sampledImage(2, pc.image(in.gbuffer.normal).view, s.nearestSampler)
+                .sampledImage(3, pc.image(in.gbuffer.third).view, s.nearestSampler)
+                .sampledImage(4, pc.image(direct).view, s.nearestSampler)
+                .sampledImage(5, pc.image(meta).view, s.nearestSampler)
+                .storageImage(6, pc.image(ssdo).view)
+                .push(s.ctx, pc.cmd, pipeline);
+            shader::SsdoConstants constants{};
+            constants.pattern = {s.patternRotation, s.patternScale, rMax,
+                                 float(s.model.setting("ssdo_bounce"))};
+            constants.cache = cacheConstants(s, cache);
+            vk::dispatch(pc.cmd, pipeline, s.size.width, s.size.height, constants);
+        });
     return ssdo;
 }
 

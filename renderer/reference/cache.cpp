@@ -79,9 +79,12 @@ void hashScene(Hasher& h, const Scene& scene) {
         h.value(i.transform);
     }
     const SpotLight& l = scene.light;
-    for (const glm::vec3& v : {l.position, l.direction, l.color}) h.value(v);
-    for (float f : {l.intensity, l.innerConeAngle, l.outerConeAngle, l.radius}) h.value(f);
-    for (const glm::vec3& v : {scene.sky.zenith, scene.sky.horizon, scene.sky.ground}) h.value(v);
+    for (const glm::vec3& v : {l.position, l.direction, l.color})
+        h.value(v);
+    for (float f : {l.intensity, l.innerConeAngle, l.outerConeAngle, l.radius})
+        h.value(f);
+    for (const glm::vec3& v : {scene.sky.zenith, scene.sky.horizon, scene.sky.ground})
+        h.value(v);
     h.value(scene.bounds.min);
     h.value(scene.bounds.max);
     h.value(aoRadius(scene)); // the one setting the reference reads
@@ -142,9 +145,11 @@ std::string referenceKey(const Scene& scene, const Camera& camera,
     hashScene(h, scene);
     h.value(camera.position);
     h.value(camera.orientation);
-    for (float f : {camera.yfov, camera.znear, camera.zfar}) h.value(f);
+    for (float f : {camera.yfov, camera.znear, camera.zfar})
+        h.value(f);
     h.value(int(options.mode));
-    for (uint32_t v : {options.width, options.height, options.spp}) h.value(v);
+    for (uint32_t v : {options.width, options.height, options.spp})
+        h.value(v);
     h.value(options.noiseTarget);
     h.value(options.seed);
     h.value(uint8_t(options.jitter));
@@ -156,8 +161,7 @@ ReferenceImage cachedReference(const Scene& scene, const Camera& camera,
                                bool* fromCache) {
     const fs::path file = fs::path(cacheDir) / (referenceKey(scene, camera, options) + ".ref");
     ReferenceImage image;
-    if (readCached(file, image) && image.width == options.width &&
-        image.height == options.height) {
+    if (readCached(file, image) && image.width == options.width && image.height == options.height) {
         if (fromCache) *fromCache = true;
         return image;
     }

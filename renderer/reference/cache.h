@@ -14,8 +14,7 @@ namespace ssgi::reference {
 std::string defaultCacheDir();
 
 // 32 hex digits naming the image that these inputs produce.
-std::string referenceKey(const Scene& scene, const Camera& camera,
-                         const ReferenceOptions& options);
+std::string referenceKey(const Scene& scene, const Camera& camera, const ReferenceOptions& options);
 
 // The image from `cacheDir` when it is there, else rendered and stored there (written whole
 // or not at all). `fromCache`, when given, says which it was. A cache that cannot be written

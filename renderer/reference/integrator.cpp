@@ -32,16 +32,28 @@ Mode parseMode(const std::string& name, const std::string& option) {
     return Mode(it - names.begin());
 }
 
-const char* modeName(Mode mode) { return modeNames()[size_t(mode)].c_str(); }
+const char* modeName(Mode mode) {
+    return modeNames()[size_t(mode)].c_str();
+}
 
 Integrator::Integrator(const Scene& scene, const RayScene& rays, Mode mode)
     : scene_(scene), rays_(rays), mode_(mode), aoRadius_(aoRadius(scene)) {
     switch (mode) {
-    case Mode::Direct: terms_ = {0, 0, 1, 0, 0, false}; break;
-    case Mode::Indirect: terms_ = {1, 1, 1, 0, 1, false}; break;
-    case Mode::Full: terms_ = {0, 1, -1, 0, 1, false}; break;
-    case Mode::Multi: terms_ = {0, INT_MAX, -1, INT_MAX, kMaxVertices, true}; break;
-    case Mode::Ao: terms_ = {1, 0, 1, 0, 0, false}; break;
+    case Mode::Direct:
+        terms_ = {0, 0, 1, 0, 0, false};
+        break;
+    case Mode::Indirect:
+        terms_ = {1, 1, 1, 0, 1, false};
+        break;
+    case Mode::Full:
+        terms_ = {0, 1, -1, 0, 1, false};
+        break;
+    case Mode::Multi:
+        terms_ = {0, INT_MAX, -1, INT_MAX, kMaxVertices, true};
+        break;
+    case Mode::Ao:
+        terms_ = {1, 0, 1, 0, 0, false};
+        break;
     }
 }
 
@@ -74,7 +86,8 @@ glm::vec3 Integrator::outgoing(Surface surface, Rng& rng) const {
         // Cosine-weighted sampling: BRDF * cos / pdf = (albedo/pi) cos / (cos/pi) = albedo.
         throughput *= surface.albedo;
         if (terms_.roulette && vertex >= kRouletteFrom) {
-            const float keep = std::min(0.95f, std::max({throughput.r, throughput.g, throughput.b}));
+            const float keep =
+                std::min(0.95f, std::max({throughput.r, throughput.g, throughput.b}));
             if (keep <= 0.0f || rng.uniform() >= keep) break;
             throughput /= keep;
         }
@@ -102,8 +115,8 @@ float Integrator::visibility(const Surface& surface, Rng& rng) const {
     return rays_.occluded(origin, direction, aoRadius_) ? 0.0f : 1.0f;
 }
 
-glm::vec3 estimateIrradiance(const Scene& scene, const RayScene& rays, Mode mode,
-                             glm::vec3 point, glm::vec3 normal, uint32_t samples, uint64_t seed) {
+glm::vec3 estimateIrradiance(const Scene& scene, const RayScene& rays, Mode mode, glm::vec3 point,
+                             glm::vec3 normal, uint32_t samples, uint64_t seed) {
     const Integrator integrator(scene, rays, mode);
     Surface surface;
     surface.position = point;

@@ -57,8 +57,7 @@ private:
 
 // Irradiance at `point` with unit `normal` (AO mode: visibility), averaged over `samples`
 // samples of the seeded streams; for tests against closed-form answers.
-glm::vec3 estimateIrradiance(const Scene& scene, const RayScene& rays, Mode mode,
-                             glm::vec3 point, glm::vec3 normal, uint32_t samples,
-                             uint64_t seed = 1);
+glm::vec3 estimateIrradiance(const Scene& scene, const RayScene& rays, Mode mode, glm::vec3 point,
+                             glm::vec3 normal, uint32_t samples, uint64_t seed = 1);
 
 } // namespace ssgi::reference

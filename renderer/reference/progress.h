@@ -18,6 +18,7 @@ private:
     double fractionDone(double samples, double noise) const;
 
     bool enabled_;
+    bool terminal_; // stderr is a terminal: redraw one line in place
     uint32_t sppLimit_;
     double noiseTarget_;
     uint32_t noiseAt_ = 0; // the sample count at which `noise` was measured

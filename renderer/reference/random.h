@@ -28,7 +28,9 @@ public:
         : key_(mix64(mix64(mix64(seed + 0x9e3779b97f4a7c15ull) ^ pixel) ^ sample)) {}
 
     // Uniform in [0, 1): the top 24 bits, so the result is exactly representable and < 1.
-    float uniform() { return float(mix64(key_ + 0x9e3779b97f4a7c15ull * ++counter_) >> 40) * 0x1p-24f; }
+    float uniform() {
+        return float(mix64(key_ + 0x9e3779b97f4a7c15ull * ++counter_) >> 40) * 0x1p-24f;
+    }
     glm::vec2 uniform2() {
         const float a = uniform();
         return {a, uniform()};

@@ -65,6 +65,13 @@ std::unique_ptr<RayScene::Geometry> bake(const Scene& scene, const Instance& ins
         const size_t whole = mesh.indices.size() / 3 * 3;
         g->indices.assign(mesh.indices.begin(), mesh.indices.begin() + long(whole));
     }
+    // The loaders check this; a scene built in code might not, and Embree would read past
+    // the vertex buffer.
+    for (uint32_t index : g->indices)
+        if (index >= mesh.vertices.size())
+            throw InputError(scene.sourcePath + ": mesh " + std::to_string(instance.mesh) +
+                             " has vertex index " + std::to_string(index) + " of " +
+                             std::to_string(mesh.vertices.size()) + " vertices");
     g->material = &scene.materials.at(size_t(mesh.material));
     if (g->material->baseColorTexture >= 0)
         g->texture = &scene.textures.at(size_t(g->material->baseColorTexture));
@@ -90,13 +97,16 @@ RayScene::RayScene(const Scene& scene) : embree_(std::make_unique<Embree>()) {
     rtcSetSceneFlags(embree_->scene, RTC_SCENE_FLAG_ROBUST);
     rtcSetSceneBuildQuality(embree_->scene, RTC_BUILD_QUALITY_HIGH);
 
+    Aabb bounds;
     for (const Instance& instance : scene.instances) {
         auto g = bake(scene, instance);
         if (g->indices.empty()) continue;
+        for (const glm::vec3& p : g->positions)
+            bounds.extend(p);
         RTCGeometry geometry = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-        auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-            geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(glm::vec3),
-            g->positions.size()));
+        auto* vertices = static_cast<float*>(
+            rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                    sizeof(glm::vec3), g->positions.size()));
         std::memcpy(vertices, g->positions.data(), g->positions.size() * sizeof(glm::vec3));
         auto* indices = static_cast<uint32_t*>(
             rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
@@ -119,9 +129,10 @@ RayScene::RayScene(const Scene& scene) : embree_(std::make_unique<Embree>()) {
 
     // The offset must dwarf the rounding of a world position (about 1e-7 of its magnitude) yet
     // stay far below any feature of the scene.
-    const Aabb& b = scene.bounds;
-    const float magnitude = glm::length(b.size()) +
-                            std::max(glm::length(b.min), glm::length(b.max));
+    const float magnitude = bounds.empty()
+                                ? 1.0f
+                                : glm::length(bounds.size()) +
+                                      std::max(glm::length(bounds.min), glm::length(bounds.max));
     epsilon_ = 2e-5f * std::max(magnitude, 1e-3f);
 }
 
@@ -158,7 +169,8 @@ bool RayScene::intersect(glm::vec3 origin, glm::vec3 direction, float tfar, Surf
     // with the interpolated normal.
     hit.geometricNormal = glm::dot(ng, direction) > 0.0f ? -ng : ng;
     hit.normal = glm::dot(n, direction) > 0.0f ? -n : n;
-    hit.albedo = glm::vec3(baseColor(*g.material, g.texture, interpolatedUv(g, rh.hit.primID, u, v)));
+    hit.albedo =
+        glm::vec3(baseColor(*g.material, g.texture, interpolatedUv(g, rh.hit.primID, u, v)));
     return true;
 }
 

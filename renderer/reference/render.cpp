@@ -24,7 +24,9 @@ struct PixelSums {
     uint32_t count = 0;
 };
 
-double luminance(glm::vec3 c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
+double luminance(glm::vec3 c) {
+    return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
+}
 
 double noiseOf(const std::vector<PixelSums>& pixels) {
     double total = 0.0;
@@ -69,8 +71,8 @@ void renderRow(const Integrator& integrator, const CameraRays& camera,
 uint32_t nextPassSize(const ReferenceOptions& options, uint32_t done, double noise) {
     uint32_t size = std::clamp(done, 2u, kLargestPass);
     if (options.noiseTarget > 0.0 && std::isfinite(noise) && noise > 0.0) {
-        const double needed = double(done) * (noise / options.noiseTarget) *
-                              (noise / options.noiseTarget);
+        const double needed =
+            double(done) * (noise / options.noiseTarget) * (noise / options.noiseTarget);
         size = uint32_t(std::clamp(std::ceil(needed - double(done)), 1.0, double(size)));
     }
     return std::min(size, options.spp - done);

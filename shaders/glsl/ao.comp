@@ -15,10 +15,12 @@ layout(constant_id = 2) const int STEPS = 4;
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
 layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
 layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
-layout(set = 0, binding = 3, rgba16f) uniform writeonly image2D aoImage;
+layout(set = 0, binding = 3) uniform sampler2D historyMeta;
+layout(set = 0, binding = 4, rgba16f) uniform writeonly image2D aoImage;
 layout(push_constant) uniform AoBlock { AoConstants constants; };
 
 #include "screen_space.glsl"
+#include "temporal.glsl"
 
 vec4 positionAt(vec2 pixel) { return texelFetch(gbufferPosition, ivec2(pixel), 0); }
 
@@ -35,6 +37,10 @@ void main() {
         return;
     }
     vec3 p = position.xyz;
+    if (converged(pixel, p, constants.cache)) {
+        imageStore(aoImage, pixel, vec4(0.0)); // alpha 0: skipped, the cache holds the value
+        return;
+    }
     vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     float radius = constants.pattern.z * constants.pattern.y;
     float radiusPixels = radius * pixelsPerUnit(viewDepth(p));
@@ -46,5 +52,5 @@ void main() {
         if (VARIANT == 1) visibility = crytekAo(p, n, radius, rotation);
         if (VARIANT == 2) visibility = horizonAo(center, p, n, radius, radiusPixels, rotation);
     }
-    imageStore(aoImage, pixel, vec4(clamp(visibility, 0.0, 1.0)));
+    imageStore(aoImage, pixel, vec4(vec3(clamp(visibility, 0.0, 1.0)), 1.0));
 }

@@ -16,16 +16,29 @@ layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
 layout(set = 0, binding = 3) uniform sampler2D rsmPosition;
 layout(set = 0, binding = 4) uniform sampler2D rsmNormal;
 layout(set = 0, binding = 5) uniform sampler2D rsmFlux;
-layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D halfIndirect;
+layout(set = 0, binding = 6) uniform sampler2D historyMeta;
+layout(set = 0, binding = 7, rgba16f) uniform writeonly image2D halfIndirect;
 layout(push_constant) uniform IndirectBlock { IndirectConstants constants; };
 
 #include "screen_space.glsl"
+#include "temporal.glsl"
 #include "indirect_gather.glsl"
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pixel, constants.target.xy))) return;
     ivec2 source = pixel * 2;
+    // Skipped (alpha 0) when every full-resolution pixel of the block is converged.
+    bool allConverged = true;
+    for (int j = 0; j < 4 && allConverged; ++j) {
+        ivec2 q = min(source + ivec2(j & 1, j >> 1), ivec2(frame.viewport.xy) - 1);
+        vec4 w = texelFetch(gbufferPosition, q, 0);
+        allConverged = w.w == 0.0 || converged(q, w.xyz, constants.cache);
+    }
+    if (allConverged) {
+        imageStore(halfIndirect, pixel, vec4(0.0));
+        return;
+    }
     vec4 position = texelFetch(gbufferPosition, source, 0);
     vec3 result = vec3(0.0);
     if (position.w != 0.0) {

@@ -14,8 +14,12 @@ layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; }
 layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
 layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
 layout(set = 0, binding = 3) uniform sampler2D rsmDepth;
-layout(set = 0, binding = 4, rgba16f) uniform writeonly image2D shadowImage;
+layout(set = 0, binding = 4) uniform sampler2D historyMeta;
+layout(set = 0, binding = 5, rgba16f) uniform writeonly image2D shadowImage;
 layout(push_constant) uniform ShadowBlock { ShadowConstants constants; };
+
+#include "screen_space.glsl"
+#include "temporal.glsl"
 
 float shadowMapSize() { return frame.lightFrustum.w; }
 
@@ -46,6 +50,10 @@ void main() {
         imageStore(shadowImage, pixel, vec4(1.0));
         return;
     }
+    if (converged(pixel, position.xyz, constants.cache)) {
+        imageStore(shadowImage, pixel, vec4(0.0)); // alpha 0: skipped, the cache holds the value
+        return;
+    }
     vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     // Normal-offset lookup: a surface the light grazes covers less than a texel of the map.
     float texelAngle = 2.0 * frame.lightFrustum.z / shadowMapSize();
@@ -54,7 +62,7 @@ void main() {
     vec4 clip = frame.lightViewProjection * vec4(p, 1.0);
     vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
     if (clip.w <= 0.0 || any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) {
-        imageStore(shadowImage, pixel, vec4(0.0)); // outside the light's cone
+        imageStore(shadowImage, pixel, vec4(0.0, 0.0, 0.0, 1.0)); // outside the light's cone
         return;
     }
     float receiver = clip.w;
@@ -63,7 +71,7 @@ void main() {
 
     if (TAPS == 1) {
         float lit = receiver <= occluderDepth(uv) + bias ? 1.0 : 0.0;
-        imageStore(shadowImage, pixel, vec4(lit));
+        imageStore(shadowImage, pixel, vec4(vec3(lit), 1.0));
         return;
     }
 
@@ -96,5 +104,5 @@ void main() {
         vec2 tap = uv + vogelDisk(i, TAPS, rotation) * filterRadius * constants.pattern.y;
         lit += occluderDepth(tap) + bias >= receiverPlaneDepth(tap, p, n, receiver) ? 1.0 : 0.0;
     }
-    imageStore(shadowImage, pixel, vec4(lit / float(TAPS)));
+    imageStore(shadowImage, pixel, vec4(vec3(lit / float(TAPS)), 1.0));
 }

@@ -45,31 +45,50 @@ struct DrawConstants {
 };
 SSGI_CHECK_SIZE(DrawConstants, 96);
 
+// The temporal cache of one effect (GUIDE 2.1-2.3), as its passes see it each frame.
+struct CacheConstants {
+    ivec4 state; // x = 1 when last frame's history may be read, y = rotations until a pixel is
+                 // converged, z = this frame's refresh tile (-1 = none), w = tile size (pixels)
+    vec4 accumulation; // x = bias of the confidence rule (eq. 4), y = reprojection epsilon in
+                       // pixel footprints (eq. 3), z = 1 for the running mean, w = unused
+};
+SSGI_CHECK_SIZE(CacheConstants, 32);
+
 // Per-frame values of the screen-space passes (push constants). Structural settings (tap and
 // sample counts, variants) are specialization constants instead. `rotation` turns the
 // sampling pattern each frame and `scale` varies its size, so that successive frames take
 // different samples (GUIDE 2.2).
 struct ShadowConstants {
     vec4 pattern; // x = rotation (radians), y = scale, z = normal offset (texels), w = unused
+    CacheConstants cache;
 };
-SSGI_CHECK_SIZE(ShadowConstants, 16);
+SSGI_CHECK_SIZE(ShadowConstants, 48);
 
 struct AoConstants {
     vec4 pattern; // x = rotation, y = scale, z = AO radius (scene units), w = unused
     vec4 falloff; // x = a, y = b of D(d) = 1 + a d + b d^2 (d in AO radii)
+    CacheConstants cache;
 };
-SSGI_CHECK_SIZE(AoConstants, 32);
+SSGI_CHECK_SIZE(AoConstants, 64);
 
 struct IndirectConstants {
     vec4 pattern; // x = rotation, y = scale, z = sampling radius (fraction of the RSM), w = unused
-    ivec4 target; // xy = size of the image written, z = 1 when it is the half-resolution pass
+    ivec4 target; // xy = size of the half-resolution image
+    CacheConstants cache;
 };
-SSGI_CHECK_SIZE(IndirectConstants, 32);
+SSGI_CHECK_SIZE(IndirectConstants, 64);
 
 struct SsdoConstants {
     vec4 pattern; // x = rotation, y = scale, z = r_max (scene units), w = bounce strength
+    CacheConstants cache;
 };
-SSGI_CHECK_SIZE(SsdoConstants, 16);
+SSGI_CHECK_SIZE(SsdoConstants, 48);
+
+// The temporal pass of one effect: its cache state (push constants).
+struct TemporalConstants {
+    CacheConstants cache;
+};
+SSGI_CHECK_SIZE(TemporalConstants, 32);
 
 // Composite's choice of output (push constants): x = view (see VIEW_*).
 struct CompositeConstants {

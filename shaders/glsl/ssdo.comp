@@ -21,20 +21,26 @@ layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
 layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
 layout(set = 0, binding = 3) uniform sampler2D gbufferAlbedo;
 layout(set = 0, binding = 4) uniform sampler2D directRadiance;
-layout(set = 0, binding = 5, rgba16f) uniform writeonly image2D ssdoImage;
+layout(set = 0, binding = 5) uniform sampler2D historyMeta;
+layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D ssdoImage;
 layout(push_constant) uniform SsdoBlock { SsdoConstants constants; };
 
 #include "screen_space.glsl"
+#include "temporal.glsl"
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
     vec4 position = texelFetch(gbufferPosition, pixel, 0);
     if (position.w == 0.0) {
-        imageStore(ssdoImage, pixel, vec4(0.0));
+        imageStore(ssdoImage, pixel, vec4(0.0, 0.0, 0.0, 1.0));
         return;
     }
     vec3 p = position.xyz;
+    if (converged(pixel, p, constants.cache)) {
+        imageStore(ssdoImage, pixel, vec4(0.0)); // alpha 0: skipped, the cache holds the value
+        return;
+    }
     vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     vec3 albedo = texelFetch(gbufferAlbedo, pixel, 0).rgb;
     float rMax = constants.pattern.z * constants.pattern.y;

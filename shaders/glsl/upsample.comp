@@ -3,7 +3,7 @@
 // Half-resolution indirect light to full resolution (thesis ch. 4): each pixel interpolates
 // bilinearly among the four surrounding half-res samples whose G-buffer position and normal
 // are close to its own; a pixel with no such neighbour (an edge, thin geometry) gathers its
-// VPLs at full resolution instead. Alpha records which: 1 interpolated, 0 recomputed.
+// VPLs at full resolution instead. A converged pixel is skipped (alpha 0): its cache holds it.
 #include "shared.h"
 #include "common.glsl"
 
@@ -18,11 +18,13 @@ layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
 layout(set = 0, binding = 3) uniform sampler2D rsmPosition;
 layout(set = 0, binding = 4) uniform sampler2D rsmNormal;
 layout(set = 0, binding = 5) uniform sampler2D rsmFlux;
-layout(set = 0, binding = 6) uniform sampler2D halfIndirect;
-layout(set = 0, binding = 7, rgba16f) uniform writeonly image2D indirectImage;
+layout(set = 0, binding = 6) uniform sampler2D historyMeta;
+layout(set = 0, binding = 7) uniform sampler2D halfIndirect;
+layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D indirectImage;
 layout(push_constant) uniform IndirectBlock { IndirectConstants constants; };
 
 #include "screen_space.glsl"
+#include "temporal.glsl"
 #include "indirect_gather.glsl"
 
 void main() {
@@ -34,10 +36,14 @@ void main() {
         return;
     }
     vec3 p = position.xyz;
+    if (converged(pixel, p, constants.cache)) {
+        imageStore(indirectImage, pixel, vec4(0.0));
+        return;
+    }
     vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     // A neighbour is compatible within a few pixels' world footprint, on p's plane.
     float footprint = 1.0 / pixelsPerUnit(viewDepth(p));
-    ivec2 halfSize = constants.target.xy;
+    ivec2 halfSize = constants.target.xy; // half-res samples skipped this frame are not used
     ivec2 base = (pixel - 1) / 2; // half-res samples sit at even full-res pixels
     vec2 f = (vec2(pixel) - vec2(base * 2)) * 0.5;
     vec3 sum = vec3(0.0);
@@ -52,8 +58,10 @@ void main() {
         if (dot(n, nq) < 0.9 || length(delta) > 6.0 * footprint ||
             abs(dot(n, delta)) > 1.5 * footprint)
             continue;
+        vec4 halfSample = texelFetch(halfIndirect, h, 0);
+        if (halfSample.a < 0.5) continue;
         float w = (offset.x == 1 ? f.x : 1.0 - f.x) * (offset.y == 1 ? f.y : 1.0 - f.y) + 1e-4;
-        sum += w * texelFetch(halfIndirect, h, 0).rgb;
+        sum += w * halfSample.rgb;
         weightSum += w;
     }
     if (weightSum > 0.0) {
@@ -61,6 +69,6 @@ void main() {
     } else {
         vec3 e = gatherIndirect(p, n, pixelRotation(pixel) + constants.pattern.x,
                                 constants.pattern.y, constants.pattern.z);
-        imageStore(indirectImage, pixel, vec4(e, 0.0));
+        imageStore(indirectImage, pixel, vec4(e, 1.0));
     }
 }

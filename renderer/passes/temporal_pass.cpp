@@ -1,0 +1,71 @@
+// <effect>.temporal: the temporal cache of one effect (thesis 3.1): reverse reprojection,
+// accumulation with the thesis's confidence rule or a running mean, reuse of converged pixels
+// (the effect pass skips them), tiled refresh. The history pair swaps each frame in the graph.
+#include "passes/pass_setup.h"
+
+namespace ssgi {
+
+EffectCache* createCache(PassSetup& s, const std::string& name, const std::string& tileSetting,
+                         bool lightDependent) {
+    if (s.model.setting("cache") == 0.0) return nullptr;
+    const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    EffectCache& c = s.caches.emplace_back();
+    c.name = name;
+    c.value =
+        s.graph.createHistory(name + ".history", VK_FORMAT_R16G16B16A16_SFLOAT, s.size, usage);
+    c.meta = s.graph.createHistory(name + ".meta", VK_FORMAT_R32G32B32A32_SFLOAT, s.size, usage);
+    if (s.model.setting("cache_refresh") != 0.0)
+        c.refresh = std::make_unique<TileRefresh>(s.size.width, s.size.height,
+                                                  uint32_t(s.model.setting(tileSetting)),
+                                                  uint32_t(s.caches.size()));
+    c.lightDependent = lightDependent;
+    return &c;
+}
+
+graph::ImageRef cacheMetaInput(const EffectCache* cache, graph::ImageRef fallback) {
+    return cache ? graph::FrameGraph::previous(cache->meta) : fallback;
+}
+
+shader::CacheConstants cacheConstants(const PassSetup& s, const EffectCache* cache) {
+    shader::CacheConstants c{};
+    if (!cache) return c; // state.x = 0: no history, nothing converges
+    c.state = {s.graph.hasHistory(cache->value) ? 1 : 0, int(s.model.setting("cache_rotations")),
+               cache->refreshTile, cache->refresh ? int(cache->refresh->tileSize()) : 1};
+    c.accumulation = {float(s.model.setting("cache_bias")), float(s.model.setting("cache_epsilon")),
+                      float(s.model.setting("cache_method")), 0.0f};
+    return c;
+}
+
+graph::ImageRef addTemporalPass(PassSetup& s, EffectCache* cache, graph::ImageRef raw,
+                                const GBufferAndRsm& in) {
+    if (!cache) return raw;
+    const vk::Pipeline pipeline =
+        s.computePipeline("temporal.comp", 4, 2, sizeof(shader::TemporalConstants));
+    using graph::FrameGraph;
+    using graph::Use;
+    const graph::ImageRef value = FrameGraph::current(cache->value);
+    s.graph.addPass(
+        cache->name + ".temporal", graph::PassKind::Compute,
+        {{in.gbuffer.position, Use::Sampled},
+         {raw, Use::Sampled},
+         {FrameGraph::previous(cache->value), Use::Sampled},
+         {FrameGraph::previous(cache->meta), Use::Sampled},
+         {value, Use::StorageWrite},
+         {FrameGraph::current(cache->meta), Use::StorageWrite}},
+        [&s, cache, raw, in, pipeline](const graph::PassContext& pc) {
+            vk::Descriptors()
+                .uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size)
+                .sampledImage(1, pc.image(in.gbuffer.position).view, s.nearestSampler)
+                .sampledImage(2, pc.image(raw).view, s.nearestSampler)
+                .sampledImage(3, pc.image(FrameGraph::previous(cache->value)).view, s.linearSampler)
+                .sampledImage(4, pc.image(FrameGraph::previous(cache->meta)).view, s.nearestSampler)
+                .storageImage(5, pc.image(FrameGraph::current(cache->value)).view)
+                .storageImage(6, pc.image(FrameGraph::current(cache->meta)).view)
+                .push(s.ctx, pc.cmd, pipeline);
+            shader::TemporalConstants constants{cacheConstants(s, cache)};
+            vk::dispatch(pc.cmd, pipeline, s.size.width, s.size.height, constants);
+        });
+    return value;
+}
+
+} // namespace ssgi

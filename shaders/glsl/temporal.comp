@@ -1,0 +1,71 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// The temporal cache of one effect (thesis 3.1.2): this frame's value V_t, computed with a
+// turned and scaled sampling pattern, is blended with the reprojected history V_{t-1}.
+// Thesis rule: confidence = 1 - saturate(|V_{t-1} - V_t|) / (1 + bias) (4),
+// V = confidence V_{t-1} + (1 - confidence) V_t (5). Running mean (the principled
+// alternative): V = H + (V_t - H) / (n + 1), with H the history clamped to the range of this
+// frame's values around the pixel. A pixel the effect skipped (converged) keeps its history; a
+// disoccluded pixel starts over from V_t. The refresh tile was computed although converged, and
+// its fresh value is blended in like any other, which pulls back what the bilinear resampling
+// of the history has blurred without restarting the tile's accumulation.
+#include "shared.h"
+#include "common.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
+layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
+layout(set = 0, binding = 2) uniform sampler2D current; // a = 1 computed this frame, 0 skipped
+layout(set = 0, binding = 3) uniform sampler2D historyValue; // linear filtering
+layout(set = 0, binding = 4) uniform sampler2D historyMeta;
+layout(set = 0, binding = 5, rgba16f) uniform writeonly image2D newValue;
+layout(set = 0, binding = 6, rgba32f) uniform writeonly image2D newMeta;
+layout(push_constant) uniform TemporalBlock { TemporalConstants constants; };
+
+#include "screen_space.glsl"
+#include "temporal.glsl"
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
+    vec4 position = texelFetch(gbufferPosition, pixel, 0);
+    if (position.w == 0.0) {
+        imageStore(newValue, pixel, texelFetch(current, pixel, 0));
+        imageStore(newMeta, pixel, vec4(0.0));
+        return;
+    }
+    CacheConstants cache = constants.cache;
+    vec4 now = texelFetch(current, pixel, 0);
+    Reprojection r = reproject(position.xyz, cache);
+    vec3 history = r.valid ? texture(historyValue, r.uv).rgb : vec3(0.0);
+    vec3 value;
+    float count;
+    if (now.a < 0.5) { // skipped by the effect: converged, its cache is the value
+        value = history;
+        count = r.count;
+    } else if (!r.valid) {
+        value = now.rgb;
+        count = 1.0;
+    } else if (cache.accumulation.z == 0.0) {
+        float confidence = 1.0 - clamp(length(history - now.rgb), 0.0, 1.0) /
+                                     (1.0 + cache.accumulation.x);
+        value = confidence * history + (1.0 - confidence) * now.rgb;
+        count = r.count + 1.0;
+    } else {
+        vec3 low = now.rgb, high = now.rgb;
+        for (int y = -1; y <= 1; ++y)
+            for (int x = -1; x <= 1; ++x) {
+                ivec2 q = clamp(pixel + ivec2(x, y), ivec2(0), ivec2(frame.viewport.xy) - 1);
+                vec4 neighbour = texelFetch(current, q, 0);
+                if (neighbour.a < 0.5) continue;
+                low = min(low, neighbour.rgb);
+                high = max(high, neighbour.rgb);
+            }
+        vec3 clamped = clamp(history, low, high);
+        value = clamped + (now.rgb - clamped) / (r.count + 1.0);
+        count = r.count + 1.0;
+    }
+    imageStore(newValue, pixel, vec4(value, 1.0));
+    imageStore(newMeta, pixel, vec4(position.xyz, min(count, float(cache.state.y))));
+}

@@ -1,0 +1,45 @@
+// Reverse reprojection into an effect's history (thesis 3.1.1) and the reuse test (3.1.2),
+// shared by the effect passes (to skip converged pixels) and the temporal passes (to blend).
+// Needs: frame, historyMeta (last frame's world position in xyz, rotation count in w),
+// screen_space.glsl.
+#ifndef SSGI_TEMPORAL_GLSL
+#define SSGI_TEMPORAL_GLSL
+
+struct Reprojection {
+    bool valid;  // the pixel saw the same surface last frame
+    vec2 uv;     // where, in last frame's image
+    float count; // rotations accumulated there
+};
+
+// C = P_{t-1} V_{t-1} W_t (1), divided by w and mapped to texture space; valid where the
+// history holds a world position within epsilon of W_t (2-3). Epsilon is a number of pixel
+// footprints at W_t, so one setting serves every scene scale.
+Reprojection reproject(vec3 world, CacheConstants cache) {
+    Reprojection r = Reprojection(false, vec2(0.0), 0.0);
+    if (cache.state.x == 0) return r;
+    vec4 clip = frame.previousViewProjection * vec4(world, 1.0);
+    if (clip.w <= 0.0) return r;
+    r.uv = clip.xy / clip.w * 0.5 + 0.5;
+    if (any(lessThan(r.uv, vec2(0.0))) || any(greaterThanEqual(r.uv, vec2(1.0)))) return r;
+    // Positions do not interpolate across edges: the nearest texel's is compared.
+    vec4 meta = texelFetch(historyMeta, ivec2(r.uv * frame.viewport.xy), 0);
+    float epsilon = cache.accumulation.y / pixelsPerUnit(viewDepth(world));
+    r.valid = meta.w > 0.0 && distance(meta.xyz, world) <= epsilon;
+    r.count = r.valid ? meta.w : 0.0;
+    return r;
+}
+
+bool inRefreshTile(ivec2 pixel, CacheConstants cache) {
+    if (cache.state.z < 0) return false;
+    int tilesX = (int(frame.viewport.x) + cache.state.w - 1) / cache.state.w;
+    ivec2 tile = pixel / cache.state.w;
+    return tile.y * tilesX + tile.x == cache.state.z;
+}
+
+// A converged pixel reuses its cached value instead of computing the effect again.
+bool converged(ivec2 pixel, vec3 world, CacheConstants cache) {
+    Reprojection r = reproject(world, cache);
+    return r.valid && r.count >= float(cache.state.y) && !inRefreshTile(pixel, cache);
+}
+
+#endif
