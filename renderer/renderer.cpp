@@ -18,7 +18,7 @@ const std::vector<std::string>& viewNames() {
 }
 
 Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& options)
-    : ctx_(ctx), scene_(scene) {
+    : ctx_(ctx), scene_(scene), light_(scene.light) {
     const uint32_t limit = ctx.properties.limits.maxImageDimension2D;
     if (options.width == 0 || options.height == 0 || options.width > limit ||
         options.height > limit)
@@ -92,7 +92,7 @@ Renderer::~Renderer() {
 void Renderer::updateUniforms(const Camera& camera) {
     const VkExtent2D size = setup_->size;
     const float aspect = float(size.width) / float(size.height);
-    const LightFrustum light = lightFrustum(scene_.light, scene_.bounds);
+    const LightFrustum light = lightFrustum(light_, scene_.bounds);
     shader::FrameUniforms u{};
     u.view = viewMatrix(camera);
     u.projection = projectionMatrix(camera, aspect);
@@ -102,7 +102,7 @@ void Renderer::updateUniforms(const Camera& camera) {
     u.lightViewProjection = light.viewProjection;
     u.inverseLightViewProjection = glm::inverse(light.viewProjection);
     u.cameraPosition = glm::vec4(camera.position, 1.0f);
-    const SpotLight& l = scene_.light;
+    const SpotLight& l = light_;
     u.lightPosition = glm::vec4(l.position, l.radius);
     u.lightDirection = glm::vec4(glm::normalize(l.direction), std::cos(l.outerConeAngle));
     u.lightColor = glm::vec4(l.color * l.intensity, std::cos(l.innerConeAngle));
@@ -135,7 +135,23 @@ void Renderer::renderFrame(const Camera& camera) {
     ++frameIndex_;
 }
 
+void Renderer::setLight(const SpotLight& light) {
+    light_ = light;
+    for (EffectCache& cache : setup_->caches)
+        if (cache.lightDependent) {
+            graph_->resetHistory(cache.value);
+            graph_->resetHistory(cache.meta);
+        }
+}
+
 std::vector<float> Renderer::readImage(const std::string& name) {
+    for (const EffectCache& cache : setup_->caches) {
+        // After the frame the pair has swapped: what it wrote is now the "previous" side.
+        if (name == cache.name + ".history")
+            return graph_->download(graph::FrameGraph::previous(cache.value));
+        if (name == cache.name + ".meta")
+            return graph_->download(graph::FrameGraph::previous(cache.meta));
+    }
     graph::ImageRef ref = graph_->find(name);
     if (!ref.valid()) throw InputError("no image named '" + name + "' in the frame");
     return graph_->download(ref);

@@ -28,10 +28,16 @@ public:
 
     // Renders one frame from `camera`, waits for it and collects its pass timings.
     void renderFrame(const Camera& camera);
+    // Moves the light from the next frame on. The cached effects that depend on it (shadow,
+    // indirect light, SSDO's bounce) start over; AO, which does not, keeps its history.
+    void setLight(const SpotLight& light);
+    const SpotLight& light() const { return light_; }
     const std::vector<graph::PassTiming>& timings() const { return graph_->timings(); }
 
     // Reads an image of the last frame by name ("hdr", "ldr", "direct", "gbuffer.position",
-    // "gbuffer.normal", "gbuffer.albedo", "gbuffer.depth", "rsm.flux", ...) as RGBA floats.
+    // "gbuffer.normal", "gbuffer.albedo", "gbuffer.depth", "rsm.flux", ...) as RGBA floats. A
+    // cached effect's history is "<effect>.history" (the blended value) and "<effect>.meta"
+    // (world position, rotation count in alpha), as the last frame wrote them.
     std::vector<float> readImage(const std::string& name);
     VkExtent2D size() const { return setup_->size; }
     const graph::FrameGraph& frameGraph() const { return *graph_; }
@@ -44,6 +50,7 @@ private:
     std::unique_ptr<SceneGpu> sceneGpu_;
     std::unique_ptr<graph::FrameGraph> graph_;
     std::unique_ptr<PassSetup> setup_;
+    SpotLight light_;
     uint32_t frameIndex_ = 0;
     glm::mat4 previousViewProjection_{1.0f};
 };

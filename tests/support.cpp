@@ -44,4 +44,33 @@ Frame render(const Scene& scene, uint32_t width, uint32_t height, uint32_t frame
     return f;
 }
 
+// Möller-Trumbore: does the segment from `origin` to `target` cross any triangle of the scene?
+bool segmentBlocked(const Scene& scene, glm::vec3 origin, glm::vec3 target) {
+    const glm::vec3 d = target - origin;
+    for (const Instance& inst : scene.instances) {
+        const Mesh& mesh = scene.meshes[inst.mesh];
+        const size_t count = mesh.indices.empty() ? mesh.vertices.size() : mesh.indices.size();
+        for (size_t i = 0; i + 2 < count; i += 3) {
+            glm::vec3 v[3];
+            for (int k = 0; k < 3; ++k) {
+                uint32_t idx = mesh.indices.empty() ? uint32_t(i + k) : mesh.indices[i + k];
+                v[k] = glm::vec3(inst.transform * glm::vec4(mesh.vertices[idx].position, 1.0f));
+            }
+            glm::vec3 e1 = v[1] - v[0], e2 = v[2] - v[0];
+            glm::vec3 p = glm::cross(d, e2);
+            float det = glm::dot(e1, p);
+            if (std::abs(det) < 1e-12f) continue;
+            glm::vec3 s = origin - v[0];
+            float u = glm::dot(s, p) / det;
+            if (u < 0 || u > 1) continue;
+            glm::vec3 q = glm::cross(s, e1);
+            float w = glm::dot(d, q) / det;
+            if (w < 0 || u + w > 1) continue;
+            float t = glm::dot(e2, q) / det;
+            if (t > 1e-4f && t < 1.0f - 1e-4f) return true;
+        }
+    }
+    return false;
+}
+
 } // namespace ssgi::test

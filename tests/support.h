@@ -37,6 +37,10 @@ struct Frame {
 // (an effect that is off leaves its vector empty).
 Frame render(const Scene& scene, uint32_t width, uint32_t height, uint32_t frames = 1);
 
+// Whether the segment from `origin` to `target` crosses any triangle of the scene (exact, on the
+// CPU): the independent geometry the image tests compare against.
+bool segmentBlocked(const Scene& scene, glm::vec3 origin, glm::vec3 target);
+
 class VulkanTest : public ::testing::Test {
 protected:
     void SetUp() override { messagesBefore_ = context().validationMessageCount(); }

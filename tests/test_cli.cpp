@@ -83,7 +83,8 @@ TEST_F(Cli, ProfilePrintsEveryPassAndWritesJson) {
                    (dir / "out.png").string());
     ASSERT_EQ(r.status, 0) << r.output;
     for (const char* pass : {"gbuffer", "rsm", "shadow", "direct", "ao", "indirect", "upsample",
-                             "composite", "total", "device:"})
+                             "shadow.temporal", "ao.temporal", "indirect.temporal", "composite",
+                             "total", "device:"})
         EXPECT_NE(r.output.find(pass), std::string::npos) << pass << " missing in\n" << r.output;
     std::ifstream in(json);
     std::string text((std::istreambuf_iterator<char>(in)), {});

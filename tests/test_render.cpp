@@ -10,35 +10,6 @@ using namespace ssgi;
 
 namespace {
 
-// Möller-Trumbore: does the segment from `origin` to `target` cross any triangle of the scene?
-bool segmentBlocked(const Scene& scene, glm::vec3 origin, glm::vec3 target) {
-    const glm::vec3 d = target - origin;
-    for (const Instance& inst : scene.instances) {
-        const Mesh& mesh = scene.meshes[inst.mesh];
-        const size_t count = mesh.indices.empty() ? mesh.vertices.size() : mesh.indices.size();
-        for (size_t i = 0; i + 2 < count; i += 3) {
-            glm::vec3 v[3];
-            for (int k = 0; k < 3; ++k) {
-                uint32_t idx = mesh.indices.empty() ? uint32_t(i + k) : mesh.indices[i + k];
-                v[k] = glm::vec3(inst.transform * glm::vec4(mesh.vertices[idx].position, 1.0f));
-            }
-            glm::vec3 e1 = v[1] - v[0], e2 = v[2] - v[0];
-            glm::vec3 p = glm::cross(d, e2);
-            float det = glm::dot(e1, p);
-            if (std::abs(det) < 1e-12f) continue;
-            glm::vec3 s = origin - v[0];
-            float u = glm::dot(s, p) / det;
-            if (u < 0 || u > 1) continue;
-            glm::vec3 q = glm::cross(s, e1);
-            float w = glm::dot(d, q) / det;
-            if (w < 0 || u + w > 1) continue;
-            float t = glm::dot(e2, q) / det;
-            if (t > 1e-4f && t < 1.0f - 1e-4f) return true;
-        }
-    }
-    return false;
-}
-
 class RenderTest : public test::VulkanTest {};
 
 // The lit patch of a narrow spot is inside its cone, its core is lit, and the mirror-image
@@ -92,7 +63,7 @@ TEST_F(RenderTest, ShadowOfTheBlocksLiesWhereTheLightsGeometryPutsIt) {
         glm::vec3 p = f.at(f.position, i), n = f.at(f.normal, i);
         if (f.position[4 * i + 3] == 0.0f || std::abs(p.y) > 1e-3f || n.y < 0.99f) continue;
         ++floor;
-        bool blocked = segmentBlocked(scene, p + 1e-4f * n, scene.light.position);
+        bool blocked = test::segmentBlocked(scene, p + 1e-4f * n, scene.light.position);
         bool dark = f.luminance(f.direct, i) == 0.0f;
         expectedShadow += blocked;
         renderedShadow += dark;
@@ -155,8 +126,9 @@ TEST_F(RenderTest, FrameReportsEveryPassInOrderWithTimings) {
         names.push_back(t.name);
         EXPECT_GE(t.milliseconds, 0.0);
     }
-    EXPECT_EQ(names, (std::vector<std::string>{"gbuffer", "rsm", "shadow", "direct", "ao",
-                                               "indirect", "upsample", "composite"}));
+    EXPECT_EQ(names, (std::vector<std::string>{"gbuffer", "rsm", "shadow", "shadow.temporal",
+                                              "direct", "ao", "ao.temporal", "indirect",
+                                              "upsample", "indirect.temporal", "composite"}));
     // The second frame's barriers: each G-buffer target goes from being sampled by last frame's
     // compute passes back to an attachment, contents discarded.
     size_t found = 0;

@@ -71,6 +71,7 @@ public:
     // False on the first frame and after resetHistory(): previous() holds nothing to read.
     bool hasHistory(uint32_t history) const { return histories_[history].valid; }
     void resetHistory();
+    void resetHistory(uint32_t history) { histories_[history].valid = false; }
 
     void addPass(const std::string& name, PassKind kind, std::vector<ImageUse> uses,
                  RecordFn record);

@@ -40,13 +40,14 @@ graph::ImageRef addTemporalPass(PassSetup& s, EffectCache* cache, graph::ImageRe
                                 const GBufferAndRsm& in) {
     if (!cache) return raw;
     const vk::Pipeline pipeline =
-        s.computePipeline("temporal.comp", 4, 2, sizeof(shader::TemporalConstants));
+        s.computePipeline("temporal.comp", 5, 2, sizeof(shader::TemporalConstants));
     using graph::FrameGraph;
     using graph::Use;
     const graph::ImageRef value = FrameGraph::current(cache->value);
     s.graph.addPass(
         cache->name + ".temporal", graph::PassKind::Compute,
         {{in.gbuffer.position, Use::Sampled},
+         {in.gbuffer.normal, Use::Sampled},
          {raw, Use::Sampled},
          {FrameGraph::previous(cache->value), Use::Sampled},
          {FrameGraph::previous(cache->meta), Use::Sampled},
@@ -56,11 +57,12 @@ graph::ImageRef addTemporalPass(PassSetup& s, EffectCache* cache, graph::ImageRe
             vk::Descriptors()
                 .uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size)
                 .sampledImage(1, pc.image(in.gbuffer.position).view, s.nearestSampler)
-                .sampledImage(2, pc.image(raw).view, s.nearestSampler)
-                .sampledImage(3, pc.image(FrameGraph::previous(cache->value)).view, s.linearSampler)
-                .sampledImage(4, pc.image(FrameGraph::previous(cache->meta)).view, s.nearestSampler)
-                .storageImage(5, pc.image(FrameGraph::current(cache->value)).view)
-                .storageImage(6, pc.image(FrameGraph::current(cache->meta)).view)
+                .sampledImage(2, pc.image(in.gbuffer.normal).view, s.nearestSampler)
+                .sampledImage(3, pc.image(raw).view, s.nearestSampler)
+                .sampledImage(4, pc.image(FrameGraph::previous(cache->value)).view, s.linearSampler)
+                .sampledImage(5, pc.image(FrameGraph::previous(cache->meta)).view, s.nearestSampler)
+                .storageImage(6, pc.image(FrameGraph::current(cache->value)).view)
+                .storageImage(7, pc.image(FrameGraph::current(cache->meta)).view)
                 .push(s.ctx, pc.cmd, pipeline);
             shader::TemporalConstants constants{cacheConstants(s, cache)};
             vk::dispatch(pc.cmd, pipeline, s.size.width, s.size.height, constants);

@@ -37,11 +37,11 @@ void main() {
         return;
     }
     vec3 p = position.xyz;
-    if (converged(pixel, p, constants.cache)) {
+    vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
+    if (converged(pixel, p, n, constants.cache)) {
         imageStore(aoImage, pixel, vec4(0.0)); // alpha 0: skipped, the cache holds the value
         return;
     }
-    vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     float radius = constants.pattern.z * constants.pattern.y;
     float radiusPixels = radius * pixelsPerUnit(viewDepth(p));
     float rotation = pixelRotation(pixel) + constants.pattern.x;

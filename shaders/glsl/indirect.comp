@@ -33,7 +33,8 @@ void main() {
     for (int j = 0; j < 4 && allConverged; ++j) {
         ivec2 q = min(source + ivec2(j & 1, j >> 1), ivec2(frame.viewport.xy) - 1);
         vec4 w = texelFetch(gbufferPosition, q, 0);
-        allConverged = w.w == 0.0 || converged(q, w.xyz, constants.cache);
+        allConverged = w.w == 0.0 ||
+                       converged(q, w.xyz, texelFetch(gbufferNormal, q, 0).xyz, constants.cache);
     }
     if (allConverged) {
         imageStore(halfIndirect, pixel, vec4(0.0));

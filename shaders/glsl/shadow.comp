@@ -50,11 +50,11 @@ void main() {
         imageStore(shadowImage, pixel, vec4(1.0));
         return;
     }
-    if (converged(pixel, position.xyz, constants.cache)) {
+    vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
+    if (converged(pixel, position.xyz, n, constants.cache)) {
         imageStore(shadowImage, pixel, vec4(0.0)); // alpha 0: skipped, the cache holds the value
         return;
     }
-    vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     // Normal-offset lookup: a surface the light grazes covers less than a texel of the map.
     float texelAngle = 2.0 * frame.lightFrustum.z / shadowMapSize();
     float texelAtP = distance(position.xyz, frame.lightPosition.xyz) * texelAngle;

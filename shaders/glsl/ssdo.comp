@@ -37,11 +37,11 @@ void main() {
         return;
     }
     vec3 p = position.xyz;
-    if (converged(pixel, p, constants.cache)) {
+    vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
+    if (converged(pixel, p, n, constants.cache)) {
         imageStore(ssdoImage, pixel, vec4(0.0)); // alpha 0: skipped, the cache holds the value
         return;
     }
-    vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     vec3 albedo = texelFetch(gbufferAlbedo, pixel, 0).rgb;
     float rMax = constants.pattern.z * constants.pattern.y;
     float patchArea = PI * rMax * rMax / float(SAMPLES);

@@ -4,7 +4,7 @@
 // turned and scaled sampling pattern, is blended with the reprojected history V_{t-1}.
 // Thesis rule: confidence = 1 - saturate(|V_{t-1} - V_t|) / (1 + bias) (4),
 // V = confidence V_{t-1} + (1 - confidence) V_t (5). Running mean (the principled
-// alternative): V = H + (V_t - H) / (n + 1), with H the history clamped to the range of this
+// alternative): V = H + (V_t - H) / (n + 1), with H the history clamped to the spread of this
 // frame's values around the pixel. A pixel the effect skipped (converged) keeps its history; a
 // disoccluded pixel starts over from V_t. The refresh tile was computed although converged, and
 // its fresh value is blended in like any other, which pulls back what the bilinear resampling
@@ -16,11 +16,12 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
 layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
-layout(set = 0, binding = 2) uniform sampler2D current; // a = 1 computed this frame, 0 skipped
-layout(set = 0, binding = 3) uniform sampler2D historyValue; // linear filtering
-layout(set = 0, binding = 4) uniform sampler2D historyMeta;
-layout(set = 0, binding = 5, rgba16f) uniform writeonly image2D newValue;
-layout(set = 0, binding = 6, rgba32f) uniform writeonly image2D newMeta;
+layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
+layout(set = 0, binding = 3) uniform sampler2D current; // a = 1 computed this frame, 0 skipped
+layout(set = 0, binding = 4) uniform sampler2D historyValue; // linear filtering
+layout(set = 0, binding = 5) uniform sampler2D historyMeta;
+layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D newValue;
+layout(set = 0, binding = 7, rgba32f) uniform writeonly image2D newMeta;
 layout(push_constant) uniform TemporalBlock { TemporalConstants constants; };
 
 #include "screen_space.glsl"
@@ -37,7 +38,7 @@ void main() {
     }
     CacheConstants cache = constants.cache;
     vec4 now = texelFetch(current, pixel, 0);
-    Reprojection r = reproject(position.xyz, cache);
+    Reprojection r = reproject(position.xyz, texelFetch(gbufferNormal, pixel, 0).xyz, cache);
     vec3 history = r.valid ? texture(historyValue, r.uv).rgb : vec3(0.0);
     vec3 value;
     float count;
@@ -53,16 +54,26 @@ void main() {
         value = confidence * history + (1.0 - confidence) * now.rgb;
         count = r.count + 1.0;
     } else {
-        vec3 low = now.rgb, high = now.rgb;
+        // The history is clamped to this frame's values around the pixel, widened to their
+        // mean +- 2.5 standard deviations: a few samples a frame are noisy, and a box of their
+        // bare range would drag the history towards that noise.
+        vec3 sum = vec3(0.0), sumSquares = vec3(0.0);
+        float n = 0.0;
         for (int y = -1; y <= 1; ++y)
             for (int x = -1; x <= 1; ++x) {
                 ivec2 q = clamp(pixel + ivec2(x, y), ivec2(0), ivec2(frame.viewport.xy) - 1);
                 vec4 neighbour = texelFetch(current, q, 0);
                 if (neighbour.a < 0.5) continue;
-                low = min(low, neighbour.rgb);
-                high = max(high, neighbour.rgb);
+                sum += neighbour.rgb;
+                sumSquares += neighbour.rgb * neighbour.rgb;
+                n += 1.0;
             }
-        vec3 clamped = clamp(history, low, high);
+        vec3 mean = sum / n;
+        vec3 deviation = sqrt(max(sumSquares / n - mean * mean, vec3(0.0)));
+        // A converged pixel computed again (the refresh tile) is not clamped at all.
+        vec3 clamped = r.count >= float(cache.state.y)
+                           ? history
+                           : clamp(history, mean - 2.5 * deviation, mean + 2.5 * deviation);
         value = clamped + (now.rgb - clamped) / (r.count + 1.0);
         count = r.count + 1.0;
     }

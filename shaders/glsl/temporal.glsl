@@ -1,7 +1,7 @@
 // Reverse reprojection into an effect's history (thesis 3.1.1) and the reuse test (3.1.2),
 // shared by the effect passes (to skip converged pixels) and the temporal passes (to blend).
 // Needs: frame, historyMeta (last frame's world position in xyz, rotation count in w),
-// screen_space.glsl.
+// gbufferNormal, screen_space.glsl.
 #ifndef SSGI_TEMPORAL_GLSL
 #define SSGI_TEMPORAL_GLSL
 
@@ -13,8 +13,9 @@ struct Reprojection {
 
 // C = P_{t-1} V_{t-1} W_t (1), divided by w and mapped to texture space; valid where the
 // history holds a world position within epsilon of W_t (2-3). Epsilon is a number of pixel
-// footprints at W_t, so one setting serves every scene scale.
-Reprojection reproject(vec3 world, CacheConstants cache) {
+// footprints at W_t, so one setting serves every scene scale, widened where the surface is seen
+// at a grazing angle, since there neighbouring pixels lie farther apart than one footprint.
+Reprojection reproject(vec3 world, vec3 normal, CacheConstants cache) {
     Reprojection r = Reprojection(false, vec2(0.0), 0.0);
     if (cache.state.x == 0) return r;
     vec4 clip = frame.previousViewProjection * vec4(world, 1.0);
@@ -23,7 +24,8 @@ Reprojection reproject(vec3 world, CacheConstants cache) {
     if (any(lessThan(r.uv, vec2(0.0))) || any(greaterThanEqual(r.uv, vec2(1.0)))) return r;
     // Positions do not interpolate across edges: the nearest texel's is compared.
     vec4 meta = texelFetch(historyMeta, ivec2(r.uv * frame.viewport.xy), 0);
-    float epsilon = cache.accumulation.y / pixelsPerUnit(viewDepth(world));
+    float facing = abs(dot(normal, normalize(frame.cameraPosition.xyz - world)));
+    float epsilon = cache.accumulation.y / (pixelsPerUnit(viewDepth(world)) * max(facing, 0.1));
     r.valid = meta.w > 0.0 && distance(meta.xyz, world) <= epsilon;
     r.count = r.valid ? meta.w : 0.0;
     return r;
@@ -37,8 +39,8 @@ bool inRefreshTile(ivec2 pixel, CacheConstants cache) {
 }
 
 // A converged pixel reuses its cached value instead of computing the effect again.
-bool converged(ivec2 pixel, vec3 world, CacheConstants cache) {
-    Reprojection r = reproject(world, cache);
+bool converged(ivec2 pixel, vec3 world, vec3 normal, CacheConstants cache) {
+    Reprojection r = reproject(world, normal, cache);
     return r.valid && r.count >= float(cache.state.y) && !inRefreshTile(pixel, cache);
 }
 

@@ -36,11 +36,11 @@ void main() {
         return;
     }
     vec3 p = position.xyz;
-    if (converged(pixel, p, constants.cache)) {
+    vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
+    if (converged(pixel, p, n, constants.cache)) {
         imageStore(indirectImage, pixel, vec4(0.0));
         return;
     }
-    vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     // A neighbour is compatible within a few pixels' world footprint, on p's plane.
     float footprint = 1.0 / pixelsPerUnit(viewDepth(p));
     ivec2 halfSize = constants.target.xy; // half-res samples skipped this frame are not used
