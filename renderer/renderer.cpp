@@ -132,11 +132,13 @@ void Renderer::renderFrame(const Camera& camera) {
     updateUniforms(camera);
     ctx_.submitAndWait([&](VkCommandBuffer cmd) { graph_->record(cmd); });
     graph_->endFrame();
+    setup_->rsmStale = false;
     ++frameIndex_;
 }
 
 void Renderer::setLight(const SpotLight& light) {
     light_ = light;
+    setup_->rsmStale = true;
     for (EffectCache& cache : setup_->caches)
         if (cache.lightDependent) {
             graph_->resetHistory(cache.value);

@@ -29,8 +29,8 @@ uint32_t FrameGraph::addResource(const std::string& name, VkFormat format, VkExt
 }
 
 ImageRef FrameGraph::createImage(const std::string& name, VkFormat format, VkExtent2D extent,
-                                 VkImageUsageFlags usage) {
-    return {ImageRef::Kind::Plain, addResource(name, format, extent, usage, true)};
+                                 VkImageUsageFlags usage, bool persistent) {
+    return {ImageRef::Kind::Plain, addResource(name, format, extent, usage, !persistent)};
 }
 
 uint32_t FrameGraph::createHistory(const std::string& name, VkFormat format, VkExtent2D extent,
@@ -70,8 +70,8 @@ ImageRef FrameGraph::find(const std::string& name) const {
 }
 
 void FrameGraph::addPass(const std::string& name, PassKind kind, std::vector<ImageUse> uses,
-                         RecordFn record) {
-    passes_.push_back({name, kind, std::move(uses), std::move(record)});
+                         RecordFn record, std::function<bool()> enabled) {
+    passes_.push_back({name, kind, std::move(uses), std::move(record), std::move(enabled)});
 }
 
 void FrameGraph::record(VkCommandBuffer cmd) {
@@ -90,6 +90,11 @@ void FrameGraph::record(VkCommandBuffer cmd) {
     lastBarriers_.clear();
     for (uint32_t p = 0; p < passes_.size(); ++p) {
         const Pass& pass = passes_[p];
+        if (pass.enabled && !pass.enabled()) {
+            vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queryPool_, 2 * p);
+            vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queryPool_, 2 * p + 1);
+            continue;
+        }
         std::vector<VkImageMemoryBarrier2> barriers;
         for (const ImageUse& use : pass.uses) {
             const uint32_t id = resolve(use.image);

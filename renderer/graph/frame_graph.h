@@ -59,8 +59,9 @@ public:
     FrameGraph& operator=(const FrameGraph&) = delete;
 
     // An image whose contents live within one frame: the graph discards them at its first use.
+    // A persistent image keeps its contents from frame to frame (a pass may skip rewriting it).
     ImageRef createImage(const std::string& name, VkFormat format, VkExtent2D extent,
-                         VkImageUsageFlags usage);
+                         VkImageUsageFlags usage, bool persistent = false);
     // A history pair: previous() is last frame's current(); contents are never discarded.
     uint32_t createHistory(const std::string& name, VkFormat format, VkExtent2D extent,
                            VkImageUsageFlags usage);
@@ -73,8 +74,10 @@ public:
     void resetHistory();
     void resetHistory(uint32_t history) { histories_[history].valid = false; }
 
+    // `enabled`, when given, is asked each frame; a pass it turns off records nothing, touches
+    // none of its images, and reports 0 ms.
     void addPass(const std::string& name, PassKind kind, std::vector<ImageUse> uses,
-                 RecordFn record);
+                 RecordFn record, std::function<bool()> enabled = {});
 
     // Records every pass of one frame (barriers, labels, timestamps) into cmd.
     void record(VkCommandBuffer cmd);
@@ -106,6 +109,7 @@ private:
         PassKind kind;
         std::vector<ImageUse> uses;
         RecordFn record;
+        std::function<bool()> enabled;
     };
     uint32_t resolve(ImageRef ref) const;
     uint32_t addResource(const std::string& name, VkFormat format, VkExtent2D extent,

@@ -40,6 +40,8 @@ struct PassSetup {
     float patternRotation = 0.0f;
     float patternScale = 1.0f;
     std::deque<EffectCache> caches; // empty when caching is off
+    // With the cache on, the RSM is drawn again only when the light changes.
+    bool rsmStale = true;
 
     // A compute pipeline whose bindings are set 0's: binding 0 the frame uniforms, then
     // `sampled` combined image samplers, then `storage` storage images.
@@ -53,8 +55,11 @@ struct PassSetup {
 struct SceneTargets {
     graph::ImageRef position, normal, third, depth; // third: albedo (G-buffer) or flux (RSM)
 };
+// `enabled` (optional) is asked each frame whether to draw; the targets of a pass that may be
+// skipped persist from frame to frame.
 SceneTargets addScenePass(PassSetup& setup, const std::string& name, const std::string& shader,
-                          VkExtent2D extent, VkFormat thirdFormat);
+                          VkExtent2D extent, VkFormat thirdFormat,
+                          std::function<bool()> enabled = {});
 
 // The temporal cache of an effect, when caching is on (nullptr otherwise).
 EffectCache* createCache(PassSetup& setup, const std::string& name, const std::string& tileSetting,
@@ -66,7 +71,8 @@ shader::CacheConstants cacheConstants(const PassSetup& setup, const EffectCache*
 
 // gbuffer: world position (w = 1 on geometry), normal, albedo, depth.
 SceneTargets addGBufferPass(PassSetup& setup);
-// rsm: light-view world position, normal, reflected flux, depth.
+// rsm: light-view world position, normal, reflected flux, depth. Drawn only while
+// `setup.rsmStale` says the light moved since it was last drawn (or there is no cache).
 SceneTargets addRsmPass(PassSetup& setup);
 
 struct GBufferAndRsm {

@@ -6,19 +6,20 @@
 namespace ssgi {
 
 SceneTargets addScenePass(PassSetup& s, const std::string& name, const std::string& shader,
-                          VkExtent2D extent, VkFormat thirdFormat) {
+                          VkExtent2D extent, VkFormat thirdFormat, std::function<bool()> enabled) {
+    const bool persistent = bool(enabled);
     const VkImageUsageFlags color =
         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     SceneTargets t;
-    t.position =
-        s.graph.createImage(name + ".position", VK_FORMAT_R32G32B32A32_SFLOAT, extent, color);
-    t.normal = s.graph.createImage(name + ".normal", VK_FORMAT_R16G16B16A16_SFLOAT, extent, color);
+    auto target = [&](const std::string& suffix, VkFormat format, VkImageUsageFlags usage) {
+        return s.graph.createImage(name + suffix, format, extent, usage, persistent);
+    };
+    t.position = target(".position", VK_FORMAT_R32G32B32A32_SFLOAT, color);
+    t.normal = target(".normal", VK_FORMAT_R16G16B16A16_SFLOAT, color);
     t.third =
-        s.graph.createImage(name + (thirdFormat == VK_FORMAT_R8G8B8A8_UNORM ? ".albedo" : ".flux"),
-                            thirdFormat, extent, color);
-    t.depth = s.graph.createImage(name + ".depth", VK_FORMAT_D32_SFLOAT, extent,
-                                  VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT |
-                                      VK_IMAGE_USAGE_SAMPLED_BIT);
+        target(thirdFormat == VK_FORMAT_R8G8B8A8_UNORM ? ".albedo" : ".flux", thirdFormat, color);
+    t.depth = target(".depth", VK_FORMAT_D32_SFLOAT,
+                     VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
 
     vk::GraphicsPipelineDesc desc;
     desc.vertexShader = shader + ".vert";
@@ -66,7 +67,8 @@ SceneTargets addScenePass(PassSetup& s, const std::string& name, const std::stri
             vkCmdSetScissor(pc.cmd, 0, 1, &scissor);
             s.scene.draw(pc.cmd, pipeline, s.frameUniforms.buffer, s.frameUniforms.size);
             vkCmdEndRendering(pc.cmd);
-        });
+        },
+        enabled);
     return t;
 }
 
