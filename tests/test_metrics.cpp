@@ -1,0 +1,287 @@
+// The error metrics on synthetic images whose answers are known, and the two programs of the
+// ground truth, `compare` and `reference`, as a user runs them.
+#include "image_io.h"
+#include "metrics/error_map.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+using namespace ssgi;
+using namespace ssgi::metrics;
+
+namespace {
+
+std::string sourcePath(const std::string& relative) {
+    return std::string(SSGI_SOURCE_DIR) + "/" + relative;
+}
+
+Image constant(uint32_t w, uint32_t h, float value) {
+    return {w, h, std::vector<float>(size_t(w) * h * 4, value)};
+}
+
+// Smoothly varying colours with some structure, so SSIM has variance to compare.
+Image pattern(uint32_t w, uint32_t h) {
+    Image image = constant(w, h, 1.0f);
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w; ++x)
+            for (size_t c = 0; c < 3; ++c)
+                image.rgba[(size_t(y) * w + x) * 4 + c] =
+                    0.5f + 0.4f * std::sin(0.3f * float(x) + float(c)) * std::cos(0.2f * float(y));
+    return image;
+}
+
+TEST(Metrics, IdenticalImagesHaveNoErrorAndSsimOne) {
+    const Image a = pattern(40, 30);
+    const Figures f = errorFigures(a, a, Mask(), ssimMap(a, a));
+    EXPECT_EQ(f.pixels, 1200u);
+    EXPECT_EQ(f.relMse, 0.0);
+    EXPECT_EQ(f.rmse, 0.0);
+    EXPECT_EQ(f.mae, 0.0);
+    EXPECT_NEAR(f.ssim, 1.0, 1e-12);
+}
+
+// Test 0.6 against reference 0.5 everywhere: RMSE = MAE = 0.1, relMSE = 0.01 / (0.25 + 0.01),
+// and SSIM is its luminance term alone, (2 * 0.5 * 0.6 + C1) / (0.5^2 + 0.6^2 + C1), since
+// neither image varies.
+TEST(Metrics, ConstantOffsetGivesKnownFigures) {
+    const Image reference = constant(16, 16, 0.5f), test = constant(16, 16, 0.6f);
+    const Figures f = errorFigures(test, reference, Mask(), ssimMap(test, reference));
+    EXPECT_NEAR(f.rmse, 0.1, 1e-6);
+    EXPECT_NEAR(f.mae, 0.1, 1e-6);
+    EXPECT_NEAR(f.relMse, 0.01 / 0.26, 1e-6);
+    const double c1 = 1e-4;
+    EXPECT_NEAR(f.ssim, (2 * 0.5 * 0.6 + c1) / (0.25 + 0.36 + c1), 1e-6);
+}
+
+TEST(Metrics, SsimFallsWhenStructureDiffers) {
+    const Image a = pattern(32, 32);
+    Image checker = constant(32, 32, 0.5f);
+    for (size_t i = 0; i < checker.pixels(); ++i)
+        for (size_t c = 0; c < 3; ++c)
+            checker.rgba[4 * i + c] = ((i % 32) + (i / 32)) % 2 ? 0.9f : 0.1f;
+    const Figures f = errorFigures(checker, a, Mask(), ssimMap(checker, a));
+    EXPECT_LT(f.ssim, 0.2);
+    EXPECT_GT(f.relMse, 0.05);
+}
+
+TEST(Metrics, EdgeBandCountsTheBorderPixels) {
+    EXPECT_EQ(countInside(edgeBandMask(40, 30, 3)), 40u * 30u - 34u * 24u);
+    EXPECT_EQ(countInside(edgeBandMask(40, 30, 1)), 2u * 40u + 2u * 28u);
+    EXPECT_EQ(countInside(edgeBandMask(40, 30, 15)), 1200u) << "a band of half the height";
+    EXPECT_EQ(countInside(edgeBandMask(40, 30, 0)), 0u);
+    const Mask band = edgeBandMask(40, 30, 2);
+    EXPECT_TRUE(band[0]);
+    EXPECT_TRUE(band[size_t(29) * 40 + 38]);
+    EXPECT_FALSE(band[size_t(2) * 40 + 2]);
+}
+
+// Errors only in the right half: a mask of the left half sees none, an empty region is NaN.
+TEST(Metrics, MaskedFiguresCountOnlyTheirPixels) {
+    const Image reference = constant(20, 10, 0.5f);
+    Image test = reference, maskImage = constant(20, 10, 0.0f);
+    for (uint32_t y = 0; y < 10; ++y)
+        for (uint32_t x = 0; x < 20; ++x) {
+            const size_t i = size_t(y) * 20 + x;
+            if (x >= 10) test.rgba[4 * i] = 0.9f; // red channel only
+            maskImage.rgba[4 * i] = x < 10 ? 1.0f : 0.2f;
+        }
+    const Mask left = thresholdMask(maskImage);
+    EXPECT_EQ(countInside(left), 100u);
+    const std::vector<double> ssim = ssimMap(test, reference);
+    const Figures inside = errorFigures(test, reference, left, ssim);
+    EXPECT_EQ(inside.pixels, 100u);
+    EXPECT_EQ(inside.rmse, 0.0);
+    const Figures whole = errorFigures(test, reference, Mask(), ssim);
+    // Half the pixels, one channel of three, off by 0.4: mean squared error 0.16 / 6.
+    EXPECT_NEAR(whole.rmse, std::sqrt(0.16 / 6.0), 1e-6);
+    EXPECT_NEAR(whole.mae, 0.4 / 6.0, 1e-6);
+    const Figures none = errorFigures(test, reference, Mask(200, 0), ssim);
+    EXPECT_EQ(none.pixels, 0u);
+    EXPECT_TRUE(std::isnan(none.relMse));
+    EXPECT_THROW(errorFigures(constant(4, 4, 0), reference, Mask(), {}), std::invalid_argument);
+}
+
+TEST(Metrics, ErrorMapRunsDarkToLightWithTheError) {
+    const Image reference = constant(4, 1, 0.5f);
+    Image test = reference;
+    const std::array<float, 4> offsets = {0.0f, 0.005f, 0.05f, 5.0f};
+    for (size_t i = 0; i < 4; ++i)
+        for (size_t c = 0; c < 3; ++c)
+            test.rgba[4 * i + c] += offsets[i];
+    const std::vector<float> map = errorMap(test, reference);
+    float previous = -1.0f;
+    for (size_t i = 0; i < 4; ++i) {
+        const float lightness =
+            0.2126f * map[4 * i] + 0.7152f * map[4 * i + 1] + 0.0722f * map[4 * i + 2];
+        EXPECT_GT(lightness, previous) << "pixel " << i;
+        previous = lightness;
+    }
+    EXPECT_EQ(glm::vec3(map[0], map[1], map[2]), errorColor(0.0)) << "no error is black";
+    EXPECT_EQ(glm::vec3(map[12], map[13], map[14]), errorColor(1.0)) << "beyond 100%: the top";
+    for (double t = 0.0; t < 1.0; t += 0.01) {
+        const glm::vec3 a = errorColor(t), b = errorColor(t + 0.01);
+        EXPECT_LT(0.2126f * a.r + 0.7152f * a.g + 0.0722f * a.b,
+                  0.2126f * b.r + 0.7152f * b.g + 0.0722f * b.b)
+            << "lightness must rise at t = " << t;
+    }
+}
+
+// The programs as a user runs them; they sit beside the tests' folder in the build tree.
+class Program : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir = fs::temp_directory_path() / ("ssgi-programs-" + std::to_string(getpid()));
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+    }
+    void TearDown() override { fs::remove_all(dir); }
+    // Runs `program` (compare or reference) with `arguments`; stdout and stderr in `output`.
+    int run(const std::string& program, const std::string& arguments, std::string& output) {
+        const fs::path binary =
+            fs::read_symlink("/proc/self/exe").parent_path().parent_path() / program;
+        if (!fs::exists(binary)) ADD_FAILURE() << binary << " is not built";
+        FILE* pipe = popen((binary.string() + " " + arguments + " 2>&1").c_str(), "r");
+        std::array<char, 4096> buffer;
+        output.clear();
+        while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe))
+            output.append(buffer.data(), n);
+        const int status = pclose(pipe);
+        return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    }
+    std::string image(const std::string& name, const Image& image) {
+        writeImage((dir / name).string(), image.width, image.height, image.rgba);
+        return (dir / name).string();
+    }
+    fs::path dir;
+};
+
+TEST_F(Program, CompareWritesTableJsonAndErrorMap) {
+    const std::string a = image("a.exr", constant(32, 24, 0.75f));
+    const std::string b = image("b.exr", constant(32, 24, 0.5f));
+    Image maskImage = constant(32, 24, 0.0f);
+    for (size_t i = 0; i < maskImage.pixels(); ++i) {
+        maskImage.rgba[4 * i] = i < 32 ? 1.0f : 0.0f; // the top row
+        maskImage.rgba[4 * i + 3] = 1.0f;             // opaque: PNG readers premultiply
+    }
+    const std::string mask = image("mask.png", maskImage);
+    const std::string json = (dir / "out.json").string(), map = (dir / "map.png").string();
+    std::string output;
+    ASSERT_EQ(run("compare",
+                  a + " " + b + " --edge-band 2 --mask " + mask + " --json " + json +
+                      " --error-map " + map,
+                  output),
+              0)
+        << output;
+    EXPECT_NE(output.find("relMSE"), std::string::npos) << output;
+    nlohmann::json j;
+    std::ifstream(json) >> j;
+    ASSERT_EQ(j["regions"].size(), 3u);
+    EXPECT_EQ(j["regions"][0]["pixels"], 32 * 24);
+    EXPECT_NEAR(j["regions"][0]["rmse"].get<double>(), 0.25, 1e-3); // half floats in the EXR
+    EXPECT_EQ(j["regions"][1]["pixels"], 32 * 24 - 28 * 20);
+    EXPECT_EQ(j["regions"][2]["pixels"], 32);
+    uint32_t w = 0, h = 0;
+    readImage(map, w, h);
+    EXPECT_EQ(w, 32u);
+    EXPECT_EQ(h, 24u);
+}
+
+TEST_F(Program, CompareNamesBadInput) {
+    const std::string a = image("a.exr", constant(32, 24, 0.5f));
+    const std::string small = image("small.exr", constant(16, 24, 0.5f));
+    std::string output;
+    EXPECT_EQ(run("compare", a + " " + (dir / "missing.exr").string(), output), 2);
+    EXPECT_NE(output.find("error: " + (dir / "missing.exr").string()), std::string::npos) << output;
+    EXPECT_EQ(run("compare", a + " " + small, output), 2);
+    EXPECT_NE(output.find(small + ": 16x24 differs"), std::string::npos) << output;
+    EXPECT_EQ(run("compare", a + " " + a + " --mask " + small, output), 2);
+    EXPECT_NE(output.find(small), std::string::npos) << output;
+    EXPECT_EQ(run("compare", a + " " + a + " --edge-band 0", output), 2);
+    EXPECT_NE(output.find("--edge-band"), std::string::npos) << output;
+    EXPECT_EQ(run("compare", a, output), 2);
+    EXPECT_EQ(run("compare", a + " " + a + " --error-map " + (dir / "map.jpg").string(), output),
+              2);
+    EXPECT_FALSE(fs::exists(dir / "map.jpg"));
+}
+
+// Every scene in scenes/ renders, to an image that is neither black nor NaN.
+TEST_F(Program, ReferenceRendersEveryScene) {
+    size_t scenes = 0;
+    for (const auto& entry : fs::directory_iterator(sourcePath("scenes"))) {
+        if (entry.path().extension() != ".json") continue;
+        ++scenes;
+        const std::string exr = (dir / (entry.path().stem().string() + ".exr")).string();
+        std::string output;
+        ASSERT_EQ(
+            run("reference",
+                entry.path().string() + " --size 32x24 --spp 2 --quiet --no-cache --output " + exr,
+                output),
+            0)
+            << entry.path() << "\n"
+            << output;
+        uint32_t w = 0, h = 0;
+        const std::vector<float> pixels = readImage(exr, w, h);
+        ASSERT_EQ(w * h, 32u * 24u);
+        double sum = 0.0;
+        for (size_t i = 0; i < pixels.size(); i += 4)
+            sum += pixels[i] + pixels[i + 1] + pixels[i + 2];
+        EXPECT_TRUE(std::isfinite(sum)) << entry.path();
+        EXPECT_GT(sum, 0.0) << entry.path() << " rendered black";
+    }
+    EXPECT_GE(scenes, 9u);
+}
+
+TEST_F(Program, ReferenceSecondRunComesFromTheCache) {
+    const std::string common = sourcePath("scenes/cornell-box.json") +
+                               " --mode ao --size 24x24 --spp 4 --quiet --cache " +
+                               (dir / "cache").string() + " --output ";
+    std::string output;
+    ASSERT_EQ(run("reference",
+                  common + (dir / "a.exr").string() + " --png " + (dir / "a.png").string(), output),
+              0)
+        << output;
+    EXPECT_NE(output.find("rendered"), std::string::npos) << output;
+    ASSERT_EQ(run("reference", common + (dir / "b.exr").string(), output), 0) << output;
+    EXPECT_NE(output.find("from the cache"), std::string::npos) << output;
+    uint32_t w, h;
+    EXPECT_EQ(readImage((dir / "a.exr").string(), w, h), readImage((dir / "b.exr").string(), w, h));
+    EXPECT_TRUE(fs::exists(dir / "a.png"));
+}
+
+TEST_F(Program, ReferenceNamesBadInput) {
+    const std::string scene = sourcePath("scenes/cornell-box.json");
+    const std::string out =
+        " --quiet --no-cache --size 8x8 --spp 1 --output " + (dir / "x.exr").string();
+    struct Case {
+        std::string arguments, message;
+    };
+    const Case cases[] = {
+        {(dir / "missing.json").string() + out, (dir / "missing.json").string()},
+        {scene + out + " --mode glossy", "--mode: 'glossy'"},
+        {scene + out + " --mode direct --jitter", "--jitter"},
+        {scene + out + " --spp 0", "--spp"},
+        {scene + out + " --size 0x8", "--size"},
+        {scene + out + " --noise 2", "--noise"},
+        {scene + out + " --time 1", "camera_path"},
+        {scene + out + " --frobnicate", "--frobnicate"},
+        {scene + " --quiet --output " + (dir / "x.png").string(), "--output"},
+    };
+    for (const Case& c : cases) {
+        std::string output;
+        EXPECT_EQ(run("reference", c.arguments, output), 2) << c.arguments << "\n" << output;
+        EXPECT_NE(output.find("error: "), std::string::npos) << output;
+        EXPECT_NE(output.find(c.message), std::string::npos) << c.arguments << "\n" << output;
+    }
+    EXPECT_FALSE(fs::exists(dir / "x.exr"));
+    EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+
+} // namespace
