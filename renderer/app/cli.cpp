@@ -1,0 +1,109 @@
+#include "app/cli.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+
+namespace ssgi::cli {
+
+const char* kCommonUsage =
+    R"(  SCENE                 scene file (.json) or glTF (.gltf/.glb); default scenes/cornell-box.json
+  --size WxH            image size (default 512x512)
+  --set KEY=VALUE       override a method setting (repeatable; see the README's settings)
+  --device NAME         use the Vulkan device whose name contains NAME (or SSGI_DEVICE)
+  --validation          enable the Khronos validation layer with synchronization validation
+                        (or SSGI_VALIDATION=1); any message makes the exit status non-zero
+)";
+
+std::string optionValue(int argc, char** argv, int& i) {
+    if (i + 1 >= argc) throw InputError(std::string(argv[i]) + " needs a value");
+    return argv[++i];
+}
+
+uint32_t parseCount(const std::string& option, const std::string& text) {
+    char* end = nullptr;
+    long long v = std::strtoll(text.c_str(), &end, 10);
+    if (text.empty() || *end != '\0' || v < 0 || v > 1000000)
+        throw InputError(option + ": '" + text + "' is not a whole number in 0..1000000");
+    return uint32_t(v);
+}
+
+bool parseCommonArg(int argc, char** argv, int& i, CommonArgs& a) {
+    const std::string arg = argv[i];
+    if (arg == "--size") {
+        std::string v = optionValue(argc, argv, i);
+        size_t x = v.find('x');
+        if (x == std::string::npos) throw InputError("--size: expected WxH, got '" + v + "'");
+        a.width = parseCount("--size", v.substr(0, x));
+        a.height = parseCount("--size", v.substr(x + 1));
+    } else if (arg == "--set") {
+        std::string v = optionValue(argc, argv, i);
+        size_t eq = v.find('=');
+        char* end = nullptr;
+        double number = eq == std::string::npos ? 0.0 : std::strtod(v.c_str() + eq + 1, &end);
+        if (eq == std::string::npos || eq + 1 == v.size() || *end != '\0')
+            throw InputError("--set: expected KEY=NUMBER, got '" + v + "'");
+        a.settings.push_back({v.substr(0, eq), number});
+    } else if (arg == "--device") {
+        a.device = optionValue(argc, argv, i);
+    } else if (arg == "--validation") {
+        a.validation = true;
+    } else if (arg.rfind("--", 0) == 0) {
+        return false;
+    } else if (a.scene.empty()) {
+        a.scene = arg;
+    } else {
+        throw InputError("more than one scene given: " + a.scene + " and " + arg);
+    }
+    return true;
+}
+
+void finishCommonArgs(CommonArgs& a) {
+    if (a.scene.empty()) {
+        a.scene = "scenes/cornell-box.json";
+        if (!fs::exists(a.scene))
+            a.scene = std::string(SSGI_SOURCE_DIR) + "/scenes/cornell-box.json";
+    }
+    if (const char* env = std::getenv("SSGI_DEVICE"); env && a.device.empty()) a.device = env;
+#ifndef NDEBUG
+    a.validation = true; // debug builds always validate
+#endif
+    if (const char* env = std::getenv("SSGI_VALIDATION"); env && std::string(env) == "1")
+        a.validation = true;
+}
+
+Scene loadSceneWithSettings(const CommonArgs& args) {
+    Scene scene = loadScene(args.scene);
+    for (const auto& [key, value] : args.settings)
+        scene.settings[key] = checkSetting("--set", key, value);
+    return scene;
+}
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+void writeTextAtomically(const std::string& path, const std::string& text) {
+    const fs::path target(path);
+    std::error_code ec;
+    if (target.has_parent_path()) fs::create_directories(target.parent_path(), ec);
+    const fs::path tmp = target.parent_path() /
+                         (".tmp-" + std::to_string(getpid()) + "-" + target.filename().string());
+    {
+        std::ofstream out(tmp);
+        out << text;
+        if (!out) throw InputError(path + ": cannot write");
+    }
+    fs::rename(tmp, target, ec);
+    if (ec) {
+        fs::remove(tmp, ec);
+        throw InputError(path + ": cannot move the finished file into place");
+    }
+}
+
+} // namespace ssgi::cli

@@ -1,0 +1,40 @@
+// What the command-line programs share: the options every one of them takes (scene, size,
+// settings, device, validation), the checks on their values, and writing files whole.
+#pragma once
+
+#include "scene/scene.h"
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace ssgi::cli {
+
+struct CommonArgs {
+    std::string scene;
+    uint32_t width = 512, height = 512;
+    std::string device;
+    bool validation = false;
+    std::vector<std::pair<std::string, double>> settings; // --set, checked after loading
+};
+
+// Usage lines of the common options.
+extern const char* kCommonUsage;
+
+// Takes argv[i] (and its value, advancing i) when it is a common option or the scene; returns
+// false for anything else. Throws InputError for a malformed value.
+bool parseCommonArg(int argc, char** argv, int& i, CommonArgs& args);
+// Fills what was not given (default scene, SSGI_DEVICE, SSGI_VALIDATION, debug builds).
+void finishCommonArgs(CommonArgs& args);
+// The scene with the --set overrides applied and checked.
+Scene loadSceneWithSettings(const CommonArgs& args);
+
+// The value of option argv[i], advancing i; InputError when there is none.
+std::string optionValue(int argc, char** argv, int& i);
+uint32_t parseCount(const std::string& option, const std::string& text);
+
+double median(std::vector<double> values);
+// Writes text to a temporary beside `path`, then renames it into place.
+void writeTextAtomically(const std::string& path, const std::string& text);
+
+} // namespace ssgi::cli

@@ -1,0 +1,160 @@
+// walkthrough: renders a scene's camera path frame by frame, with the temporal cache on or off,
+// and writes every frame's per-pass GPU timings (CSV or JSON) and, on request, the frames.
+#include "app/cli.h"
+#include "image_io.h"
+#include "renderer.h"
+#include "scene/camera.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+using namespace ssgi;
+
+namespace {
+
+const char* kUsage = R"(usage: walkthrough SCENE [options]
+  --frames N            frames along the camera path (default 120), evenly spaced in time
+  --still               keep the camera at the path's first key (a still camera)
+  --cache 0|1           the temporal cache off or on (default: the scene's setting)
+  --timings FILE        per-frame, per-pass GPU milliseconds (.csv or .json)
+  --frames-dir DIR      write every frame as DIR/frame_NNNN.png
+)";
+
+struct Args {
+    cli::CommonArgs common;
+    uint32_t frames = 120;
+    bool still = false;
+    int cache = -1;
+    std::string timings, framesDir;
+};
+
+Args parseArgs(int argc, char** argv) {
+    Args a;
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        if (arg == "--help" || arg == "-h") {
+            std::cout << kUsage << cli::kCommonUsage;
+            std::exit(0);
+        } else if (arg == "--frames") {
+            a.frames = cli::parseCount(arg, cli::optionValue(argc, argv, i));
+            if (a.frames == 0) throw InputError("--frames: must be at least 1");
+        } else if (arg == "--still") {
+            a.still = true;
+        } else if (arg == "--cache") {
+            const std::string v = cli::optionValue(argc, argv, i);
+            if (v != "0" && v != "1") throw InputError("--cache: expected 0 or 1, got '" + v + "'");
+            a.cache = v == "1";
+        } else if (arg == "--timings") {
+            a.timings = cli::optionValue(argc, argv, i);
+            const std::string ext = fs::path(a.timings).extension().string();
+            if (ext != ".csv" && ext != ".json")
+                throw InputError("--timings: '" + a.timings + "' must end in .csv or .json");
+        } else if (arg == "--frames-dir") {
+            a.framesDir = cli::optionValue(argc, argv, i);
+        } else if (!cli::parseCommonArg(argc, argv, i, a.common)) {
+            throw InputError("unknown option " + arg + " (see walkthrough --help)");
+        }
+    }
+    if (a.cache >= 0) a.common.settings.push_back({"cache", double(a.cache)});
+    cli::finishCommonArgs(a.common);
+    return a;
+}
+
+int run(int argc, char** argv) {
+    const Args args = parseArgs(argc, argv);
+    const cli::CommonArgs& common = args.common;
+    const Scene scene = cli::loadSceneWithSettings(common);
+    if (scene.cameraPath.empty())
+        throw InputError(common.scene + ": the scene has no camera_path to walk");
+    vk::Context ctx({common.validation, common.device});
+    Renderer renderer(ctx, scene, {common.width, common.height, "final"});
+
+    const float duration = scene.cameraPath.keys.back().time;
+    std::vector<std::string> passNames;
+    std::map<std::string, std::vector<double>> perPass; // frame by frame
+    std::vector<double> totals;
+    for (uint32_t f = 0; f < args.frames; ++f) {
+        const float t = args.still || args.frames == 1 ? 0.0f : duration * f / (args.frames - 1);
+        renderer.renderFrame(cameraAt(scene.cameraPath, t));
+        double total = 0.0;
+        for (const auto& timing : renderer.timings()) {
+            if (!perPass.count(timing.name)) passNames.push_back(timing.name);
+            perPass[timing.name].push_back(timing.milliseconds);
+            total += timing.milliseconds;
+        }
+        totals.push_back(total);
+        if (!args.framesDir.empty()) {
+            char name[32];
+            std::snprintf(name, sizeof name, "frame_%04u.png", f);
+            writeImage((fs::path(args.framesDir) / name).string(), common.width, common.height,
+                       renderer.readImage("ldr"));
+        }
+        if (isatty(2)) std::fprintf(stderr, "\rframe %u/%u  %.1f ms", f + 1, args.frames, total);
+    }
+    if (isatty(2)) std::fprintf(stderr, "\n");
+
+    if (!args.timings.empty()) {
+        if (fs::path(args.timings).extension() == ".csv") {
+            std::ostringstream csv;
+            csv << "frame,pass,ms\n";
+            for (uint32_t f = 0; f < args.frames; ++f) {
+                for (const auto& name : passNames)
+                    csv << f << "," << name << "," << perPass[name][f] << "\n";
+                csv << f << ",total," << totals[f] << "\n";
+            }
+            cli::writeTextAtomically(args.timings, csv.str());
+        } else {
+            nlohmann::json j = {{"scene", common.scene},
+                                {"device", ctx.properties.deviceName},
+                                {"driver", ctx.driverName},
+                                {"width", common.width},
+                                {"height", common.height},
+                                {"frames", args.frames},
+                                {"cache", scene.setting("cache")},
+                                {"still", args.still},
+                                {"total_ms", totals}};
+            for (const auto& name : passNames)
+                j["passes"][name] = perPass[name];
+            cli::writeTextAtomically(args.timings, j.dump(1) + "\n");
+        }
+    }
+
+    // Medians over the frames after the first (which compiles pipelines and fills the caches).
+    auto afterFirst = [&](const std::vector<double>& v) {
+        return cli::median(std::vector<double>(v.begin() + (v.size() > 1), v.end()));
+    };
+    std::printf("walkthrough of %s: %u frames at %ux%u, cache %s, device %s\n",
+                common.scene.c_str(), args.frames, common.width, common.height,
+                scene.setting("cache") != 0.0 ? "on" : "off", ctx.properties.deviceName);
+    for (const auto& name : passNames)
+        std::printf("%-18s %10.3f ms\n", name.c_str(), afterFirst(perPass[name]));
+    std::printf("%-18s %10.3f ms  (medians after the first frame)\n", "total", afterFirst(totals));
+    if (ctx.validationMessageCount() > 0) {
+        std::fprintf(stderr, "error: the validation layer reported %u message(s)\n",
+                     ctx.validationMessageCount());
+        return 1;
+    }
+    return 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return run(argc, argv);
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 1;
+    }
+}
