@@ -69,6 +69,12 @@ ImageRef FrameGraph::find(const std::string& name) const {
     return {};
 }
 
+std::vector<std::pair<std::string, VkDeviceSize>> FrameGraph::imageMemory() const {
+    std::vector<std::pair<std::string, VkDeviceSize>> list;
+    for (const Resource& r : resources_) list.push_back({r.image.name, r.image.memorySize});
+    return list;
+}
+
 void FrameGraph::addPass(const std::string& name, PassKind kind, std::vector<ImageUse> uses,
                          RecordFn record, std::function<bool()> enabled) {
     passes_.push_back({name, kind, std::move(uses), std::move(record), std::move(enabled)});

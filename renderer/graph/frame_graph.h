@@ -92,6 +92,8 @@ public:
     // Copies an image to the host as RGBA float (depth: R = depth), after the last frame.
     std::vector<float> download(ImageRef ref);
     ImageRef find(const std::string& name) const;
+    // Every image the graph owns (history pairs as two), with the device memory it holds.
+    std::vector<std::pair<std::string, VkDeviceSize>> imageMemory() const;
 
 private:
     struct Resource {
