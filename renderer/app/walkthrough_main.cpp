@@ -22,7 +22,8 @@ namespace {
 
 const char* kUsage = R"(usage: walkthrough SCENE [options]
   --frames N            frames along the camera path (default 120), evenly spaced in time
-  --still               keep the camera at the path's first key (a still camera)
+  --still               keep the camera at the path's first key, or the scene's camera when
+                        it has no path (a still camera)
   --cache 0|1           the temporal cache off or on (default: the scene's setting)
   --timings FILE        per-frame, per-pass GPU milliseconds (.csv or .json)
   --frames-dir DIR      write every frame as DIR/frame_NNNN.png
@@ -72,18 +73,20 @@ int run(int argc, char** argv) {
     const Args args = parseArgs(argc, argv);
     const cli::CommonArgs& common = args.common;
     const Scene scene = cli::loadSceneWithSettings(common);
-    if (scene.cameraPath.empty())
-        throw InputError(common.scene + ": the scene has no camera_path to walk");
+    if (scene.cameraPath.empty() && !args.still)
+        throw InputError(common.scene + ": the scene has no camera_path to walk (--still "
+                                        "renders its camera)");
     vk::Context ctx({common.validation, common.device});
     Renderer renderer(ctx, scene, {common.width, common.height, "final"});
 
-    const float duration = scene.cameraPath.keys.back().time;
+    const float duration = scene.cameraPath.empty() ? 0.0f : scene.cameraPath.keys.back().time;
     std::vector<std::string> passNames;
     std::map<std::string, std::vector<double>> perPass; // frame by frame
     std::vector<double> totals;
     for (uint32_t f = 0; f < args.frames; ++f) {
         const float t = args.still || args.frames == 1 ? 0.0f : duration * f / (args.frames - 1);
-        renderer.renderFrame(cameraAt(scene.cameraPath, t));
+        renderer.renderFrame(scene.cameraPath.empty() ? scene.camera
+                                                      : cameraAt(scene.cameraPath, t));
         double total = 0.0;
         for (const auto& timing : renderer.timings()) {
             if (!perPass.count(timing.name)) passNames.push_back(timing.name);
