@@ -1,6 +1,7 @@
 #include "app/cli.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -81,6 +82,24 @@ Scene loadSceneWithSettings(const CommonArgs& args) {
     for (const auto& [key, value] : args.settings)
         scene.settings[key] = checkSetting("--set", key, value);
     return scene;
+}
+
+int guardedMain(int argc, char** argv, int (*run)(int, char**)) {
+    try {
+        return run(argc, argv);
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 1;
+    }
+}
+
+int validationStatus(uint32_t messages) {
+    if (messages == 0) return 0;
+    std::fprintf(stderr, "error: the validation layer reported %u message(s)\n", messages);
+    return 1;
 }
 
 double median(std::vector<double> v) {

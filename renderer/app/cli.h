@@ -33,6 +33,13 @@ Scene loadSceneWithSettings(const CommonArgs& args);
 std::string optionValue(int argc, char** argv, int& i);
 uint32_t parseCount(const std::string& option, const std::string& text);
 
+// Runs `run` and turns what it throws into the exit status, with `error: ...` on stderr: 2 for
+// bad input (InputError), 1 for anything else. Every program's main() is this.
+int guardedMain(int argc, char** argv, int (*run)(int, char**));
+// The exit status of a run whose validation layer reported `messages`: 1 (with a message)
+// when there were any, else 0.
+int validationStatus(uint32_t messages);
+
 double median(std::vector<double> values);
 // Writes text to a temporary beside `path`, then renames it into place.
 void writeTextAtomically(const std::string& path, const std::string& text);

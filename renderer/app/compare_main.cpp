@@ -1,6 +1,7 @@
 // compare: error figures of an image against a reference (relMSE, RMSE, mean absolute error,
 // SSIM) over the whole image, inside masks and inside a screen-edge band; a table on stdout,
 // every figure as JSON, and a false-colour error map.
+#include "app/cli.h"
 #include "image_io.h"
 #include "metrics/error_map.h"
 #include "scene/scene.h"
@@ -93,27 +94,6 @@ void requireSize(const Image& image, const std::string& path, const Image& like,
                          std::to_string(like.width) + "x" + std::to_string(like.height) + ")");
 }
 
-void writeTextAtomically(const std::string& path, const std::string& text) {
-    const fs::path target(path);
-    std::error_code ec;
-    if (target.has_parent_path()) fs::create_directories(target.parent_path(), ec);
-    const fs::path tmp = target.parent_path() /
-                         (".tmp-" + std::to_string(getpid()) + "-" + target.filename().string());
-    {
-        std::ofstream out(tmp);
-        out << text;
-        if (!out) {
-            fs::remove(tmp, ec);
-            throw InputError(path + ": cannot write");
-        }
-    }
-    fs::rename(tmp, target, ec);
-    if (ec) {
-        fs::remove(tmp, ec);
-        throw InputError(path + ": cannot move the finished file into place: " + ec.message());
-    }
-}
-
 nlohmann::json number(double v) {
     return std::isfinite(v) ? nlohmann::json(v) : nullptr;
 }
@@ -171,7 +151,7 @@ int run(int argc, char** argv) {
                                   {"error_map", args.errorMap.empty()
                                                     ? nlohmann::json(nullptr)
                                                     : nlohmann::json(args.errorMap)}};
-        writeTextAtomically(args.json, j.dump(2) + "\n");
+        cli::writeTextAtomically(args.json, j.dump(2) + "\n");
     }
     return 0;
 }
@@ -179,13 +159,5 @@ int run(int argc, char** argv) {
 } // namespace
 
 int main(int argc, char** argv) {
-    try {
-        return run(argc, argv);
-    } catch (const InputError& e) {
-        std::fprintf(stderr, "error: %s\n", e.what());
-        return 2;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "error: %s\n", e.what());
-        return 1;
-    }
+    return ssgi::cli::guardedMain(argc, argv, run);
 }

@@ -1,5 +1,6 @@
 // reference: renders the path-traced ground truth of a scene in one of the modes that match
 // the real-time effects, progressively, and writes it as linear EXR (cached by content).
+#include "app/cli.h"
 #include "image_io.h"
 #include "reference/cache.h"
 #include "scene/camera.h"
@@ -192,13 +193,5 @@ int run(int argc, char** argv) {
 } // namespace
 
 int main(int argc, char** argv) {
-    try {
-        return run(argc, argv);
-    } catch (const InputError& e) {
-        std::fprintf(stderr, "error: %s\n", e.what());
-        return 2;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "error: %s\n", e.what());
-        return 1;
-    }
+    return ssgi::cli::guardedMain(argc, argv, run);
 }

@@ -129,24 +129,11 @@ int run(int argc, char** argv) {
                             {"passes", passes},         {"total_median_ms", total}};
         cli::writeTextAtomically(args.profileJson, j.dump(2) + "\n");
     }
-    if (ctx.validationMessageCount() > 0) {
-        std::fprintf(stderr, "error: the validation layer reported %u message(s)\n",
-                     ctx.validationMessageCount());
-        return 1;
-    }
-    return 0;
+    return cli::validationStatus(ctx.validationMessageCount());
 }
 
 } // namespace
 
 int main(int argc, char** argv) {
-    try {
-        return run(argc, argv);
-    } catch (const InputError& e) {
-        std::fprintf(stderr, "error: %s\n", e.what());
-        return 2;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "error: %s\n", e.what());
-        return 1;
-    }
+    return ssgi::cli::guardedMain(argc, argv, run);
 }

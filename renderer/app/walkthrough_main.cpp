@@ -140,24 +140,11 @@ int run(int argc, char** argv) {
     for (const auto& name : passNames)
         std::printf("%-18s %10.3f ms\n", name.c_str(), afterFirst(perPass[name]));
     std::printf("%-18s %10.3f ms  (medians after the first frame)\n", "total", afterFirst(totals));
-    if (ctx.validationMessageCount() > 0) {
-        std::fprintf(stderr, "error: the validation layer reported %u message(s)\n",
-                     ctx.validationMessageCount());
-        return 1;
-    }
-    return 0;
+    return cli::validationStatus(ctx.validationMessageCount());
 }
 
 } // namespace
 
 int main(int argc, char** argv) {
-    try {
-        return run(argc, argv);
-    } catch (const InputError& e) {
-        std::fprintf(stderr, "error: %s\n", e.what());
-        return 2;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "error: %s\n", e.what());
-        return 1;
-    }
+    return ssgi::cli::guardedMain(argc, argv, run);
 }
