@@ -62,11 +62,16 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
     EffectCache* shadowCache = createCache(*setup_, "shadow", "cache_tile_shadow", true);
     terms.shadow =
         addTemporalPass(*setup_, shadowCache, addShadowPass(*setup_, scenes, shadowCache), scenes);
+    if (scene.setting("contact_shadows") != 0.0)
+        terms.shadow = addContactPass(*setup_, scenes, terms.shadow);
     terms.direct = addDirectPass(*setup_, scenes, terms.shadow);
     if (scene.setting("ssdo") != 0.0) {
+        const graph::ImageRef secondLayer = scene.setting("depth_peeling") != 0.0
+                                                ? addPeelPass(*setup_, scenes)
+                                                : graph::ImageRef{};
         EffectCache* cache = createCache(*setup_, "ssdo", "cache_tile_ssdo", true);
-        terms.ssdo = addTemporalPass(*setup_, cache,
-                                     addSsdoPass(*setup_, scenes, terms.direct, cache), scenes);
+        terms.ssdo = addTemporalPass(
+            *setup_, cache, addSsdoPass(*setup_, scenes, terms.direct, secondLayer, cache), scenes);
     } else if (scene.setting("ao") != 0.0) {
         EffectCache* cache = createCache(*setup_, "ao", "cache_tile_ao", false);
         terms.ao = addTemporalPass(*setup_, cache, addAoPass(*setup_, scenes, cache), scenes);

@@ -45,7 +45,8 @@ SceneGpu::~SceneGpu() {
 }
 
 void SceneGpu::draw(VkCommandBuffer cmd, const vk::Pipeline& pipeline, VkBuffer frameUniforms,
-                    VkDeviceSize frameUniformsSize) const {
+                    VkDeviceSize frameUniformsSize,
+                    const std::function<void(vk::Descriptors&)>& extra) const {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline);
     for (const Instance& instance : scene_.instances) {
         const MeshBuffers& mesh = meshes_[instance.mesh];
@@ -57,12 +58,13 @@ void SceneGpu::draw(VkCommandBuffer cmd, const vk::Pipeline& pipeline, VkBuffer 
         constants.baseColorFactor = material.baseColorFactor;
         constants.material = {textured ? 1.0f : 0.0f,
                               material.alphaMask ? material.alphaCutoff : 0.0f, 0.0f, 0.0f};
-        vk::Descriptors()
-            .uniformBuffer(0, frameUniforms, frameUniformsSize)
+        vk::Descriptors descriptors;
+        descriptors.uniformBuffer(0, frameUniforms, frameUniformsSize)
             .sampledImage(1,
                           textured ? textures_[material.baseColorTexture].view : whiteTexture_.view,
-                          sampler_)
-            .push(ctx_, cmd, pipeline);
+                          sampler_);
+        if (extra) extra(descriptors);
+        descriptors.push(ctx_, cmd, pipeline);
         vkCmdPushConstants(cmd, pipeline.layout, pipeline.stages, 0, sizeof(constants), &constants);
         VkDeviceSize offset = 0;
         vkCmdBindVertexBuffers(cmd, 0, 1, &mesh.vertices.buffer, &offset);

@@ -6,6 +6,7 @@
 #include "vk/pipeline.h"
 #include "vk/resources.h"
 
+#include <functional>
 #include <vector>
 
 namespace ssgi {
@@ -18,9 +19,10 @@ public:
     SceneGpu& operator=(const SceneGpu&) = delete;
 
     // Draws every instance with `pipeline` (set 0: binding 0 = frame uniforms, binding 1 = the
-    // draw's base-colour texture; push constants = DrawConstants).
+    // draw's base-colour texture, then whatever `extra` adds; push constants = DrawConstants).
     void draw(VkCommandBuffer cmd, const vk::Pipeline& pipeline, VkBuffer frameUniforms,
-              VkDeviceSize frameUniformsSize) const;
+              VkDeviceSize frameUniformsSize,
+              const std::function<void(vk::Descriptors&)>& extra = {}) const;
 
 private:
     struct MeshBuffers {

@@ -80,6 +80,11 @@ struct GBufferAndRsm {
 };
 // shadow: fraction of the spot light's disk each pixel sees (PCF/PCSS, or a hard test).
 graph::ImageRef addShadowPass(PassSetup& setup, const GBufferAndRsm& inputs, EffectCache* cache);
+// contact: the shadow term with screen-space contact shadows added.
+graph::ImageRef addContactPass(PassSetup& setup, const GBufferAndRsm& inputs,
+                               graph::ImageRef shadow);
+// peel: the second depth layer (world position of the next surface behind the G-buffer's).
+graph::ImageRef addPeelPass(PassSetup& setup, const GBufferAndRsm& inputs);
 // direct: spot-light radiance times the shadow term.
 graph::ImageRef addDirectPass(PassSetup& setup, const GBufferAndRsm& inputs,
                               graph::ImageRef shadow);
@@ -97,8 +102,9 @@ graph::ImageRef addIndirectPasses(PassSetup& setup, const GBufferAndRsm& inputs,
                                   EffectCache* cache);
 
 // ssdo: directionally occluded sky light plus one bounce, as radiance.
+// `secondLayer` (valid with depth peeling) makes its occlusion test two-layered.
 graph::ImageRef addSsdoPass(PassSetup& setup, const GBufferAndRsm& inputs, graph::ImageRef direct,
-                            EffectCache* cache);
+                            graph::ImageRef secondLayer, EffectCache* cache);
 
 // The screen-space terms the composite adds up; an invalid ref is an effect turned off.
 struct LightingTerms {

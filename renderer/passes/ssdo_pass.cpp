@@ -7,12 +7,15 @@
 namespace ssgi {
 
 graph::ImageRef addSsdoPass(PassSetup& s, const GBufferAndRsm& in, graph::ImageRef direct,
-                            EffectCache* cache) {
+                            graph::ImageRef secondLayer, EffectCache* cache) {
     graph::ImageRef ssdo =
         s.graph.createImage("ssdo", VK_FORMAT_R16G16B16A16_SFLOAT, s.size,
                             VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
-    const vk::Pipeline pipeline = s.computePipeline(
-        "ssdo.comp", 5, 1, sizeof(shader::SsdoConstants), {{int(s.model.setting("ssdo_samples"))}});
+    const vk::Pipeline pipeline =
+        s.computePipeline("ssdo.comp", 6, 1, sizeof(shader::SsdoConstants),
+                          {{int(s.model.setting("ssdo_samples")), secondLayer.valid() ? 1 : 0}});
+    // Without peeling the shader never reads its second-layer binding: any valid image will do.
+    const graph::ImageRef back = secondLayer.valid() ? secondLayer : in.gbuffer.position;
     const double radius = s.model.setting("ssdo_radius");
     const float rMax = radius > 0.0 ? float(radius) : aoRadius(s.model);
 
@@ -25,8 +28,9 @@ graph::ImageRef addSsdoPass(PassSetup& s, const GBufferAndRsm& in, graph::ImageR
          {in.gbuffer.third, Use::Sampled},
          {direct, Use::Sampled},
          {meta, Use::Sampled},
+         {back, Use::Sampled},
          {ssdo, Use::StorageWrite}},
-        [&s, in, direct, ssdo, meta, cache, pipeline, rMax](const graph::PassContext& pc) {
+        [&s, in, direct, ssdo, meta, back, cache, pipeline, rMax](const graph::PassContext& pc) {
             vk::Descriptors()
                 .uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size)
                 .sampledImage(1, pc.image(in.gbuffer.position).view, s.nearestSampler)
@@ -34,7 +38,8 @@ graph::ImageRef addSsdoPass(PassSetup& s, const GBufferAndRsm& in, graph::ImageR
                 .sampledImage(3, pc.image(in.gbuffer.third).view, s.nearestSampler)
                 .sampledImage(4, pc.image(direct).view, s.nearestSampler)
                 .sampledImage(5, pc.image(meta).view, s.nearestSampler)
-                .storageImage(6, pc.image(ssdo).view)
+                .sampledImage(6, pc.image(back).view, s.nearestSampler)
+                .storageImage(7, pc.image(ssdo).view)
                 .push(s.ctx, pc.cmd, pipeline);
             shader::SsdoConstants constants{};
             constants.pattern = {s.patternRotation, s.patternScale, rMax,

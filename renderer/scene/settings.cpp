@@ -28,7 +28,8 @@ const std::map<std::string, SettingSpec>& settingSpecs() {
         {"indirect_visibility", {1, 0, 1, true, "screen-space visibility test of each VPL"}},
         {"indirect_visibility_steps", {6, 1, 32, true, "log-spaced steps of the visibility test"}},
         {"cache", {1, 0, 1, true, "temporal cache of shadow, AO, SSDO and indirect light"}},
-        {"cache_method", {0, 0, 1, true, "0 the thesis's confidence rule (eq. 4-5), 1 running mean"}},
+        {"cache_method",
+         {0, 0, 1, true, "0 the thesis's confidence rule (eq. 4-5), 1 running mean"}},
         {"cache_bias", {0.0, 0, 1e3, false, "bias of the confidence rule (eq. 4)"}},
         {"cache_epsilon", {2.0, 0, 1e3, false, "reprojection test (eq. 3), in pixel footprints"}},
         {"cache_rotations", {36, 1, 1e6, true, "pattern rotations until a pixel is converged"}},
@@ -43,6 +44,10 @@ const std::map<std::string, SettingSpec>& settingSpecs() {
         {"ssdo_samples", {16, 1, 64, true, "SSDO hemisphere samples per pixel"}},
         {"ssdo_radius", {0, 0, 1e9, false, "SSDO r_max in scene units; 0 = the AO radius"}},
         {"ssdo_bounce", {1.0, 0, 1e3, false, "SSDO one-bounce strength (the paper's user factor)"}},
+        {"depth_peeling", {0, 0, 1, true, "SSDO tests occlusion between two depth layers"}},
+        {"contact_shadows", {0, 0, 1, true, "screen-space contact shadows on the shadow term"}},
+        {"contact_shadow_steps", {8, 1, 64, true, "samples along the contact-shadow segment"}},
+        {"contact_shadow_texels", {6, 0, 1e3, false, "contact-shadow segment, shadow-map texels"}},
     };
     return specs;
 }
@@ -51,7 +56,8 @@ double checkSetting(const std::string& where, const std::string& key, double val
     auto it = settingSpecs().find(key);
     if (it == settingSpecs().end()) {
         std::string known;
-        for (const auto& spec : settingSpecs()) known += " " + spec.first;
+        for (const auto& spec : settingSpecs())
+            known += " " + spec.first;
         throw InputError(where + ": unknown setting '" + key + "' (known:" + known + ")");
     }
     const SettingSpec& spec = it->second;

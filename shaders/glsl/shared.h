@@ -84,6 +84,11 @@ struct SsdoConstants {
 };
 SSGI_CHECK_SIZE(SsdoConstants, 48);
 
+struct ContactConstants {
+    vec4 params; // x = segment length in shadow-map texels at the pixel
+};
+SSGI_CHECK_SIZE(ContactConstants, 16);
+
 // The temporal pass of one effect: its cache state (push constants).
 struct TemporalConstants {
     CacheConstants cache;

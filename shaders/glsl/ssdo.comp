@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Screen-space directional occlusion (Ritschel, Grosch, Seidel 2009, section 3). SAMPLES
+// Screen-space directional occlusion (Ritschel, Grosch, Seidel 2009, sections 3-4). SAMPLES
 // directions w_i over p's hemisphere, each stepped a length in [0, r_max]; the step's end is an
 // occluder when it lies behind the depth stored where it projects.
 // Sky: L_dir = sum (rho/pi) L_sky(w_i) V(w_i) cos(theta_i) dw, estimated with cosine-weighted
@@ -15,6 +15,7 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(constant_id = 0) const int SAMPLES = 16;
+layout(constant_id = 1) const int PEELING = 0;
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
 layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
@@ -22,7 +23,8 @@ layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
 layout(set = 0, binding = 3) uniform sampler2D gbufferAlbedo;
 layout(set = 0, binding = 4) uniform sampler2D directRadiance;
 layout(set = 0, binding = 5) uniform sampler2D historyMeta;
-layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D ssdoImage;
+layout(set = 0, binding = 6) uniform sampler2D secondLayer; // peel.position (PEELING only)
+layout(set = 0, binding = 7, rgba16f) uniform writeonly image2D ssdoImage;
 layout(push_constant) uniform SsdoBlock { SsdoConstants constants; };
 
 #include "screen_space.glsl"
@@ -65,6 +67,12 @@ void main() {
             senderPixel = ivec2(projected.xy);
             sender = texelFetch(gbufferPosition, senderPixel, 0);
             occluded = sender.w != 0.0 && projected.z > viewDepth(sender.xyz);
+            // With depth peeling (paper section 4), a sample behind the second layer lies in the
+            // open space behind a thin object, not inside it.
+            if (PEELING != 0 && occluded) {
+                vec4 back = texelFetch(secondLayer, senderPixel, 0);
+                occluded = back.w == 0.0 || projected.z < viewDepth(back.xyz);
+            }
         }
         if (!occluded) {
             sky += skyRadiance(w, frame.skyZenith.rgb, frame.skyHorizon.rgb, frame.skyGround.rgb);

@@ -1,0 +1,29 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Depth peeling (SSDO paper section 4): the second depth layer, the nearest surface behind the
+// one the G-buffer holds at each pixel. Fragments at or in front of the first layer are
+// discarded; what remains is depth-tested as usual, so the nearest of them wins.
+#include "shared.h"
+
+layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
+layout(set = 0, binding = 1) uniform sampler2D baseColorTexture;
+layout(set = 0, binding = 2) uniform sampler2D firstLayerPosition;
+layout(push_constant) uniform DrawBlock { DrawConstants draw; };
+
+layout(location = 0) in vec3 worldPosition;
+layout(location = 1) in vec3 worldNormal;
+layout(location = 2) in vec2 uv;
+
+layout(location = 0) out vec4 outPosition;
+
+float viewDepth(vec3 world) { return -(frame.view * vec4(world, 1.0)).z; }
+
+void main() {
+    vec4 albedo = draw.baseColorFactor;
+    if (draw.material.x > 0.5) albedo *= texture(baseColorTexture, uv);
+    if (albedo.a < draw.material.y) discard;
+    vec4 first = texelFetch(firstLayerPosition, ivec2(gl_FragCoord.xy), 0);
+    // A sliver of relative depth keeps the first layer's own surface from peeling itself.
+    if (first.w != 0.0 && viewDepth(worldPosition) <= viewDepth(first.xyz) * 1.002) discard;
+    outPosition = vec4(worldPosition, 1.0);
+}
