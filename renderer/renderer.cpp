@@ -104,6 +104,9 @@ void Renderer::updateUniforms(const Camera& camera) {
     u.viewProjection = u.projection * u.view;
     u.inverseViewProjection = glm::inverse(u.viewProjection);
     u.previousViewProjection = frameIndex_ == 0 ? u.viewProjection : previousViewProjection_;
+    stillFrames_ =
+        frameIndex_ > 0 && u.viewProjection == previousViewProjection_ ? stillFrames_ + 1 : 0;
+    setup_->settled = stillFrames_ >= uint32_t(scene_.setting("cache_rotations"));
     u.lightViewProjection = light.viewProjection;
     u.inverseLightViewProjection = glm::inverse(light.viewProjection);
     u.cameraPosition = glm::vec4(camera.position, 1.0f);
@@ -144,6 +147,7 @@ void Renderer::renderFrame(const Camera& camera) {
 void Renderer::setLight(const SpotLight& light) {
     light_ = light;
     setup_->rsmStale = true;
+    stillFrames_ = 0;
     for (EffectCache& cache : setup_->caches)
         if (cache.lightDependent) {
             graph_->resetHistory(cache.value);

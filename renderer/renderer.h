@@ -52,6 +52,7 @@ private:
     std::unique_ptr<PassSetup> setup_;
     SpotLight light_;
     uint32_t frameIndex_ = 0;
+    uint32_t stillFrames_ = 0; // frames in a row with this camera and light
     glm::mat4 previousViewProjection_{1.0f};
 };
 

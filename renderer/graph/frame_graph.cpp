@@ -36,6 +36,8 @@ ImageRef FrameGraph::createImage(const std::string& name, VkFormat format, VkExt
 uint32_t FrameGraph::createHistory(const std::string& name, VkFormat format, VkExtent2D extent,
                                    VkImageUsageFlags usage) {
     History h;
+    // Histories may be copied into (a settled frame carries the last one over whole).
+    usage |= VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     h.resources[0] = addResource(name + " A", format, extent, usage, false);
     h.resources[1] = addResource(name + " B", format, extent, usage, false);
     histories_.push_back(h);
@@ -71,7 +73,8 @@ ImageRef FrameGraph::find(const std::string& name) const {
 
 std::vector<std::pair<std::string, VkDeviceSize>> FrameGraph::imageMemory() const {
     std::vector<std::pair<std::string, VkDeviceSize>> list;
-    for (const Resource& r : resources_) list.push_back({r.image.name, r.image.memorySize});
+    for (const Resource& r : resources_)
+        list.push_back({r.image.name, r.image.memorySize});
     return list;
 }
 

@@ -6,9 +6,9 @@
 namespace ssgi {
 
 graph::ImageRef addAoPass(PassSetup& s, const GBufferAndRsm& in, EffectCache* cache) {
-    graph::ImageRef ao =
-        s.graph.createImage("ao", VK_FORMAT_R16G16B16A16_SFLOAT, s.size,
-                            VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
+    graph::ImageRef ao = s.graph.createImage(
+        "ao", VK_FORMAT_R16G16B16A16_SFLOAT, s.size,
+        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
     const Scene& m = s.model;
     const vk::Pipeline pipeline =
         s.computePipeline("ao.comp", 3, 1, sizeof(shader::AoConstants),
@@ -16,6 +16,7 @@ graph::ImageRef addAoPass(PassSetup& s, const GBufferAndRsm& in, EffectCache* ca
                             int(m.setting("ao_steps"))}});
     const graph::ImageRef meta = cacheMetaInput(cache, in.gbuffer.position);
 
+    addKeepPass(s, cache, {ao});
     using graph::Use;
     s.graph.addPass(
         "ao", graph::PassKind::Compute,
@@ -36,7 +37,8 @@ graph::ImageRef addAoPass(PassSetup& s, const GBufferAndRsm& in, EffectCache* ca
             constants.falloff = {float(s.model.setting("ao_attenuation_a")),
                                  float(s.model.setting("ao_attenuation_b")), 0.0f, 0.0f};
             constants.cache = cacheConstants(s, cache);
-            vk::dispatch(pc.cmd, pipeline, s.size.width, s.size.height, constants);
+            const VkExtent2D area = cacheDispatch(s, cache, s.size);
+            vk::dispatch(pc.cmd, pipeline, area.width, area.height, constants);
         });
     return ao;
 }

@@ -8,7 +8,8 @@
 namespace ssgi {
 
 graph::ImageRef addIndirectPasses(PassSetup& s, const GBufferAndRsm& in, EffectCache* cache) {
-    const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    const VkImageUsageFlags usage =
+        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     const VkExtent2D halfSize{(s.size.width + 1) / 2, (s.size.height + 1) / 2};
     graph::ImageRef half =
         s.graph.createImage("indirect.half", VK_FORMAT_R16G16B16A16_SFLOAT, halfSize, usage);
@@ -41,6 +42,7 @@ graph::ImageRef addIndirectPasses(PassSetup& s, const GBufferAndRsm& in, EffectC
             .sampledImage(6, pc.image(meta).view, s.nearestSampler);
     };
 
+    addKeepPass(s, cache, {half, full});
     using graph::Use;
     const std::vector<graph::ImageUse> reads = {
         {in.gbuffer.position, Use::Sampled}, {in.gbuffer.normal, Use::Sampled},
@@ -50,11 +52,12 @@ graph::ImageRef addIndirectPasses(PassSetup& s, const GBufferAndRsm& in, EffectC
     gatherUses.push_back({half, Use::StorageWrite});
     s.graph.addPass(
         "indirect", graph::PassKind::Compute, gatherUses,
-        [&s, half, halfSize, gather, constants, sceneInputs](const graph::PassContext& pc) {
+        [&s, cache, half, gather, constants, sceneInputs](const graph::PassContext& pc) {
             vk::Descriptors d;
             sceneInputs(pc, d);
             d.storageImage(7, pc.image(half).view).push(s.ctx, pc.cmd, gather);
-            vk::dispatch(pc.cmd, gather, halfSize.width, halfSize.height, constants());
+            const VkExtent2D area = cacheDispatch(s, cache, s.size, 2);
+            vk::dispatch(pc.cmd, gather, area.width, area.height, constants());
         });
 
     std::vector<graph::ImageUse> upsampleUses = reads;
@@ -62,13 +65,14 @@ graph::ImageRef addIndirectPasses(PassSetup& s, const GBufferAndRsm& in, EffectC
     upsampleUses.push_back({full, Use::StorageWrite});
     s.graph.addPass(
         "upsample", graph::PassKind::Compute, upsampleUses,
-        [&s, half, full, upsample, constants, sceneInputs](const graph::PassContext& pc) {
+        [&s, cache, half, full, upsample, constants, sceneInputs](const graph::PassContext& pc) {
             vk::Descriptors d;
             sceneInputs(pc, d);
             d.sampledImage(7, pc.image(half).view, s.nearestSampler)
                 .storageImage(8, pc.image(full).view)
                 .push(s.ctx, pc.cmd, upsample);
-            vk::dispatch(pc.cmd, upsample, s.size.width, s.size.height, constants());
+            const VkExtent2D area = cacheDispatch(s, cache, s.size);
+            vk::dispatch(pc.cmd, upsample, area.width, area.height, constants());
         });
     return full;
 }

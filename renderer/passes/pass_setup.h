@@ -42,6 +42,9 @@ struct PassSetup {
     std::deque<EffectCache> caches; // empty when caching is off
     // With the cache on, the RSM is drawn again only when the light changes.
     bool rsmStale = true;
+    // Camera and light unchanged for as many frames as a pixel needs rotations: every pixel is
+    // converged, and the cached effects run over their refresh tiles alone.
+    bool settled = false;
 
     // A compute pipeline whose bindings are set 0's: binding 0 the frame uniforms, then
     // `sampled` combined image samplers, then `storage` storage images.
@@ -68,6 +71,14 @@ EffectCache* createCache(PassSetup& setup, const std::string& name, const std::s
 // `fallback` (any image the pass reads anyway) without one.
 graph::ImageRef cacheMetaInput(const EffectCache* cache, graph::ImageRef fallback);
 shader::CacheConstants cacheConstants(const PassSetup& setup, const EffectCache* cache);
+// The threads a cached effect's pass dispatches: the whole image (`full`), or once settled only
+// its refresh tile (none without one); `divisor` 2 for the half-resolution pass.
+VkExtent2D cacheDispatch(const PassSetup& setup, const EffectCache* cache, VkExtent2D full,
+                         uint32_t divisor = 1);
+// <effect>.keep, run only on settled frames before the effect: last frame's history carried
+// over whole to this frame's side (the temporal pass then rewrites the refresh tile), and the
+// effect's own images cleared, so that what the tile-only passes do not write reads "skipped".
+void addKeepPass(PassSetup& setup, EffectCache* cache, std::vector<graph::ImageRef> outputs);
 
 // gbuffer: world position (w = 1 on geometry), normal, albedo, depth.
 SceneTargets addGBufferPass(PassSetup& setup);

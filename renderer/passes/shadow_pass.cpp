@@ -7,14 +7,15 @@
 namespace ssgi {
 
 graph::ImageRef addShadowPass(PassSetup& s, const GBufferAndRsm& in, EffectCache* cache) {
-    graph::ImageRef shadow =
-        s.graph.createImage("shadow", VK_FORMAT_R16G16B16A16_SFLOAT, s.size,
-                            VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
+    graph::ImageRef shadow = s.graph.createImage(
+        "shadow", VK_FORMAT_R16G16B16A16_SFLOAT, s.size,
+        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
     const int taps = int(s.model.setting("shadow_taps"));
     const vk::Pipeline pipeline =
         s.computePipeline("shadow.comp", 4, 1, sizeof(shader::ShadowConstants), {{taps}});
 
     const graph::ImageRef meta = cacheMetaInput(cache, in.gbuffer.position);
+    addKeepPass(s, cache, {shadow});
     using graph::Use;
     s.graph.addPass("shadow", graph::PassKind::Compute,
                     {{in.gbuffer.position, Use::Sampled},
@@ -35,7 +36,8 @@ graph::ImageRef addShadowPass(PassSetup& s, const GBufferAndRsm& in, EffectCache
                         constants.pattern = {s.patternRotation, s.patternScale,
                                              float(s.model.setting("shadow_bias")), 0.0f};
                         constants.cache = cacheConstants(s, cache);
-                        vk::dispatch(pc.cmd, pipeline, s.size.width, s.size.height, constants);
+                        const VkExtent2D area = cacheDispatch(s, cache, s.size);
+                        vk::dispatch(pc.cmd, pipeline, area.width, area.height, constants);
                     });
     return shadow;
 }

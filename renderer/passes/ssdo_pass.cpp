@@ -8,9 +8,9 @@ namespace ssgi {
 
 graph::ImageRef addSsdoPass(PassSetup& s, const GBufferAndRsm& in, graph::ImageRef direct,
                             graph::ImageRef secondLayer, EffectCache* cache) {
-    graph::ImageRef ssdo =
-        s.graph.createImage("ssdo", VK_FORMAT_R16G16B16A16_SFLOAT, s.size,
-                            VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
+    graph::ImageRef ssdo = s.graph.createImage(
+        "ssdo", VK_FORMAT_R16G16B16A16_SFLOAT, s.size,
+        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
     const vk::Pipeline pipeline =
         s.computePipeline("ssdo.comp", 6, 1, sizeof(shader::SsdoConstants),
                           {{int(s.model.setting("ssdo_samples")), secondLayer.valid() ? 1 : 0}});
@@ -20,6 +20,7 @@ graph::ImageRef addSsdoPass(PassSetup& s, const GBufferAndRsm& in, graph::ImageR
     const float rMax = radius > 0.0 ? float(radius) : aoRadius(s.model);
 
     const graph::ImageRef meta = cacheMetaInput(cache, in.gbuffer.position);
+    addKeepPass(s, cache, {ssdo});
     using graph::Use;
     s.graph.addPass(
         "ssdo", graph::PassKind::Compute,
@@ -45,7 +46,8 @@ graph::ImageRef addSsdoPass(PassSetup& s, const GBufferAndRsm& in, graph::ImageR
             constants.pattern = {s.patternRotation, s.patternScale, rMax,
                                  float(s.model.setting("ssdo_bounce"))};
             constants.cache = cacheConstants(s, cache);
-            vk::dispatch(pc.cmd, pipeline, s.size.width, s.size.height, constants);
+            const VkExtent2D area = cacheDispatch(s, cache, s.size);
+            vk::dispatch(pc.cmd, pipeline, area.width, area.height, constants);
         });
     return ssdo;
 }

@@ -3,6 +3,8 @@
 // (the effect pass skips them), tiled refresh. The history pair swaps each frame in the graph.
 #include "passes/pass_setup.h"
 
+#include <algorithm>
+
 namespace ssgi {
 
 EffectCache* createCache(PassSetup& s, const std::string& name, const std::string& tileSetting,
@@ -32,8 +34,52 @@ shader::CacheConstants cacheConstants(const PassSetup& s, const EffectCache* cac
     c.state = {s.graph.hasHistory(cache->value) ? 1 : 0, int(s.model.setting("cache_rotations")),
                cache->refreshTile, cache->refresh ? int(cache->refresh->tileSize()) : 1};
     c.accumulation = {float(s.model.setting("cache_bias")), float(s.model.setting("cache_epsilon")),
-                      float(s.model.setting("cache_method")), 0.0f};
+                      float(s.model.setting("cache_method")), s.settled ? 1.0f : 0.0f};
     return c;
+}
+
+VkExtent2D cacheDispatch(const PassSetup& s, const EffectCache* cache, VkExtent2D full,
+                         uint32_t divisor) {
+    if (!cache || !s.settled) return full;
+    if (!cache->refresh || cache->refreshTile < 0) return {0, 0};
+    const uint32_t tile = cache->refresh->tileSize();
+    const uint32_t tilesX = (s.size.width + tile - 1) / tile;
+    const uint32_t x = (uint32_t(cache->refreshTile) % tilesX) * tile;
+    const uint32_t y = (uint32_t(cache->refreshTile) / tilesX) * tile;
+    return {(std::min(tile, s.size.width - x) + divisor - 1) / divisor,
+            (std::min(tile, s.size.height - y) + divisor - 1) / divisor};
+}
+
+void addKeepPass(PassSetup& s, EffectCache* cache, std::vector<graph::ImageRef> outputs) {
+    if (!cache) return;
+    using graph::FrameGraph;
+    using graph::Use;
+    std::vector<graph::ImageUse> uses = {{FrameGraph::previous(cache->value), Use::TransferSrc},
+                                         {FrameGraph::previous(cache->meta), Use::TransferSrc},
+                                         {FrameGraph::current(cache->value), Use::TransferDst},
+                                         {FrameGraph::current(cache->meta), Use::TransferDst}};
+    for (const graph::ImageRef& output : outputs)
+        uses.push_back({output, Use::TransferDst});
+    s.graph.addPass(
+        cache->name + ".keep", graph::PassKind::Transfer, uses,
+        [cache, outputs](const graph::PassContext& pc) {
+            for (uint32_t history : {cache->value, cache->meta}) {
+                const vk::Image& from = pc.image(FrameGraph::previous(history));
+                const vk::Image& to = pc.image(FrameGraph::current(history));
+                VkImageCopy region{};
+                region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+                region.dstSubresource = region.srcSubresource;
+                region.extent = {from.extent.width, from.extent.height, 1};
+                vkCmdCopyImage(pc.cmd, from.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, to.image,
+                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+            }
+            const VkClearColorValue zero{};
+            const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+            for (const graph::ImageRef& output : outputs)
+                vkCmdClearColorImage(pc.cmd, pc.image(output).image,
+                                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &range);
+        },
+        [&s] { return s.settled; });
 }
 
 graph::ImageRef addTemporalPass(PassSetup& s, EffectCache* cache, graph::ImageRef raw,
@@ -65,7 +111,8 @@ graph::ImageRef addTemporalPass(PassSetup& s, EffectCache* cache, graph::ImageRe
                 .storageImage(7, pc.image(FrameGraph::current(cache->meta)).view)
                 .push(s.ctx, pc.cmd, pipeline);
             shader::TemporalConstants constants{cacheConstants(s, cache)};
-            vk::dispatch(pc.cmd, pipeline, s.size.width, s.size.height, constants);
+            const VkExtent2D area = cacheDispatch(s, cache, s.size);
+            vk::dispatch(pc.cmd, pipeline, area.width, area.height, constants);
         });
     return value;
 }

@@ -29,7 +29,7 @@ vec4 positionAt(vec2 pixel) { return texelFetch(gbufferPosition, ivec2(pixel), 0
 #include "ao_horizon.glsl"
 
 void main() {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 pixel = cachePixel(gl_GlobalInvocationID.xy, constants.cache, 1);
     if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
     vec4 position = texelFetch(gbufferPosition, pixel, 0);
     if (position.w == 0.0) {

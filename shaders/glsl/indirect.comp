@@ -25,7 +25,7 @@ layout(push_constant) uniform IndirectBlock { IndirectConstants constants; };
 #include "indirect_gather.glsl"
 
 void main() {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 pixel = cachePixel(gl_GlobalInvocationID.xy, constants.cache, 2);
     if (any(greaterThanEqual(pixel, constants.target.xy))) return;
     ivec2 source = pixel * 2;
     // Skipped (alpha 0) when every full-resolution pixel of the block is converged.

@@ -43,7 +43,7 @@ float receiverPlaneDepth(vec2 uv, vec3 p, vec3 n, float fallback) {
 }
 
 void main() {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 pixel = cachePixel(gl_GlobalInvocationID.xy, constants.cache, 1);
     if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
     vec4 position = texelFetch(gbufferPosition, pixel, 0);
     if (position.w == 0.0) {

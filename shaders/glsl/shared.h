@@ -50,7 +50,8 @@ struct CacheConstants {
     ivec4 state; // x = 1 when last frame's history may be read, y = rotations until a pixel is
                  // converged, z = this frame's refresh tile (-1 = none), w = tile size (pixels)
     vec4 accumulation; // x = bias of the confidence rule (eq. 4), y = reprojection epsilon in
-                       // pixel footprints (eq. 3), z = 1 for the running mean, w = unused
+                       // pixel footprints (eq. 3), z = 1 for the running mean, w = 1 when the
+                       // whole screen is converged and passes run over the refresh tile alone
 };
 SSGI_CHECK_SIZE(CacheConstants, 32);
 

@@ -31,6 +31,17 @@ Reprojection reproject(vec3 world, vec3 normal, CacheConstants cache) {
     return r;
 }
 
+// Where a thread's pixel lies. Once the whole screen is settled (camera and light unchanged for
+// as many frames as a pixel needs rotations, so every pixel is converged), the effect and
+// temporal passes run over the refresh tile alone, offset to it; `divisor` 2 is for the
+// half-resolution pass.
+ivec2 cachePixel(uvec2 thread, CacheConstants cache, int divisor) {
+    if (cache.accumulation.w == 0.0 || cache.state.z < 0) return ivec2(thread);
+    int tilesX = (int(frame.viewport.x) + cache.state.w - 1) / cache.state.w;
+    ivec2 tile = ivec2(cache.state.z % tilesX, cache.state.z / tilesX);
+    return ivec2(thread) + tile * cache.state.w / divisor;
+}
+
 bool inRefreshTile(ivec2 pixel, CacheConstants cache) {
     if (cache.state.z < 0) return false;
     int tilesX = (int(frame.viewport.x) + cache.state.w - 1) / cache.state.w;
