@@ -5,6 +5,15 @@
 namespace ssgi {
 
 SceneGpu::SceneGpu(vk::Context& ctx, const Scene& scene) : ctx_(ctx), scene_(scene) {
+    const uint32_t limit = ctx.properties.limits.maxImageDimension2D;
+    for (size_t i = 0; i < scene.textures.size(); ++i) {
+        const Texture& t = scene.textures[i];
+        if (t.width > limit || t.height > limit)
+            throw InputError(scene.sourcePath + ": texture " + std::to_string(i) + " '" + t.name +
+                             "' is " + std::to_string(t.width) + "x" + std::to_string(t.height) +
+                             ", beyond this device's largest 2D image (" + std::to_string(limit) +
+                             ")");
+    }
     for (const Mesh& mesh : scene.meshes) {
         MeshBuffers b;
         // Meshes without indices (flat-shaded, one vertex per corner) draw their vertices in order.

@@ -71,10 +71,13 @@ tinygltf::Model readModel(const std::string& path) {
 // 8-bit RGBA from whatever the image decoder produced; sRGB bytes are kept as they are because
 // the renderer decodes them in the sampler.
 Texture convertImage(const tinygltf::Image& image, const std::string& file, size_t index) {
-    const std::string what =
-        "image " + std::to_string(index) + (image.name.empty() ? "" : " '" + image.name + "'");
+    // An external image is named by its file, which is what a user has to go and look for.
+    const bool external = !image.uri.empty() && image.uri.rfind("data:", 0) != 0;
+    const std::string what = "image " + std::to_string(index) +
+                             (image.name.empty() ? "" : " '" + image.name + "'") +
+                             (external ? " (" + image.uri + ")" : "");
     if (image.width <= 0 || image.height <= 0 || image.image.empty())
-        fail(file, what + " could not be decoded");
+        fail(file, what + (external ? " is missing or" : "") + " could not be decoded");
     if (image.component < 1 || image.component > 4 || (image.bits != 8 && image.bits != 16))
         fail(file, what + " has " + std::to_string(image.component) + " channels of " +
                        std::to_string(image.bits) + " bits; 1-4 channels of 8 or 16 expected");
@@ -122,7 +125,9 @@ std::vector<int> convertTextures(const tinygltf::Model& model, const std::string
             fail(file, "texture " + std::to_string(t) + " refers to image " +
                            std::to_string(image) + ", which does not exist");
         auto [it, isNew] = sceneTextureOfImage.try_emplace(image, int(scene.textures.size()));
-        if (isNew) scene.textures.push_back(convertImage(model.images[size_t(image)], file, t));
+        if (isNew)
+            scene.textures.push_back(
+                convertImage(model.images[size_t(image)], file, size_t(image)));
         sceneTextureOf.push_back(it->second);
     }
     return sceneTextureOf;
@@ -159,6 +164,11 @@ void convertMaterials(const tinygltf::Model& model, const std::string& file,
             fail(file, "material " + std::to_string(m) + ": baseColorFactor needs 4 numbers");
         for (int c = 0; c < 4; ++c)
             material.baseColorFactor[c] = float(pbr.baseColorFactor[c]);
+        // An infinite or negative albedo would fill the image (and every cache) with NaN.
+        for (int c = 0; c < 4; ++c)
+            if (!(material.baseColorFactor[c] >= 0.0f) || std::isinf(material.baseColorFactor[c]))
+                fail(file, "material " + std::to_string(m) +
+                               ": baseColorFactor must be finite and not negative");
         const int texture = pbr.baseColorTexture.index;
         if (texture >= int(sceneTextureOf.size()))
             fail(file, "material " + std::to_string(m) + " refers to texture " +

@@ -7,12 +7,26 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <sstream>
 
 namespace ssgi {
 namespace {
 
 [[noreturn]] void fail(const std::string& file, const std::string& problem) {
     throw InputError(file + ": " + problem);
+}
+
+// Real scenes nest a few dozen levels; the walk recurses once per level, so a deeper chain (a
+// malformed or hostile file) would overflow the stack before anything else noticed.
+constexpr int kMaxNodeDepth = 1000;
+
+bool finite(const glm::mat4& m) {
+    for (int i = 0; i < 16; ++i)
+        if (!std::isfinite(glm::value_ptr(m)[i])) return false;
+    return true;
+}
+bool finite(glm::vec3 v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
 glm::mat4 localTransform(const tinygltf::Node& node, const std::string& file, int index) {
@@ -35,9 +49,7 @@ glm::mat4 localTransform(const tinygltf::Node& node, const std::string& file, in
         if (!r.empty()) local *= glm::mat4_cast(glm::normalize(glm::quat(r[3], r[0], r[1], r[2])));
         if (!s.empty()) local = glm::scale(local, glm::vec3(s[0], s[1], s[2]));
     }
-    for (int i = 0; i < 16; ++i)
-        if (!std::isfinite(glm::value_ptr(local)[i]))
-            fail(file, what + ": transform is not finite");
+    if (!finite(local)) fail(file, what + ": transform is not finite");
     return local;
 }
 
@@ -52,17 +64,28 @@ public:
     NodeImporter(const tinygltf::Model& model, const std::string& file, float scale,
                  int firstMaterial, Scene& scene, GltfWarnings& warnings)
         : model_(model), file_(file), scale_(scale), firstMaterial_(firstMaterial), scene_(scene),
-          warnings_(warnings), onPath_(model.nodes.size(), false) {}
+          warnings_(warnings), onPath_(model.nodes.size(), false),
+          visited_(model.nodes.size(), false) {}
 
-    void importNode(int index, const glm::mat4& parent) {
+    void importNode(int index, const glm::mat4& parent, int depth = 0) {
         if (index < 0 || size_t(index) >= model_.nodes.size())
             fail(file_, "node " + std::to_string(index) + " does not exist");
         // A node under itself would recurse forever; the glTF spec forbids it.
         if (onPath_[size_t(index)])
             fail(file_, "node " + std::to_string(index) + " is its own ancestor");
-        onPath_[size_t(index)] = true;
+        // glTF node trees are disjoint. A node reached twice would be drawn twice, and a chain
+        // of nodes each listing the next twice would multiply the instances exponentially.
+        if (visited_[size_t(index)])
+            fail(file_, "node " + std::to_string(index) + " has more than one parent");
+        if (depth > kMaxNodeDepth)
+            fail(file_, "node " + std::to_string(index) + " is nested more than " +
+                            std::to_string(kMaxNodeDepth) + " levels deep");
+        onPath_[size_t(index)] = visited_[size_t(index)] = true;
         const tinygltf::Node& node = model_.nodes[size_t(index)];
         const glm::mat4 world = parent * localTransform(node, file_, index);
+        // Each transform may be finite and their product still overflow.
+        if (!finite(world))
+            fail(file_, "node " + std::to_string(index) + ": world transform is not finite");
         if (node.mesh >= 0) {
             if (size_t(node.mesh) >= model_.meshes.size())
                 fail(file_, "node " + std::to_string(index) + " refers to mesh " +
@@ -77,7 +100,7 @@ public:
         auto light = node.extensions.find("KHR_lights_punctual");
         if (light != node.extensions.end()) noteLight(light->second, world);
         for (int child : node.children)
-            importNode(child, world);
+            importNode(child, world, depth + 1);
         onPath_[size_t(index)] = false;
     }
 
@@ -155,15 +178,29 @@ private:
         // Clip distances are lengths in the file's units, so they follow the load scale.
         camera.znear = float(p.znear) * scale_;
         camera.zfar = float(p.zfar) * scale_;
+        // A node scaled to zero (or sheared flat) has no view direction.
+        const glm::quat& q = camera.orientation;
+        if (!std::isfinite(q.w) || !std::isfinite(q.x) || !std::isfinite(q.y) ||
+            !std::isfinite(q.z))
+            fail(file_, "camera " + std::to_string(index) +
+                            ": its node's transform has no view direction (zero scale?)");
+        if (!std::isfinite(camera.znear) || !std::isfinite(camera.zfar))
+            fail(file_, "camera " + std::to_string(index) + ": znear/zfar too large");
         camera_ = camera;
     }
 
     void noteLight(const tinygltf::Value& extension, const glm::mat4& world) {
         if (!extension.IsObject() || !extension.Get("light").IsNumber())
             fail(file_, "KHR_lights_punctual on a node needs a light index");
-        const int index = extension.Get("light").GetNumberAsInt();
-        if (index < 0 || size_t(index) >= model_.lights.size())
-            fail(file_, "light " + std::to_string(index) + " does not exist");
+        // Checked as a double: converting 1e20 (or -1.5) to int first is undefined behaviour.
+        const double number = extension.Get("light").GetNumberAsDouble();
+        if (!(number >= 0.0 && number < double(model_.lights.size())) ||
+            number != std::floor(number)) {
+            std::ostringstream what;
+            what << "light " << number << " does not exist";
+            fail(file_, what.str());
+        }
+        const int index = int(number);
         const tinygltf::Light& source = model_.lights[size_t(index)];
         ++lightCount_;
         SpotLight light;
@@ -174,8 +211,23 @@ private:
         light.intensity = float(source.intensity);
         light.radius = 0.0f;
         const float maxOuter = glm::radians(89.0f);
+        // Checked only for the light that is used: a broken light the scene ignores is harmless.
+        auto check = [&](const char* type) {
+            const std::string what = "light " + std::to_string(index) + " (" + type + ")";
+            if (!finite(light.direction))
+                fail(file_, what + ": its node's transform has no direction (zero scale?)");
+            // The scene file's ranges: beyond them the light's radiance overflows a float.
+            if (!(glm::all(glm::greaterThanEqual(light.color, glm::vec3(0.0f))) &&
+                  glm::all(glm::lessThanEqual(light.color, glm::vec3(1e6f))) &&
+                  light.intensity >= 0.0f && light.intensity <= 1e12f))
+                fail(file_, what + ": color must be in [0, 1e6] and intensity in [0, 1e12]");
+        };
         if (source.type == "spot" && !spot_) {
+            check("spot");
             light.outerConeAngle = float(source.spot.outerConeAngle);
+            if (!(light.outerConeAngle > 0.0f))
+                fail(file_,
+                     "light " + std::to_string(index) + " (spot): outerConeAngle must be > 0");
             if (light.outerConeAngle > maxOuter) {
                 warnings_.once("glTF spot cone wider than 89 degrees is narrowed to 89");
                 light.outerConeAngle = maxOuter;
@@ -184,7 +236,8 @@ private:
                 std::clamp(float(source.spot.innerConeAngle), 0.0f, 0.99f * light.outerConeAngle);
             spot_ = light;
         } else if (source.type == "point" && !point_) {
-            light.direction = glm::vec3(0, -1, 0);
+            light.direction = glm::vec3(0, -1, 0); // a point light has none of its own
+            check("point");
             light.outerConeAngle = glm::radians(75.0f);
             light.innerConeAngle = 0.0f;
             point_ = light;
@@ -199,7 +252,7 @@ private:
     int firstMaterial_;
     Scene& scene_;
     GltfWarnings& warnings_;
-    std::vector<bool> onPath_;
+    std::vector<bool> onPath_, visited_;
     std::map<std::pair<int, int>, int> meshOf_;
     int defaultMaterial_ = -1;
     int lightCount_ = 0;

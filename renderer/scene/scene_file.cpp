@@ -17,11 +17,26 @@ namespace {
     throw InputError(file + ": " + problem);
 }
 
-Aabb worldBounds(const Scene& scene) {
+// Scene files keep coordinates within 1e9 and their objects within about 2e9; beyond 1e10
+// (reachable only through a glTF's absurd positions, transforms or gltf_scale) the derived
+// light and camera, which square distances, and depth precision break down.
+constexpr float kFarthest = 1e10f;
+// False also for NaN (from inf - inf), which Aabb::extend would silently skip.
+bool withinReach(glm::vec3 p) {
+    return glm::all(glm::lessThanEqual(glm::abs(p), glm::vec3(kFarthest)));
+}
+
+Aabb worldBounds(const Scene& scene, const std::string& file) {
     Aabb bounds;
-    for (const Instance& instance : scene.instances)
-        for (const Vertex& vertex : scene.meshes[size_t(instance.mesh)].vertices)
-            bounds.extend(glm::vec3(instance.transform * glm::vec4(vertex.position, 1.0f)));
+    for (const Instance& instance : scene.instances) {
+        for (const Vertex& vertex : scene.meshes[size_t(instance.mesh)].vertices) {
+            const glm::vec3 p = glm::vec3(instance.transform * glm::vec4(vertex.position, 1.0f));
+            if (!withinReach(p))
+                fail(file, "a vertex lies beyond 1e10 units from the origin (coordinates, node "
+                           "transforms or gltf_scale too large)");
+            bounds.extend(p);
+        }
+    }
     return bounds;
 }
 
@@ -160,8 +175,13 @@ Scene buildScene(const std::string& path, const SceneDescription& description) {
         if (!viewpoint.camera) viewpoint.camera = found.camera;
         if (!viewpoint.light) viewpoint.light = found.light;
     }
+    // Clip planes and the light's frustum are derived from distances to the bounds.
+    if (viewpoint.camera && !withinReach(viewpoint.camera->position))
+        fail(path, "the glTF camera lies beyond 1e10 units from the origin");
+    if (viewpoint.light && !withinReach(viewpoint.light->position))
+        fail(path, "the glTF light lies beyond 1e10 units from the origin");
     addObjects(description, path, scene);
-    scene.bounds = worldBounds(scene);
+    scene.bounds = worldBounds(scene, path);
     if (scene.bounds.empty()) fail(path, "the scene has no triangles");
     if (glm::length(scene.bounds.size()) == 0.0f) fail(path, "all of the scene is at one point");
 

@@ -244,6 +244,11 @@ SceneDescription readSceneDescription(const std::string& path) {
         detail.erase(0, detail.find("] ") == std::string::npos ? 0 : detail.find("] ") + 2);
         throw InputError(path + ": malformed JSON at byte " + std::to_string(error.byte) + ": " +
                          detail);
+    } catch (const Json::out_of_range& error) {
+        // A number beyond double range ("1e999") is reported as out_of_range, not parse_error.
+        std::string detail = error.what();
+        detail.erase(0, detail.find("] ") == std::string::npos ? 0 : detail.find("] ") + 2);
+        throw InputError(path + ": malformed JSON: " + detail);
     }
     if (!document.is_object()) throw InputError(path + ": a scene file must hold a JSON object");
     const JsonObject top(path, document, "");

@@ -1,0 +1,339 @@
+// The README's bad-input table, beyond what test_scene (the loader's messages) and test_cli
+// (render's options) already check: malformed, truncated and hostile glTF and scene files,
+// non-finite and overflowing numbers, degenerate and empty geometry, missing textures,
+// unsupported glTF features, absurd settings and sizes, no Vulkan device. Each case gets an
+// error naming the problem or its documented fallback, never a crash, never a half-written file.
+#include "renderer.h"
+#include "support.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <regex>
+#include <sstream>
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using namespace ssgi;
+
+namespace {
+
+// The binary chunk of a one-mesh glTF: float positions, then 32-bit indices.
+std::string meshBytes(const std::vector<float>& positions, const std::vector<uint32_t>& indices) {
+    std::string bytes(positions.size() * 4 + indices.size() * 4, '\0');
+    std::memcpy(bytes.data(), positions.data(), positions.size() * 4);
+    std::memcpy(bytes.data() + positions.size() * 4, indices.data(), indices.size() * 4);
+    return bytes;
+}
+
+// The JSON of that glTF: one indexed triangle list in node 0 of scene 0.
+json meshJson(size_t positionCount, size_t indexCount) {
+    const size_t positionBytes = positionCount * 4, indexBytes = indexCount * 4;
+    auto accessor = [](int view, int type, size_t count, const char* shape) {
+        return json{
+            {"bufferView", view}, {"componentType", type}, {"count", count}, {"type", shape}};
+    };
+    return {
+        {"asset", {{"version", "2.0"}}},
+        {"scene", 0},
+        {"scenes", {{{"nodes", {0}}}}},
+        {"nodes", {{{"mesh", 0}}}},
+        {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}, {"indices", 1}}}}}}},
+        {"buffers", {{{"byteLength", positionBytes + indexBytes}}}},
+        {"bufferViews",
+         {{{"buffer", 0}, {"byteLength", positionBytes}},
+          {{"buffer", 0}, {"byteOffset", positionBytes}, {"byteLength", indexBytes}}}},
+        {"accessors",
+         {accessor(0, 5126, positionCount / 3, "VEC3"), accessor(1, 5125, indexCount, "SCALAR")}}};
+}
+
+// GLB container: 12-byte header, JSON chunk (space padded), BIN chunk (zero padded).
+std::string glb(const std::string& text, std::string bin) {
+    const std::string padded = text + std::string((4 - text.size() % 4) % 4, ' ');
+    bin.resize((bin.size() + 3) / 4 * 4, '\0');
+    auto u32 = [](uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+    const uint32_t length = uint32_t(28 + padded.size() + bin.size());
+    return "glTF" + u32(2) + u32(length) + u32(uint32_t(padded.size())) + "JSON" + padded +
+           u32(uint32_t(bin.size())) + "BIN" + std::string(1, '\0') + bin;
+}
+std::string meshGlb(const std::vector<float>& positions, const std::vector<uint32_t>& indices) {
+    return glb(meshJson(positions.size(), indices.size()).dump(), meshBytes(positions, indices));
+}
+const std::vector<float> kTriangle = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+
+class BadInput : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() / ("ssgi-bad-input-" + std::to_string(getpid()) + "-" +
+                                            std::to_string(std::random_device()()));
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+    std::string write(const std::string& name, const std::string& bytes) const {
+        std::ofstream(dir_ / name, std::ios::binary) << bytes;
+        return (dir_ / name).string();
+    }
+    // The message of the InputError loading `path` throws; fails the test when it loads.
+    static std::string loadError(const std::string& path) {
+        try {
+            loadScene(path);
+        } catch (const InputError& error) {
+            return error.what();
+        }
+        ADD_FAILURE() << path << " loaded; an InputError was expected";
+        return "";
+    }
+    fs::path dir_;
+};
+
+// Each hostile glTF is the one-triangle file changed by JSON-patch "add" steps ([path, value]:
+// sets an object's member, inserts into an array, "-" appends), and what its error must say.
+#define SPOT                                                                                       \
+    R"(["/extensions",{"KHR_lights_punctual":{"lights":[{"type":"spot","spot":{"outerConeAngle":0.5}}]}}],["/nodes/-",{"extensions":{"KHR_lights_punctual":{"light":0}}}],["/scenes/0/nodes/-",1])"
+const char* const kGltfCases[][3] = {
+    {"count-past-view", R"([["/accessors/0/count", 4]])", "run past the end"},
+    {"index-count", R"([["/accessors/1/count", 2]])", "not a multiple of 3"},
+    {"vec2-positions", R"([["/accessors/0/type", "VEC2"]])", "expected VEC3"},
+    {"int-positions", R"([["/accessors/0/componentType", 5125]])", "component type 5125"},
+    {"sparse", R"([["/accessors/0/sparse", {"count": 1}]])", "sparse"},
+    {"translation-overflow", R"([["/nodes/0/translation", [1e39, 0, 0]]])", "not finite"},
+    {"number-overflow", R"([["/nodes/0/translation", [1e300, 0, 0]]])", "number overflow"},
+    {"world-overflow",
+     R"([["/nodes/0/scale", [1e30, 1e30, 1e30]], ["/nodes/-", {"scale": [1e30, 1e30, 1e30], "children": [0]}], ["/scenes/0/nodes", [1]]])",
+     "world transform is not finite"},
+    {"far-away", R"([["/nodes/0/scale", [1e11, 1, 1]]])", "beyond 1e10"},
+    {"cycle", R"([["/nodes/0/children", [0]]])", "its own ancestor"},
+    {"two-parents", R"([["/nodes/-", {"children": [0]}], ["/scenes/0/nodes/-", 1]])",
+     "more than one parent"},
+    {"camera-zero-scale",
+     R"([["/cameras", [{"type": "perspective", "perspective": {"yfov": 1, "znear": 1}}]], ["/nodes/-", {"camera": 0, "scale": [0, 0, 0]}], ["/scenes/0/nodes/-", 1]])",
+     "no view direction"},
+    {"light-zero-scale", "[" SPOT R"(, ["/nodes/1/scale", [0, 0, 0]]])", "no direction"},
+    {"light-cone-zero",
+     "[" SPOT R"(, ["/extensions/KHR_lights_punctual/lights/0/spot/outerConeAngle", 0]])",
+     "outerConeAngle must be > 0"},
+    {"light-too-bright",
+     "[" SPOT R"(, ["/extensions/KHR_lights_punctual/lights/0/intensity", 1e30]])",
+     "intensity in [0, 1e12]"},
+    // The index was converted to int before it was checked: undefined behaviour (UBSan).
+    {"light-index", "[" SPOT R"(, ["/nodes/1/extensions/KHR_lights_punctual/light", 1e20]])",
+     "light 1e+20 does not exist"},
+    {"negative-albedo",
+     R"([["/materials", [{"pbrMetallicRoughness": {"baseColorFactor": [-1, 0, 0, 1]}}]], ["/meshes/0/primitives/0/material", 0]])",
+     "baseColorFactor must be finite and not negative"},
+    {"missing-texture",
+     R"([["/images", [{"uri": "textures/missing.png"}]], ["/textures", [{"source": 0}]], ["/materials", [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]], ["/meshes/0/primitives/0/material", 0]])",
+     "textures/missing.png"},
+    {"corrupt-texture", R"([["/images", [{"uri": "data:image/png;base64,iVBORw0KGgoAAAA"}]]])",
+     "image"},
+    {"required-extension", R"([["/extensionsRequired", ["KHR_draco_mesh_compression"]]])",
+     "KHR_draco_mesh_compression"},
+    {"no-nodes", R"([["/scenes/0/nodes", []]])", "no triangles"},
+    {"only-points", R"([["/meshes/0/primitives/0/mode", 0]])", "no triangles"},
+};
+
+TEST_F(BadInput, MalformedGltfNamesTheFileAndTheProblem) {
+    const std::string bin = meshBytes(kTriangle, {0, 1, 2});
+    for (const auto& [name, steps, expected] : kGltfCases) {
+        SCOPED_TRACE(name);
+        json patch = json::array();
+        for (const json& step : json::parse(steps))
+            patch.push_back({{"op", "add"}, {"path", step[0]}, {"value", step[1]}});
+        std::string text = meshJson(9, 3).patch(patch).dump();
+        // JSON holds no inf: a number beyond double range is how a file says it.
+        for (size_t at; (at = text.find("1e+300")) != std::string::npos;)
+            text.replace(at, 6, "1e999");
+        const std::string message = loadError(write(name + std::string(".glb"), glb(text, bin)));
+        EXPECT_NE(message.find(name), std::string::npos) << message;
+        EXPECT_NE(message.find(expected), std::string::npos) << message;
+    }
+    // A chain 5000 deep overflowed the stack (found with the fuzzer's sanitizer build).
+    json deep = meshJson(9, 3);
+    for (int i = 1; i <= 5000; ++i)
+        deep["nodes"].push_back({{"children", {i - 1}}});
+    deep["scenes"][0]["nodes"] = {5000};
+    EXPECT_NE(loadError(write("deep.glb", glb(deep.dump(), bin))).find("more than 1000 levels"),
+              std::string::npos);
+}
+
+TEST_F(BadInput, NonFiniteAndCollapsedPositions) {
+    EXPECT_NE(loadError(write("inf.glb", meshGlb({0, 0, 0, INFINITY, 0, 0, 0, 1, 0}, {0, 1, 2})))
+                  .find("POSITION 1 is not a finite number"),
+              std::string::npos);
+    EXPECT_NE(loadError(write("index.glb", meshGlb(kTriangle, {0, 1, 0xffffffffu})))
+                  .find("index 4294967295 (entry 2) is out of range"),
+              std::string::npos);
+    EXPECT_NE(loadError(write("point.glb", meshGlb(std::vector<float>(9, 1.0f), {0, 1, 2})))
+                  .find("all of the scene is at one point"),
+              std::string::npos);
+}
+
+TEST_F(BadInput, AFolderIsNotASceneFile) {
+    fs::create_directories(dir_ / "folder.json");
+    EXPECT_NE(loadError((dir_ / "folder.json").string()).find("not a regular file"),
+              std::string::npos);
+}
+
+// Every prefix of a GLB and of a scene file is rejected with an InputError; none crashes.
+TEST_F(BadInput, EveryTruncationIsAnError) {
+    const std::string whole = meshGlb(kTriangle, {0, 1, 2});
+    ASSERT_NO_THROW(loadScene(write("whole.glb", whole)));
+    for (size_t n = 0; n < whole.size(); ++n)
+        EXPECT_THROW(loadScene(write("cut.glb", whole.substr(0, n))), InputError) << n << " bytes";
+    std::string header = whole;
+    header[11] = char(0x7f); // a total length far beyond the file
+    EXPECT_THROW(loadScene(write("length.glb", header)), InputError);
+    std::ifstream in(test::sourcePath("scenes/cornell-box.json"));
+    const std::string scene(std::istreambuf_iterator<char>(in), {});
+    for (size_t n = 0; n < scene.rfind('}'); ++n)
+        EXPECT_THROW(loadScene(write("cut.json", scene.substr(0, n))), InputError) << n << " bytes";
+    std::ifstream model(test::sharedScene("cornell-box.glb"), std::ios::binary);
+    const std::string bytes(std::istreambuf_iterator<char>(model), {});
+    for (size_t n = 0; n + 1 < bytes.size(); n += 61)
+        EXPECT_THROW(loadScene(write("shared.glb", bytes.substr(0, n))), InputError) << n;
+}
+
+// Each tests/scenes/bad-*.json says in its "description" what its error must contain.
+TEST_F(BadInput, SceneFilesInTestsScenes) {
+    size_t count = 0;
+    for (const auto& entry : fs::directory_iterator(test::sourcePath("tests/scenes"))) {
+        const std::string name = entry.path().filename().string();
+        if (name.rfind("bad-", 0) != 0 || entry.path().extension() != ".json") continue;
+        SCOPED_TRACE(name);
+        std::ifstream in(entry.path());
+        const std::string text(std::istreambuf_iterator<char>(in), {});
+        std::smatch expected;
+        ASSERT_TRUE(std::regex_search(text, expected, std::regex("\"expect: ([^\"]*)\"")));
+        const std::string message = loadError(entry.path().string());
+        EXPECT_NE(message.find(name), std::string::npos) << message;
+        EXPECT_NE(message.find(expected[1].str()), std::string::npos) << message;
+        ++count;
+    }
+    EXPECT_GE(count, 10u);
+}
+
+// What the renderer does not use loads with one warning per kind, however often it occurs.
+TEST_F(BadInput, UnsupportedGltfFeaturesWarnOnce) {
+    json g = meshJson(9, 3);
+    auto& primitives = g["meshes"][0]["primitives"];
+    primitives[0]["targets"] = {{{"POSITION", 0}}};
+    for (int copy = 0; copy < 2; ++copy)
+        primitives.push_back({{"attributes", {{"POSITION", 0}}}, {"mode", 1}});
+    g["nodes"].push_back({{"mesh", 0}, {"translation", {0, 0, 1}}, {"camera", 0}});
+    g["nodes"][0]["camera"] = 0;
+    g["scenes"][0]["nodes"].push_back(1);
+    g["skins"] = {{{"joints", {0}}}, {{"joints", {1}}}};
+    g["animations"] = {{{"channels", json::array()}, {"samplers", json::array()}}};
+    g["cameras"] = {{{"type", "orthographic"},
+                     {"orthographic", {{"xmag", 1}, {"ymag", 1}, {"znear", 0.1}, {"zfar", 9}}}}};
+    std::ostringstream said;
+    std::streambuf* saved = std::cerr.rdbuf(said.rdbuf());
+    Scene scene;
+    EXPECT_NO_THROW(
+        scene = loadScene(write("features.glb", glb(g.dump(), meshBytes(kTriangle, {0, 1, 2})))));
+    std::cerr.rdbuf(saved);
+    EXPECT_EQ(scene.instances.size(), 2u); // the triangles of both nodes, not the lines
+    const std::string text = said.str();
+    for (const char* warning :
+         {"skins are ignored", "animations are ignored", "morph targets are ignored",
+          "mode 1 (not TRIANGLES)", "orthographic cameras are ignored"}) {
+        const size_t first = text.find(warning);
+        EXPECT_NE(first, std::string::npos) << warning << " not in:\n" << text;
+        EXPECT_EQ(text.find(warning, first + 1), std::string::npos) << warning << " twice";
+    }
+}
+
+// The programs as a user runs them (beside this test's build folder; CMake builds them first):
+// the exit status says bad input (2) or device (1), and nothing is left half-written.
+TEST_F(BadInput, ProgramsExitStatusAndNoPartialOutput) {
+    const fs::path build = fs::read_symlink("/proc/self/exe").parent_path().parent_path();
+    const std::string render = (build / "render").string(), walk = (build / "walkthrough").string();
+    ASSERT_TRUE(fs::exists(render) && fs::exists(walk)) << "render and walkthrough are built first";
+    const std::string box = test::sourcePath("tests/scenes/empty-box.json") + " --size 16x16";
+    const std::string out = " --output " + (dir_ / "out.png").string();
+    const std::string blocked = write("blocker", "a file where a folder is wanted") + "/x";
+    const std::string noDevice = "VK_ICD_FILENAMES=/nonexistent.json VK_DRIVER_FILES=/none.json";
+    const std::string timings = (dir_ / "t.csv").string();
+    struct Case {
+        std::string command;
+        int status;
+        std::string expected;
+    };
+    const Case cases[] = {
+        {render + " --set ssdo_samples=0" + out, 2, "'ssdo_samples' is 0"},
+        {render + " --set indirect_vpls=100000000" + out, 2, "indirect_vpls"},
+        {render + " --set shadow_taps=nan" + out, 2, "'shadow_taps' is nan"},
+        {render + " --set exposure=inf" + out, 2, "'exposure' is inf"},
+        {render + " --set cache_rotations=1e300" + out, 2, "cache_rotations"},
+        {render + " --set ao_directions=2.5" + out, 2, "must be a whole number"},
+        {render + " --size 64x0" + out, 2, "64x0"},
+        {render + " " + box + " --output " + blocked + ".png", 2, "blocker/x.png"},
+        {render + " " + box + out + " --profile-json " + blocked + ".json", 2, "blocker/x.json"},
+        {noDevice + " " + render + " " + box + out, 1, "Vulkan"},
+        {walk + " " + box, 2, "camera_path"},
+        {walk + " " + box + " --still --timings t.txt", 2, "--timings"},
+        {walk + " " + box + " --still --frames 2 --timings " + timings + " --frames-dir " + blocked,
+         2, "blocker/x"},
+        {noDevice + " " + walk + " " + box + " --still --timings " + timings, 1, "Vulkan"},
+    };
+    for (const Case& c : cases) {
+        FILE* pipe = popen((c.command + " 2>&1").c_str(), "r");
+        ASSERT_NE(pipe, nullptr);
+        std::string output;
+        char buffer[4096];
+        while (size_t n = fread(buffer, 1, sizeof buffer, pipe))
+            output.append(buffer, n);
+        const int status = pclose(pipe);
+        EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, c.status) << c.command << output;
+        EXPECT_NE(output.find("error: "), std::string::npos) << c.command << "\n" << output;
+        EXPECT_NE(output.find(c.expected), std::string::npos) << c.command << "\n" << output;
+        EXPECT_FALSE(fs::exists(timings)) << c.command;
+        EXPECT_FALSE(fs::exists(dir_ / "out.json")) << c.command;
+        // The one finished file a failing run may leave is the PNG it wrote before failing.
+        for (const auto& entry : fs::directory_iterator(dir_))
+            EXPECT_EQ(entry.path().filename().string().rfind(".tmp", 0), std::string::npos)
+                << entry.path();
+    }
+}
+
+class BadInputOnDevice : public test::VulkanTest {};
+
+// Zero-area and collinear triangles load (made-up flat normals) and render cleanly.
+TEST_F(BadInputOnDevice, DegenerateTrianglesRender) {
+    const std::string path =
+        (fs::temp_directory_path() / ("ssgi-degenerate-" + std::to_string(getpid()) + ".glb"));
+    const std::vector<float> positions = {-1, 0, -1, 1, 0, -1, 1, 0, 1,  // a floor triangle
+                                          0,  1, 0,  0, 1, 0,  0, 1, 0,  // one point
+                                          0,  1, 0,  1, 1, 0,  2, 1, 0}; // one line
+    std::ofstream(path, std::ios::binary) << meshGlb(positions, {0, 1, 2, 3, 4, 5, 6, 7, 8});
+    const Scene scene = loadScene(path);
+    fs::remove(path);
+    for (const Vertex& v : scene.meshes[0].vertices)
+        EXPECT_NEAR(glm::length(v.normal), 1.0f, 1e-5f);
+    const test::Frame frame = test::render(scene, 48, 48);
+    for (float value : frame.hdr)
+        ASSERT_TRUE(std::isfinite(value));
+}
+
+// Sizes beyond the device's limits are input errors before anything is allocated.
+TEST_F(BadInputOnDevice, BeyondTheDeviceLimits) {
+    Scene scene = loadScene(test::sourcePath("tests/scenes/empty-box.json"));
+    const uint32_t limit = test::context().properties.limits.maxImageDimension2D;
+    EXPECT_THROW(Renderer(test::context(), scene, {1, limit + 1, "final"}), InputError);
+    scene.settings["shadow_map_size"] = limit + 1.0; // past checkSetting, as a caller could
+    EXPECT_THROW(Renderer(test::context(), scene, {16, 16, "final"}), InputError);
+}
+// A texture larger than the device's largest 2D image is refused before any image is made.
+TEST_F(BadInputOnDevice, TextureBeyondTheDeviceLimit) {
+    Scene scene = loadScene(test::sourcePath("tests/scenes/empty-box.json"));
+    const uint32_t limit = test::context().properties.limits.maxImageDimension2D;
+    scene.textures.push_back({"tall", 1, limit + 1, std::vector<uint8_t>((limit + 1) * 4, 255)});
+    scene.materials[0].baseColorTexture = 0;
+    EXPECT_THROW(Renderer(test::context(), scene, {16, 16, "final"}), InputError);
+}
+
+} // namespace

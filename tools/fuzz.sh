@@ -1,0 +1,66 @@
+#!/usr/bin/env bash
+# Fuzzes the scene loader (glTF and scene files) for a bounded time:
+#   tools/fuzz.sh [SECONDS]        (default 600)
+# Builds tests/fuzz/fuzz_scene with clang (libFuzzer, ASan, UBSan) into build-fuzz/, seeds it
+# with the scene files and ../shared/scenes/*.glb, runs one fuzzing process for SECONDS and
+# prints the number of executions. The corpus it grows is kept in build-fuzz/fuzz-corpus/ for
+# the next run; anything it finds is written to build-fuzz/fuzz-findings/ and the exit status
+# is non-zero. Replay one finding with: build-fuzz/tests/fuzz/fuzz_scene FILE
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+seconds=${1:-600}
+build=${SSGI_FUZZ_BUILD:-build-fuzz}
+jobs=${JOBS:-2}
+[[ "$seconds" =~ ^[0-9]+$ && "$seconds" -gt 0 ]] || {
+    echo "usage: tools/fuzz.sh [SECONDS]" >&2
+    exit 2
+}
+command -v clang++ >/dev/null || {
+    echo "error: clang++ not found (apt-get install clang libclang-rt-14-dev)" >&2
+    exit 1
+}
+# tinygltf and stb_image are compiled into the target (instrumented) when the stb headers are
+# there; without them the fuzzer only sees into our own code.
+[ -f /usr/include/stb/stb_image.h ] ||
+    echo "fuzz: /usr/include/stb/stb_image.h missing (libstb-dev): tinygltf stays uninstrumented"
+
+if [ ! -f "$build/CMakeCache.txt" ]; then
+    CC=clang CXX=clang++ cmake -S . -B "$build" -G Ninja -DSSGI_FUZZ=ON \
+        -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+fi
+cmake --build "$build" --target fuzz_scene -j"$jobs"
+
+# Seeds are refreshed every run (the scene files may have changed); the corpus persists.
+seeds=$build/fuzz-seeds corpus=$build/fuzz-corpus findings=$build/fuzz-findings
+rm -rf "$seeds"
+mkdir -p "$seeds" "$corpus" "$findings"
+cp scenes/*.json tests/scenes/*.json "$seeds"/
+for f in scenes/*/*.json; do [ -f "$f" ] && cp "$f" "$seeds/$(basename "$(dirname "$f")")-$(basename "$f")"; done
+if ls ../shared/scenes/*.glb >/dev/null 2>&1; then
+    cp ../shared/scenes/*.glb "$seeds"/
+else
+    echo "fuzz: ../shared/scenes/*.glb not there; seeding with scene files only"
+fi
+
+# One process (the machine is shared); -max_len keeps executions fast: the large models are
+# read as their first 512 KiB, which keeps their whole JSON chunk and truncates the binary one.
+log=$build/fuzz.log
+set +e
+"$build/tests/fuzz/fuzz_scene" -max_total_time="$seconds" -timeout=30 -rss_limit_mb=2048 \
+    -max_len=524288 -dict=tests/fuzz/scene.dict -artifact_prefix="$findings/" \
+    -print_final_stats=1 "$corpus" "$seeds" 2>&1 | tee "$log" | grep -E '^#[0-9]+.*(pulse|REDUCE|NEW)' |
+    awk 'NR % 50 == 1'
+status=${PIPESTATUS[0]}
+set -e
+
+executions=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
+echo "fuzz: ${executions:-?} executions in ${seconds} s; corpus $(ls "$corpus" | wc -l) inputs;" \
+    "log $log"
+if [ "$status" -ne 0 ] || [ -n "$(ls -A "$findings")" ]; then
+    echo "fuzz: FINDINGS (exit status $status):"
+    ls -l "$findings"
+    grep -E 'ERROR|SUMMARY|broke its promise|instead of InputError' "$log" | head -20
+    exit 1
+fi
+echo "fuzz: no findings"
