@@ -1,0 +1,140 @@
+// Runs one stability case: the renderer under test along the case's timeline (a still warm-up
+// until the cache has converged, the camera/light path, a still hold), a fresh renderer with
+// the same settings at the final camera, a converged reference there (running mean, twice the
+// samples), the path tracer on request, and the measures of measures.h per frame.
+#pragma once
+
+#include "metrics/error_map.h"
+#include "reference/cache.h"
+#include "renderer.h"
+#include "stability/cases.h"
+#include "stability/measures.h"
+
+#include <functional>
+#include <memory>
+#include <set>
+
+namespace ssgi::stability {
+
+struct RunOptions {
+    uint32_t width = 160, height = 120;
+    uint32_t warmup = 40;     // still frames before the path: past the 36 rotations to converge
+    uint32_t hold = 40;       // still frames after the last change
+    uint32_t converge = 40;   // frames of the fresh renderer and of the converged reference
+    uint32_t stillFrames = 8; // further frames of the fresh renderer: flicker once converged
+    uint32_t truthSpp = 0;    // path-traced samples per pixel; 0 = no ground truth
+    std::vector<std::pair<std::string, double>> settings; // method settings to override
+    std::string repository = SSGI_SOURCE_DIR;
+};
+
+struct FrameRecord {
+    const char* phase = "";   // warmup, path, hold
+    int sinceChange = -1;     // frames since camera, light or size last changed; -1 before
+    double flicker = kNaN;    // change from the previous frame (flicker()), all geometry
+    double error = kNaN;      // relMSE to the converged image, inside the region
+    double errorRest = kNaN;  // ... outside it
+    double freshError = kNaN; // the fresh renderer's region error at the same age
+    double freshRest = kNaN;  // ... outside the region
+    double stale = kNaN;      // staleFraction(), moving-light cases
+    double reused = kNaN;     // fraction of geometry pixels whose AO history continued
+    size_t nonFinite = 0;     // NaN/Inf values over every image of the frame
+};
+
+struct CaseResult {
+    Case spec;
+    uint32_t width = 0, height = 0; // at the end
+    size_t regionPixels = 0, geometryPixels = 0;
+    std::vector<FrameRecord> frames;
+    double convergedError = kNaN;  // region error over the last 4 frames: where it settles
+    double restError = kNaN;       // error outside the region over the last 4 frames
+    double ghostLeft = kNaN;       // convergedError / restError: > 1 where the region settles
+                                   // worse than the rest of the image
+    double tolerance = kNaN;       // recovered: region error <= this (at the end; see runCase)
+    int recoveryFrames = -1;       // frames after the last change until recovered, -1 never
+    double excessOverFresh = kNaN; // mean region error of the first 8 frames after the change
+                                   // over the fresh renderer's, minus 1 (> 0: a ghost)
+    double staleAfter = kNaN;      // largest stale fraction after the last change
+    double reusedAtChange = kNaN;  // fraction of geometry pixels that kept AO history then
+    double keptUnseen = kNaN;      // ... though the camera before could not see their surface
+    double stillFlicker = kNaN;    // the fresh renderer, converged and still
+    double pathFlicker = kNaN;     // mean over the path frames
+    size_t nonFinite = 0;          // over every image of every frame of the three renderers
+    std::set<std::string> nonFiniteImages;
+    // relMSE to the path tracer in the region: the tested renderer converged at the first
+    // camera, the fresh one converged at the final camera, the tested one at the end; and the
+    // fresh one outside the region.
+    double truthStart = kNaN, truthFresh = kNaN, truthEnd = kNaN, truthRest = kNaN;
+    Mask region;
+    // The case's picture, panels of width x height side by side (RGBA, display-encoded).
+    std::vector<std::string> panelNames;
+    std::vector<Pixels> panels;
+};
+
+// Every image of the last frame (a history pair's written side), counted for NaN/Inf. The
+// light-view images change only when the light moves, so `withRsm` says whether to read them.
+inline size_t countNonFiniteImages(Renderer& r, bool withRsm, std::set<std::string>& offenders) {
+    std::set<std::string> names;
+    for (const auto& [name, bytes] : r.frameGraph().imageMemory()) {
+        std::string n = name;
+        if (n.ends_with(" A") || n.ends_with(" B")) n.resize(n.size() - 2);
+        if (withRsm || !n.starts_with("rsm.")) names.insert(n);
+    }
+    size_t total = 0;
+    for (const std::string& name : names) {
+        const size_t bad = countNonFinite(r.readImage(name));
+        if (bad) offenders.insert(name);
+        total += bad;
+    }
+    return total;
+}
+
+inline View readView(Renderer& r, const Camera& camera) {
+    View v{r.size().width,
+           r.size().height,
+           camera,
+           r.readImage("hdr"),
+           r.readImage("gbuffer.position"),
+           r.readImage("gbuffer.normal"),
+           r.readImage("gbuffer.albedo")};
+    return v;
+}
+
+// `start`: the view at the end of the warm-up; `before`: the view just before the last change.
+inline Mask regionMask(const Case& c, const View& start, const View& before, const View& end,
+                       const Scene& scene) {
+    const Pixels& oldHdr = start.hdr;
+    switch (c.region) {
+    case Region::Disoccluded:
+        return disoccludedMask(start, end);
+    case Region::Carried:
+        return subtract(geometryMask(end), unseenMask(before, end));
+    case Region::Thin:
+        return thinMask(end, 3, 1.15f, 1);
+    case Region::NearOccluder:
+        return nearBoxMask(end, c.occluder, aoRadius(scene));
+    case Region::LightChanged:
+        return changedMask(oldHdr, end.hdr, geometryMask(end), 0.2);
+    case Region::Grazing:
+        return grazingMask(end, 0.2f);
+    case Region::DepthEdges:
+        return depthEdgeMask(end, 1.2f, 2);
+    case Region::Geometry:
+        return geometryMask(end);
+    }
+    return {};
+}
+
+inline double mean(const std::vector<double>& v, size_t from, size_t to) {
+    double sum = 0.0;
+    size_t n = 0;
+    for (size_t i = from; i < std::min(to, v.size()); ++i)
+        if (std::isfinite(v[i])) sum += v[i], ++n;
+    return n ? sum / double(n) : kNaN;
+}
+
+CaseResult runCase(vk::Context& ctx, const Case& c, const RunOptions& o,
+                   const std::function<void(const std::string&)>& log = {});
+
+} // namespace ssgi::stability
+
+#include "stability/run_impl.h"

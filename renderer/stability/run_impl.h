@@ -1,0 +1,296 @@
+// runCase() of run.h: the timeline, the two renderers, and the figures drawn from them.
+#pragma once
+
+#include "stability/run.h"
+
+namespace ssgi::stability {
+
+namespace detail {
+
+struct Step {
+    const char* phase;
+    Camera camera;
+    SpotLight light;
+    uint32_t width, height;
+};
+
+inline bool sameLight(const SpotLight& a, const SpotLight& b) {
+    return a.position == b.position && a.direction == b.direction;
+}
+
+inline bool sameStep(const Step& a, const Step& b) {
+    return a.camera.position == b.camera.position && a.camera.orientation == b.camera.orientation &&
+           sameLight(a.light, b.light) && a.width == b.width && a.height == b.height;
+}
+
+inline std::vector<Step> timeline(const Case& c, const Scene& scene, const RunOptions& o) {
+    const CameraPath& path = scene.cameraPath;
+    const float duration = path.keys.back().time - path.keys.front().time;
+    const float start = path.keys.front().time;
+    std::vector<Step> steps(o.warmup,
+                            {"warmup", cameraAt(path, start), scene.light, o.width, o.height});
+    SpotLight light = scene.light;
+    uint32_t width = o.width, height = o.height;
+    const glm::vec3 finalDirection = glm::normalize(c.lightAim - c.lightTo);
+    for (uint32_t p = 1; p <= c.pathFrames; ++p) {
+        const float s = float(p) / float(c.pathFrames);
+        if (c.movesLight) {
+            light.position = glm::mix(scene.light.position, c.lightTo, s);
+            light.direction = glm::normalize(glm::mix(scene.light.direction, finalDirection, s));
+        }
+        if (c.resizeScale > 0.0f && p == c.pathFrames / 2 + 1) {
+            width = std::max(1u, uint32_t(std::lround(o.width * c.resizeScale)));
+            height = std::max(1u, uint32_t(std::lround(o.height * c.resizeScale)));
+        }
+        steps.push_back({"path", cameraAt(path, start + duration * s), light, width, height});
+    }
+    for (uint32_t i = 0; i < o.hold; ++i)
+        steps.push_back({"hold", steps.back().camera, light, width, height});
+    return steps;
+}
+
+// Fraction of geometry pixels whose AO (or SSDO) history continued this frame: rotation count
+// above 1. The light does not reset these, so they show what the camera alone does.
+inline double aoReused(Renderer& r, const View& v, Mask* kept = nullptr) {
+    const char* name = r.frameGraph().find("ao.meta A").valid()     ? "ao.meta"
+                       : r.frameGraph().find("ssdo.meta A").valid() ? "ssdo.meta"
+                                                                    : nullptr;
+    if (!name) return kNaN;
+    const Pixels meta = r.readImage(name);
+    size_t reused = 0, geometry = 0;
+    if (kept) kept->assign(v.pixels(), 0);
+    for (size_t i = 0; i < v.pixels(); ++i) {
+        if (!v.geometry(i)) continue;
+        ++geometry;
+        const bool continued = meta[4 * i + 3] > 1.5f;
+        reused += continued;
+        if (kept) (*kept)[i] = continued;
+    }
+    return geometry ? double(reused) / double(geometry) : kNaN;
+}
+
+// Linear radiance as the composite pass shows it: exposure, Narkowicz's ACES fit, sRGB.
+inline Pixels tonemapped(const Pixels& hdr, float exposure) {
+    Pixels out(hdr.size(), 1.0f);
+    for (size_t i = 0; i < hdr.size(); i += 4)
+        for (size_t c = 0; c < 3; ++c) {
+            const float x = hdr[i + c] * exposure;
+            const float t = std::clamp(
+                (x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f), 0.0f, 1.0f);
+            out[i + c] = t <= 0.0031308f ? 12.92f * t : 1.055f * std::pow(t, 1.0f / 2.4f) - 0.055f;
+        }
+    return out;
+}
+
+// An AO image (R) as display grey, its occlusion tripled so that a faint one shows.
+inline Pixels grey(const Pixels& ao) {
+    Pixels out(ao.size(), 1.0f);
+    for (size_t i = 0; i < ao.size(); i += 4)
+        out[i] = out[i + 1] = out[i + 2] = std::clamp(1.0f - 3.0f * (1.0f - ao[i]), 0.0f, 1.0f);
+    return out;
+}
+
+} // namespace detail
+
+inline CaseResult runCase(vk::Context& ctx, const Case& c, const RunOptions& o,
+                          const std::function<void(const std::string&)>& log) {
+    using namespace detail;
+    Scene scene = loadScene(o.repository + "/" + c.scene);
+    for (const auto& [key, value] : o.settings)
+        scene.settings[key] = checkSetting(c.scene, key, value);
+    if (scene.cameraPath.empty()) throw InputError(c.scene + ": the case has no camera_path");
+    const std::vector<Step> steps = timeline(c, scene, o);
+    size_t lastChange = 0;
+    for (size_t i = 1; i < steps.size(); ++i)
+        if (!sameStep(steps[i], steps[i - 1])) lastChange = i;
+    const Step& last = steps.back();
+    const bool truthAo = c.truth == Truth::Ao;
+
+    CaseResult res;
+    res.spec = c;
+    res.width = last.width, res.height = last.height;
+    res.frames.resize(steps.size());
+    std::unique_ptr<Renderer> a;
+    View previous, start, before;
+    Pixels startAo, endAo, changeLdr;
+    Mask keptAtChange;         // pixels whose AO history continued at the last change
+    std::vector<Pixels> after; // the tested renderer's HDR frames from the last change on
+    for (size_t i = 0; i < steps.size(); ++i) {
+        const Step& s = steps[i];
+        const bool fresh = !a || a->size().width != s.width || a->size().height != s.height;
+        if (fresh) a = std::make_unique<Renderer>(ctx, scene, RenderOptions{s.width, s.height});
+        const bool lightMoved = !sameLight(a->light(), s.light);
+        if (lightMoved) a->setLight(s.light);
+        a->renderFrame(s.camera);
+        FrameRecord& rec = res.frames[i];
+        rec.phase = s.phase;
+        rec.nonFinite = countNonFiniteImages(*a, fresh || lightMoved, res.nonFiniteImages);
+        View v = readView(*a, s.camera);
+        if (i > 0) rec.flicker = flicker(previous, v, {});
+        rec.reused = aoReused(*a, v, i == lastChange ? &keptAtChange : nullptr);
+        if (i + 1 == o.warmup) {
+            start = v;
+            if (truthAo) startAo = a->readImage("ao.history");
+        }
+        if (i >= lastChange) {
+            rec.sinceChange = int(i - lastChange);
+            after.push_back(v.hdr);
+        }
+        if (i == lastChange) {
+            changeLdr = a->readImage("ldr");
+            res.reusedAtChange = rec.reused;
+            before = previous;
+        }
+        if (log && (i + 1) % 20 == 0) log(c.name + ": frame " + std::to_string(i + 1));
+        previous = std::move(v);
+    }
+    if (before.pixels() == 0) before = start;
+    if (truthAo) endAo = a->readImage("ao.history");
+    a.reset();
+
+    // A fresh renderer with the tested settings at the final camera, light and size: how a
+    // start without history fares, and the flicker of a still camera once converged.
+    Renderer f(ctx, scene, {last.width, last.height});
+    f.setLight(last.light);
+    std::vector<Pixels> freshFrames;
+    std::vector<double> stillFlicker;
+    Pixels referenceAo;
+    for (uint32_t k = 0; k < o.converge + o.stillFrames; ++k) {
+        f.renderFrame(last.camera);
+        res.nonFinite += countNonFiniteImages(f, k == 0, res.nonFiniteImages);
+        View v = readView(f, last.camera);
+        if (k < o.converge) freshFrames.push_back(v.hdr);
+        if (k + 1 == o.converge && truthAo) referenceAo = f.readImage("ao.history");
+        if (k >= o.converge) stillFlicker.push_back(flicker(previous, v, {}));
+        previous = std::move(v);
+    }
+    res.stillFlicker = mean(stillFlicker, 0, stillFlicker.size());
+    // The converged image: a still camera's, accumulated by the running mean (cache_method 1),
+    // which averages every frame, from twice the samples a frame. The thesis's rule would not
+    // do: its confidence is near 1 wherever the values are small, so its "converged" value
+    // keeps much of its first frame's noise. Nor would the tested settings: the same frames
+    // of the same settings are the same images, and a fresh start would be its own reference.
+    Scene meanScene = scene;
+    meanScene.settings["cache_method"] = 1;
+    auto twice = [&](const char* key, double most) {
+        meanScene.settings[key] = std::min(2.0 * scene.setting(key), most);
+    };
+    twice("ao_directions", 32), twice("indirect_vpls", 1024), twice("ssdo_samples", 64);
+    twice("shadow_taps", 64);
+    Renderer r(ctx, meanScene, {last.width, last.height});
+    r.setLight(last.light);
+    View converged;
+    for (uint32_t k = 0; k < o.converge; ++k) {
+        r.renderFrame(last.camera);
+        res.nonFinite += countNonFiniteImages(r, k == 0, res.nonFiniteImages);
+    }
+    converged = readView(r, last.camera);
+    const Pixels referenceLdr = r.readImage("ldr");
+    for (const FrameRecord& rec : res.frames)
+        res.nonFinite += rec.nonFinite;
+    if (log) log(c.name + ": reference converged");
+
+    // The figures, in the region taken at the final camera.
+    res.region =
+        c.region == Region::Carried ? keptAtChange : regionMask(c, start, before, converged, scene);
+    res.geometryPixels = metrics::countInside(geometryMask(converged));
+    if (c.region == Region::Carried) { // kept, though the camera before could not see it
+        const Mask unseen = unseenMask(before, converged);
+        size_t invented = 0;
+        for (size_t i = 0; i < unseen.size(); ++i)
+            invented += unseen[i] && keptAtChange[i];
+        res.keptUnseen = double(invented) / double(res.geometryPixels);
+    }
+    res.regionPixels = metrics::countInside(res.region);
+    const Mask rest = subtract(geometryMask(converged), res.region);
+    std::vector<double> errors, rests, freshErrors;
+    for (size_t k = 0; k < after.size(); ++k) {
+        FrameRecord& rec = res.frames[lastChange + k];
+        rec.error = maskedRelMse(after[k], converged.hdr, res.region);
+        rec.errorRest = maskedRelMse(after[k], converged.hdr, rest);
+        if (k < freshFrames.size()) {
+            rec.freshError = maskedRelMse(freshFrames[k], converged.hdr, res.region);
+            rec.freshRest = maskedRelMse(freshFrames[k], converged.hdr, rest);
+        }
+        if (c.movesLight) rec.stale = staleFraction(after[k], start.hdr, converged.hdr, res.region);
+        errors.push_back(rec.error), rests.push_back(rec.errorRest);
+        freshErrors.push_back(rec.freshError);
+        if (k > 0 && std::isfinite(rec.stale))
+            res.staleAfter =
+                std::isfinite(res.staleAfter) ? std::max(res.staleAfter, rec.stale) : rec.stale;
+    }
+    res.convergedError =
+        mean(errors, errors.size() - std::min<size_t>(4, errors.size()), errors.size());
+    res.restError = mean(rests, rests.size() - std::min<size_t>(4, rests.size()), rests.size());
+    res.ghostLeft = res.convergedError / res.restError;
+    // Recovered: the region's error within twice that of the rest of the same frame, whose
+    // history the change left alone (so motion's own damage is not charged to the region);
+    // where the region is the whole image, within twice where a fresh start settles.
+    const double freshSettled =
+        mean(freshErrors, freshFrames.size() - std::min<size_t>(4, freshFrames.size()),
+             freshFrames.size());
+    std::vector<double> relative;
+    for (size_t k = 0; k < errors.size(); ++k) {
+        const double tolerance = 2.0 * (std::isfinite(rests[k]) ? rests[k] : freshSettled);
+        relative.push_back(errors[k] / tolerance);
+    }
+    res.tolerance = 2.0 * (std::isfinite(res.restError) ? res.restError : freshSettled);
+    res.recoveryFrames = framesUntilWithin(relative, 1.0);
+    res.excessOverFresh = mean(errors, 0, 8) / mean(freshErrors, 0, 8) - 1.0;
+    std::vector<double> pathFlicker;
+    for (const FrameRecord& rec : res.frames)
+        if (std::string(rec.phase) == "path") pathFlicker.push_back(rec.flicker);
+    res.pathFlicker = mean(pathFlicker, 0, pathFlicker.size());
+
+    // The picture: the tested renderer right after the change, its error there and at the end
+    // (false colour, errorMap()), and the region over the converged image; AO cases show the
+    // AO with the occluder on screen, after it left (fresh and tested) and the path tracer's.
+    const metrics::Image target{last.width, last.height, converged.hdr};
+    auto errorPanel = [&](const Pixels& image) {
+        return metrics::errorMap({last.width, last.height, image}, target);
+    };
+    Pixels overlay = referenceLdr;
+    for (size_t i = 0; i < res.region.size(); ++i)
+        if (res.region[i])
+            for (size_t ch = 0; ch < 3; ++ch)
+                overlay[4 * i + ch] = 0.4f * overlay[4 * i + ch] + (ch == 1 ? 0.0f : 0.6f);
+    {
+        res.panels = {changeLdr, errorPanel(after.front()), errorPanel(after.back()), overlay};
+        res.panelNames = {"tested, at the change", "its error there", "its error at the end",
+                          "region"};
+    }
+    if (o.truthSpp > 0 && c.truth != Truth::None) {
+        reference::ReferenceOptions ro;
+        ro.mode = truthAo ? reference::Mode::Ao : reference::Mode::Full;
+        ro.spp = truthAo ? 4 * o.truthSpp : o.truthSpp; // AO rays are short: more is cheap
+        ro.width = last.width, ro.height = last.height;
+        Scene lit = scene;
+        lit.light = last.light;
+        const Pixels truth = reference::cachedReference(lit, last.camera, ro).rgba;
+        Pixels truth0;
+        res.truthFresh =
+            maskedRelMse(truthAo ? referenceAo : freshFrames.back(), truth, res.region);
+        res.truthEnd = maskedRelMse(truthAo ? endAo : after.back(), truth, res.region);
+        res.truthRest = maskedRelMse(truthAo ? referenceAo : freshFrames.back(), truth, rest);
+        // At the first camera, for regions that a single view defines.
+        if (c.region != Region::Disoccluded && c.region != Region::LightChanged &&
+            c.region != Region::Carried) {
+            ro.width = start.width, ro.height = start.height;
+            truth0 = reference::cachedReference(scene, start.camera, ro).rgba;
+            res.truthStart = maskedRelMse(truthAo ? startAo : start.hdr, truth0,
+                                          regionMask(c, start, start, start, scene));
+        }
+        if (log) log(c.name + ": ground truth compared");
+        if (!truthAo) {
+            res.panels.push_back(tonemapped(truth, float(scene.setting("exposure"))));
+            res.panelNames.push_back("path-traced");
+        } else {
+            res.panels = {grey(startAo), grey(truth0), grey(referenceAo), grey(endAo), grey(truth)};
+            res.panelNames = {"AO, occluder on screen", "path-traced", "AO, occluder gone (fresh)",
+                              "(tested)", "path-traced"};
+        }
+    }
+    return res;
+}
+
+} // namespace ssgi::stability

@@ -1,0 +1,120 @@
+// The stability suite's cases (renderer/stability/cases.h) at a small size, each measure held
+// within a bound set from the value measured when it was written (80x60, lavapipe, the thesis
+// rule, the quick timeline: 37 frames of warm-up, hold and reference; 2 CPU cores). The whole
+// file takes about 50 s of CPU.
+#include "stability/run.h"
+#include "support.h"
+
+#include <map>
+
+using namespace ssgi;
+using namespace ssgi::stability;
+
+namespace {
+
+RunOptions quick() {
+    RunOptions o;
+    o.width = 80, o.height = 60;
+    o.warmup = o.hold = o.converge = 37; // one frame past the 36 rotations that converge a pixel
+    return o;
+}
+
+// Each case runs once per process; the tests read its figures.
+const CaseResult& result(const std::string& name) {
+    static std::map<std::string, CaseResult> results;
+    auto it = results.find(name);
+    if (it == results.end()) {
+        it = results.emplace(name, runCase(test::context(), findCase(name), quick())).first;
+        const CaseResult& r = it->second;
+        std::printf("%s: region %zu px, NaN/Inf %zu, still flicker %.2g, recovery %d, settled "
+                    "%.3g / elsewhere %.3g, over fresh %.3gx, AO kept %.3f, stale %.3g\n",
+                    name.c_str(), r.regionPixels, r.nonFinite, r.stillFlicker, r.recoveryFrames,
+                    r.convergedError, r.restError, r.excessOverFresh + 1.0, r.reusedAtChange,
+                    r.staleAfter);
+    }
+    return it->second;
+}
+
+using StabilityTest = test::VulkanTest;
+
+// The cases the other tests do not run, short and tiny, with pixels converging after 4
+// rotations so that skipping, refresh and every reset happen within a few frames.
+TEST_F(StabilityTest, NoNaNOrInfInAnyImageOfAnyCase) {
+    RunOptions o = quick();
+    o.width = 48, o.height = 36;
+    o.warmup = o.hold = o.converge = 6;
+    o.stillFrames = 2;
+    o.settings = {{"cache_rotations", 4}};
+    for (const Case& c : suite()) {
+        if (c.name == "pillar" || c.name == "moving-light" || c.name == "cut") continue;
+        const CaseResult r = runCase(test::context(), c, o);
+        EXPECT_EQ(r.nonFinite, 0u)
+            << c.name << ": NaN/Inf in " << r.nonFiniteImages.size() << " image(s), e.g. "
+            << (r.nonFiniteImages.empty() ? "" : *r.nonFiniteImages.begin());
+    }
+}
+
+// Sponza, the camera sliding past a pillar: the wall it reveals has no history.
+TEST_F(StabilityTest, ADisocclusionRecoversWithinTwentyFrames) {
+    const CaseResult& r = result("pillar");
+    EXPECT_EQ(r.nonFinite, 0u);
+    EXPECT_GT(r.regionPixels, 200u) << "the pan must reveal something"; // measured 470
+    // Measured: 12 frames after the camera stopped until the revealed wall's error stays within
+    // twice that of the pixels that kept their history.
+    EXPECT_GE(r.recoveryFrames, 1);
+    EXPECT_LE(r.recoveryFrames, 20);
+    // Measured: it settles at 1.3x the error of the pixels that never lost their history (the
+    // bilinear history fetch carries the pillar's lit edge into the revealed wall, and the
+    // thesis's rule barely lets a small difference through; see docs/stability.md).
+    EXPECT_LT(r.convergedError, 2.0 * r.restError);
+    // Measured 0.9e-4 to 1.4e-4: the refresh tile's fresh samples are the only change on a
+    // still camera.
+    EXPECT_LT(r.stillFlicker, 5e-4);
+}
+
+// The Cornell box, the spot light sliding along the ceiling for 8 frames, then still.
+TEST_F(StabilityTest, AMovedLightLeavesNoStaleLightingAfterOneFrame) {
+    const CaseResult& r = result("moving-light");
+    EXPECT_EQ(r.nonFinite, 0u);
+    EXPECT_GT(r.regionPixels, 1000u); // measured 2115 of 4800
+    // Measured: at most 0.0006 of the old-to-new change remains from the frame after the light
+    // stopped on (setLight restarts the shadow and the bounce light).
+    EXPECT_LT(std::abs(r.staleAfter), 0.02);
+    // The region settles near the pixels the light did not change (measured 1.1x here, 1.7x
+    // at 96x72; so the frames until it stays within twice theirs vary with the size: 1 here,
+    // 33 at 96x72, 1 at 160x120).
+    EXPECT_LT(r.convergedError, 2.5 * r.restError);
+    // Measured: the region's error is 0.85x a fresh renderer's (the AO, which the light does
+    // not touch, keeps its converged history).
+    EXPECT_LT(r.excessOverFresh, 0.2);
+    EXPECT_LT(r.stillFlicker, 5e-4); // measured 2.6e-4 to 3.6e-4
+}
+
+// Sponza, a cut from the west end of the atrium to the east end looking back. No cut is
+// signalled: reprojection alone decides what history survives.
+TEST_F(StabilityTest, ACameraCutKeepsHistoryOnlyWhereReprojectionAllows) {
+    const CaseResult& r = result("cut");
+    EXPECT_EQ(r.nonFinite, 0u);
+    // Measured: AO history kept on 0.30 of the pixels (surfaces both views see).
+    EXPECT_GT(r.reusedAtChange, 0.1);
+    EXPECT_LT(r.reusedAtChange, 0.5);
+    // Known failure, bounded so that it does not grow. Measured 0.013: pixels whose surface the
+    // old camera could not see (off its screen, or more than 2% behind what it saw there) that
+    // kept history all the same: the epsilon of the test, two footprints at 80x60 and 18 m, is
+    // 0.75 m, and a pillar 0.5 m in front passes for the wall behind it.
+    EXPECT_LT(r.keptUnseen, 0.02);
+    // The pixels that start over are as good as a fresh renderer's over the first 8 frames
+    // (measured 1.2x to 1.4x; each frame's pattern turn and scale differ between the two).
+    double tested = 0.0, fresh = 0.0;
+    for (const FrameRecord& f : r.frames)
+        if (f.sinceChange >= 0 && f.sinceChange < 8) tested += f.errorRest, fresh += f.freshRest;
+    std::printf("cut: restarted pixels' error over a fresh start's %.2fx\n", tested / fresh);
+    EXPECT_LT(tested, 2.0 * fresh);
+    // Known failure, bounded: where history was kept the error is 17.7x a fresh renderer's
+    // (measured) and stays (recovery: never): the old view saw those surfaces from up to 25 m,
+    // and its converged values, magnified and shifted, are recomputed only by refresh tiles.
+    EXPECT_LT(r.excessOverFresh + 1.0, 25.0);
+    EXPECT_LT(r.stillFlicker, 5e-4); // measured 2.3e-4
+}
+
+} // namespace
