@@ -20,6 +20,7 @@ struct Measured {
     double ao[3];    // mean absolute error of each AO variant (thesis, Crytek, horizon)
     double indirect; // relMSE over geometry pixels
     double direct;   // relMSE over geometry pixels
+    double ssdo;     // relMSE of the image with SSDO (no RSM bounce) against the reference full
 };
 
 metrics::Image image(std::vector<float> rgba) {
@@ -72,6 +73,15 @@ Measured measure(const Scene& scene) {
     m.indirect = relMseOnGeometry(indirect, ref(reference::Mode::Indirect), position);
     m.direct =
         relMseOnGeometry(renderer->readImage("direct"), ref(reference::Mode::Direct), position);
+    // SSDO in place of AO and of the RSM's bounce: its sky occlusion and its own bounce make the
+    // whole image's indirect part, against the reference's direct + one bounce + sky.
+    {
+        Scene s = scene;
+        s.settings["ssdo"] = 1;
+        s.settings["indirect"] = 0;
+        m.ssdo =
+            relMseOnGeometry(converged(s)->readImage("hdr"), ref(reference::Mode::Full), position);
+    }
     // The reference AO is plain visibility within the radius: no distance falloff.
     const std::vector<float> referenceAo = ref(reference::Mode::Ao);
     for (int variant = 0; variant < 3; ++variant) {
@@ -86,8 +96,8 @@ Measured measure(const Scene& scene) {
 
 void print(const char* scene, const Measured& m) {
     std::printf("%s: AO mean abs error thesis %.4f Crytek %.4f horizon %.4f; indirect relMSE "
-                "%.4f; direct relMSE %.4f\n",
-                scene, m.ao[0], m.ao[1], m.ao[2], m.indirect, m.direct);
+                "%.4f; direct relMSE %.4f; SSDO image relMSE %.4f\n",
+                scene, m.ao[0], m.ao[1], m.ao[2], m.indirect, m.direct, m.ssdo);
 }
 
 class AccuracyTest : public test::VulkanTest {};
@@ -102,6 +112,9 @@ TEST_F(AccuracyTest, CornellBoxEffectsAgainstTheReference) {
     EXPECT_LT(m.ao[2], 0.056);
     EXPECT_LT(m.indirect, 0.09);
     EXPECT_LT(m.direct, 0.03);
+    // SSDO's whole image against the reference's full image: 0.2760 (its screen-space bounce
+    // reaches only samples within r_max, far less than the box's one bounce).
+    EXPECT_LT(m.ssdo, 0.36);
 }
 
 TEST_F(AccuracyTest, BunnyEffectsAgainstTheReference) {
@@ -114,6 +127,7 @@ TEST_F(AccuracyTest, BunnyEffectsAgainstTheReference) {
     EXPECT_LT(m.ao[2], 0.04);
     EXPECT_LT(m.indirect, 0.005);
     EXPECT_LT(m.direct, 0.0025);
+    EXPECT_LT(m.ssdo, 0.024); // measured 0.0181
 }
 
 } // namespace
