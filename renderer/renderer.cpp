@@ -11,9 +11,9 @@ namespace ssgi {
 
 const std::vector<std::string>& viewNames() {
     // Order matches the VIEW_* values in shared.h.
-    static const std::vector<std::string> names = {"final",  "albedo",   "normal",     "depth",
-                                                   "direct", "rsm-flux", "rsm-normal", "shadow",
-                                                   "ao",     "indirect", "ssdo"};
+    static const std::vector<std::string> names = {
+        "final",  "albedo", "normal",   "depth", "direct",  "rsm-flux", "rsm-normal",
+        "shadow", "ao",     "indirect", "ssdo",  "contact", "peel"};
     return names;
 }
 
@@ -62,16 +62,18 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
     EffectCache* shadowCache = createCache(*setup_, "shadow", "cache_tile_shadow", true);
     terms.shadow =
         addTemporalPass(*setup_, shadowCache, addShadowPass(*setup_, scenes, shadowCache), scenes);
-    if (scene.setting("contact_shadows") != 0.0)
-        terms.shadow = addContactPass(*setup_, scenes, terms.shadow);
+    // Depth peeling's second layer serves SSDO's occlusion test and the contact shadows'.
+    const bool contact = scene.setting("contact_shadows") != 0.0;
+    const bool ssdo = scene.setting("ssdo") != 0.0;
+    if (scene.setting("depth_peeling") != 0.0 && (ssdo || contact))
+        terms.secondLayer = addPeelPass(*setup_, scenes);
+    if (contact) terms.shadow = addContactPass(*setup_, scenes, terms.shadow, terms.secondLayer);
     terms.direct = addDirectPass(*setup_, scenes, terms.shadow);
-    if (scene.setting("ssdo") != 0.0) {
-        const graph::ImageRef secondLayer = scene.setting("depth_peeling") != 0.0
-                                                ? addPeelPass(*setup_, scenes)
-                                                : graph::ImageRef{};
+    if (ssdo) {
         EffectCache* cache = createCache(*setup_, "ssdo", "cache_tile_ssdo", true);
         terms.ssdo = addTemporalPass(
-            *setup_, cache, addSsdoPass(*setup_, scenes, terms.direct, secondLayer, cache), scenes);
+            *setup_, cache, addSsdoPass(*setup_, scenes, terms.direct, terms.secondLayer, cache),
+            scenes);
     } else if (scene.setting("ao") != 0.0) {
         EffectCache* cache = createCache(*setup_, "ao", "cache_tile_ao", false);
         terms.ao = addTemporalPass(*setup_, cache, addAoPass(*setup_, scenes, cache), scenes);

@@ -21,9 +21,10 @@ namespace {
 const char* kUsage = R"(usage: render [SCENE] [options]
   --frames N            frames to render (default 1); timings are medians after the first
   --output FILE.png     tonemapped sRGB image (default out/<scene>.png); the linear HDR image
-                        goes beside it as FILE.exr
+                        (or the view's linear quantity) goes beside it as FILE.exr
   --view NAME           final, albedo, normal, depth, direct, rsm-flux, rsm-normal, shadow,
-                        ao, indirect, ssdo
+                        ao, indirect, ssdo, contact (red: what contact shadows darkened),
+                        peel (distance to the second depth layer)
   --time T              camera-path time in seconds (scenes with a camera_path)
   --profile             print a table of per-pass GPU milliseconds
   --profile-json FILE   write the timings, device and driver as JSON

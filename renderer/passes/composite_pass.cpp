@@ -15,13 +15,13 @@ CompositeOutputs addCompositePass(PassSetup& s, const GBufferAndRsm& in, const L
     // Which terms exist is structural: the shader never reads the image bound in place of an
     // effect that is off (the direct term, so that every binding holds a valid image).
     const vk::Pipeline pipeline = s.computePipeline(
-        "composite.comp", 10, 2, sizeof(shader::CompositeConstants),
+        "composite.comp", 11, 2, sizeof(shader::CompositeConstants),
         {{terms.ao.valid() ? 1 : 0, terms.indirect.valid() ? 1 : 0, terms.ssdo.valid() ? 1 : 0}});
     auto orDirect = [&](graph::ImageRef ref) { return ref.valid() ? ref : terms.direct; };
-    const graph::ImageRef inputs[10] = {
-        in.gbuffer.position, in.gbuffer.normal,  in.gbuffer.third,         terms.direct,
-        terms.shadow,        orDirect(terms.ao), orDirect(terms.indirect), orDirect(terms.ssdo),
-        in.rsm.third,        in.rsm.normal};
+    const graph::ImageRef inputs[11] = {
+        in.gbuffer.position, in.gbuffer.normal,  in.gbuffer.third,           terms.direct,
+        terms.shadow,        orDirect(terms.ao), orDirect(terms.indirect),   orDirect(terms.ssdo),
+        in.rsm.third,        in.rsm.normal,      orDirect(terms.secondLayer)};
 
     std::vector<graph::ImageUse> uses;
     for (const graph::ImageRef& ref : inputs)
@@ -35,9 +35,9 @@ CompositeOutputs addCompositePass(PassSetup& s, const GBufferAndRsm& in, const L
                         d.uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size);
                         for (uint32_t i = 0; i < sampled.size(); ++i)
                             d.sampledImage(1 + i, pc.image(sampled[i]).view,
-                                           i >= 8 ? s.linearSampler : s.nearestSampler);
-                        d.storageImage(11, pc.image(out.hdr).view)
-                            .storageImage(12, pc.image(out.ldr).view)
+                                           i == 8 || i == 9 ? s.linearSampler : s.nearestSampler);
+                        d.storageImage(12, pc.image(out.hdr).view)
+                            .storageImage(13, pc.image(out.ldr).view)
                             .push(s.ctx, pc.cmd, pipeline);
                         shader::CompositeConstants constants{};
                         constants.mode.x = view;

@@ -91,9 +91,10 @@ struct GBufferAndRsm {
 };
 // shadow: fraction of the spot light's disk each pixel sees (PCF/PCSS, or a hard test).
 graph::ImageRef addShadowPass(PassSetup& setup, const GBufferAndRsm& inputs, EffectCache* cache);
-// contact: the shadow term with screen-space contact shadows added.
+// contact: the shadow term with screen-space contact shadows added; with depth peeling's second
+// layer (valid or not), an occluder is a sample between the two layers.
 graph::ImageRef addContactPass(PassSetup& setup, const GBufferAndRsm& inputs,
-                               graph::ImageRef shadow);
+                               graph::ImageRef shadow, graph::ImageRef secondLayer);
 // peel: the second depth layer (world position of the next surface behind the G-buffer's).
 graph::ImageRef addPeelPass(PassSetup& setup, const GBufferAndRsm& inputs);
 // direct: spot-light radiance times the shadow term.
@@ -120,6 +121,7 @@ graph::ImageRef addSsdoPass(PassSetup& setup, const GBufferAndRsm& inputs, graph
 // The screen-space terms the composite adds up; an invalid ref is an effect turned off.
 struct LightingTerms {
     graph::ImageRef direct, shadow, ao, indirect, ssdo;
+    graph::ImageRef secondLayer; // depth peeling's, for its debug view
 };
 
 struct CompositeOutputs {

@@ -22,8 +22,9 @@ layout(set = 0, binding = 7) uniform sampler2D indirectImage; // irradiance / pi
 layout(set = 0, binding = 8) uniform sampler2D ssdoImage;     // radiance
 layout(set = 0, binding = 9) uniform sampler2D rsmFlux;
 layout(set = 0, binding = 10) uniform sampler2D rsmNormal;
-layout(set = 0, binding = 11, rgba32f) uniform writeonly image2D hdrImage;
-layout(set = 0, binding = 12, rgba8) uniform writeonly image2D ldrImage;
+layout(set = 0, binding = 11) uniform sampler2D secondLayer; // depth peeling's position
+layout(set = 0, binding = 12, rgba32f) uniform writeonly image2D hdrImage;
+layout(set = 0, binding = 13, rgba8) uniform writeonly image2D ldrImage;
 layout(push_constant) uniform CompositeBlock { CompositeConstants constants; };
 
 // Narkowicz's fit of the ACES filmic curve.
@@ -64,29 +65,44 @@ void main() {
         hdr = direct + sky + indirect;
     }
 
+    // A debug view replaces both outputs: the EXR holds the view's linear quantity (radiance,
+    // visibility, normal, distance), the PNG its display encoding.
     float exposure = frame.params.x;
-    vec3 shown = tonemap(hdr * exposure);
+    vec3 value = hdr;
     int view = constants.mode.x;
-    if (view == VIEW_ALBEDO) shown = albedo;
-    if (view == VIEW_NORMAL) shown = position.w == 0.0 ? vec3(0.0) : n * 0.5 + 0.5;
-    if (view == VIEW_DEPTH) {
-        float d = position.w == 0.0 ? 0.0 : distance(position.xyz, frame.cameraPosition.xyz);
-        shown = vec3(d == 0.0 ? 0.0 : max(1.0 - d / frame.params.w, 0.0));
+    if (view == VIEW_ALBEDO) value = albedo;
+    if (view == VIEW_NORMAL) value = position.w == 0.0 ? vec3(0.0) : n;
+    if (view == VIEW_DEPTH)
+        value = vec3(position.w == 0.0 ? 0.0 : distance(position.xyz, frame.cameraPosition.xyz));
+    if (view == VIEW_DIRECT) value = direct;
+    float texel = 2.0 * frame.lightFrustum.z / frame.lightFrustum.w;
+    if (view == VIEW_RSM_FLUX) value = texture(rsmFlux, uv).rgb / (texel * texel);
+    if (view == VIEW_RSM_NORMAL) value = texture(rsmNormal, uv).xyz;
+    vec4 shadow = texelFetch(shadowImage, pixel, 0);
+    if (view == VIEW_SHADOW) value = vec3(shadow.r);
+    if (view == VIEW_AO) value = vec3(ao);
+    if (view == VIEW_INDIRECT) value = indirect;
+    if (view == VIEW_SSDO) value = ssdo;
+    // The contact pass keeps the shadow map's term in g: what contact shadows took away.
+    if (view == VIEW_CONTACT) value = vec3(shadow.r, max(shadow.g - shadow.r, 0.0), 0.0);
+    if (view == VIEW_PEEL) {
+        vec4 second = texelFetch(secondLayer, pixel, 0);
+        value = vec3(second.w == 0.0 ? 0.0 : distance(second.xyz, frame.cameraPosition.xyz));
     }
-    if (view == VIEW_DIRECT) shown = tonemap(direct * exposure);
-    if (view == VIEW_RSM_FLUX) {
-        vec3 flux = texture(rsmFlux, uv).rgb;
-        float texel = 2.0 * frame.lightFrustum.z / frame.lightFrustum.w;
-        shown = tonemap(flux / (texel * texel) * exposure * 0.3);
-    }
-    if (view == VIEW_RSM_NORMAL) shown = texture(rsmNormal, uv).xyz * 0.5 + 0.5;
-    if (view == VIEW_SHADOW) shown = vec3(texelFetch(shadowImage, pixel, 0).r);
-    if (view == VIEW_AO) shown = vec3(ao);
-    if (view == VIEW_INDIRECT) shown = tonemap(indirect * exposure);
-    if (view == VIEW_SSDO) shown = tonemap(ssdo * exposure);
+
+    vec3 shown = tonemap(value * exposure);
+    if (view == VIEW_NORMAL || view == VIEW_RSM_NORMAL)
+        shown = position.w == 0.0 && view == VIEW_NORMAL ? vec3(0.0) : value * 0.5 + 0.5;
+    if (view == VIEW_DEPTH || view == VIEW_PEEL)
+        shown = vec3(value.x == 0.0 ? 0.0 : max(1.0 - value.x / frame.params.w, 0.0));
+    if (view == VIEW_RSM_FLUX) shown = tonemap(value * exposure * 0.3);
+    if (view == VIEW_SHADOW || view == VIEW_AO) shown = value;
+    // Lit white, shadowed black, and in red what contact shadows darkened.
+    if (view == VIEW_CONTACT) shown = mix(vec3(value.x), vec3(1.0, 0.0, 0.0), value.y);
     // Colours are encoded for display; normals, depth and visibilities are data, shown as is.
     bool isData = view == VIEW_NORMAL || view == VIEW_RSM_NORMAL || view == VIEW_DEPTH ||
-                  view == VIEW_SHADOW || view == VIEW_AO;
-    imageStore(hdrImage, pixel, vec4(hdr, 1.0));
+                  view == VIEW_SHADOW || view == VIEW_AO || view == VIEW_PEEL ||
+                  view == VIEW_CONTACT;
+    imageStore(hdrImage, pixel, vec4(view == VIEW_FINAL ? hdr : value, 1.0));
     imageStore(ldrImage, pixel, vec4(isData ? shown : encodeSrgb(shown), 1.0));
 }

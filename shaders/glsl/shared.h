@@ -113,6 +113,8 @@ SSGI_CHECK_SIZE(CompositeConstants, 16);
 #define VIEW_AO 8
 #define VIEW_INDIRECT 9
 #define VIEW_SSDO 10
+#define VIEW_CONTACT 11
+#define VIEW_PEEL 12
 
 #ifdef __cplusplus
 } // namespace ssgi::shader
