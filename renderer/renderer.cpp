@@ -1,11 +1,13 @@
 #include "renderer.h"
 
+#include "scene/animation.h"
 #include "scene/camera.h"
 #include "shared.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 namespace ssgi {
 
@@ -39,6 +41,8 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
                          std::to_string(limit));
 
     sceneGpu_ = std::make_unique<SceneGpu>(ctx, scene);
+    transforms_ = instanceTransformsAt(scene, std::numeric_limits<float>::lowest());
+    sceneGpu_->setTransforms(transforms_);
     graph_ = std::make_unique<graph::FrameGraph>(ctx);
     setup_.reset(new PassSetup{ctx, *graph_, *sceneGpu_, scene});
     setup_->frameUniforms = vk::createBuffer(ctx, sizeof(shader::FrameUniforms),
@@ -60,6 +64,7 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
     // that into the history, and the consumers read the blended value.
     LightingTerms terms;
     EffectCache* shadowCache = createCache(*setup_, "shadow", "cache_tile_shadow", true);
+    if (shadowCache) shadowCache->motionTest = 2;
     terms.shadow =
         addTemporalPass(*setup_, shadowCache, addShadowPass(*setup_, scenes, shadowCache), scenes);
     // Depth peeling's second layer serves SSDO's occlusion test and the contact shadows'.
@@ -76,6 +81,11 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
             scenes);
     } else if (scene.setting("ao") != 0.0) {
         EffectCache* cache = createCache(*setup_, "ao", "cache_tile_ao", false);
+        if (cache) { // the farthest an AO sample reaches, its pattern at its largest
+            cache->motionTest = 1;
+            cache->motionReach =
+                aoRadius(scene) * (1.0f + float(scene.setting("cache_scale_jitter")));
+        }
         terms.ao = addTemporalPass(*setup_, cache, addAoPass(*setup_, scenes, cache), scenes);
     }
     if (scene.setting("indirect") != 0.0) {
@@ -106,8 +116,9 @@ void Renderer::updateUniforms(const Camera& camera) {
     u.viewProjection = u.projection * u.view;
     u.inverseViewProjection = glm::inverse(u.viewProjection);
     u.previousViewProjection = frameIndex_ == 0 ? u.viewProjection : previousViewProjection_;
-    stillFrames_ =
-        frameIndex_ > 0 && u.viewProjection == previousViewProjection_ ? stillFrames_ + 1 : 0;
+    stillFrames_ = frameIndex_ > 0 && u.viewProjection == previousViewProjection_ && moved_.empty()
+                       ? stillFrames_ + 1
+                       : 0;
     setup_->settled = stillFrames_ >= uint32_t(scene_.setting("cache_rotations"));
     u.lightViewProjection = light.viewProjection;
     u.inverseLightViewProjection = glm::inverse(light.viewProjection);
@@ -124,6 +135,11 @@ void Renderer::updateUniforms(const Camera& camera) {
     u.viewport = glm::vec4(size.width, size.height, 1.0f / size.width, 1.0f / size.height);
     u.params = glm::vec4(scene_.setting("exposure"), scene_.setting("shadow_bias"),
                          float(frameIndex_), glm::length(scene_.bounds.size()));
+    for (size_t i = 0; i < moved_.size(); ++i) {
+        u.movedBoxes[2 * i] = glm::vec4(moved_[i].min, 0.0f);
+        u.movedBoxes[2 * i + 1] = glm::vec4(moved_[i].max, 0.0f);
+    }
+    u.motion = glm::vec4(float(moved_.size()), 0.0f, 0.0f, 0.0f);
     std::memcpy(setup_->frameUniforms.mapped, &u, sizeof(u));
     previousViewProjection_ = u.viewProjection;
 }
@@ -143,7 +159,37 @@ void Renderer::renderFrame(const Camera& camera) {
     ctx_.submitAndWait([&](VkCommandBuffer cmd) { graph_->record(cmd); });
     graph_->endFrame();
     setup_->rsmStale = false;
+    moved_.clear();
     ++frameIndex_;
+}
+
+void Renderer::setTime(float seconds) {
+    const std::vector<glm::mat4> next = instanceTransformsAt(scene_, seconds);
+    bool any = false;
+    for (size_t i = 0; i < next.size(); ++i) {
+        if (next[i] == transforms_[i]) continue;
+        Aabb box = instanceBounds(scene_, i, transforms_[i]);
+        const Aabb now = instanceBounds(scene_, i, next[i]);
+        box.extend(now.min);
+        box.extend(now.max);
+        // At most four boxes reach the shaders: beyond that the last one holds the rest.
+        if (moved_.size() < 4) {
+            moved_.push_back(box);
+        } else {
+            moved_.back().extend(box.min);
+            moved_.back().extend(box.max);
+        }
+        any = true;
+    }
+    if (!any) return;
+    transforms_ = next;
+    sceneGpu_->setTransforms(transforms_);
+    setup_->rsmStale = true;
+    for (EffectCache& cache : setup_->caches)
+        if (cache.motionTest == 0) {
+            graph_->resetHistory(cache.value);
+            graph_->resetHistory(cache.meta);
+        }
 }
 
 void Renderer::setLight(const SpotLight& light) {
@@ -168,6 +214,32 @@ std::vector<float> Renderer::readImage(const std::string& name) {
     graph::ImageRef ref = graph_->find(name);
     if (!ref.valid()) throw InputError("no image named '" + name + "' in the frame");
     return graph_->download(ref);
+}
+
+const vk::Image& Renderer::prepareCopySource(VkCommandBuffer cmd, const std::string& name) {
+    graph::ImageRef ref = graph_->find(name);
+    if (!ref.valid()) throw InputError("no image named '" + name + "' in the frame");
+    return graph_->prepareTransferSource(cmd, ref);
+}
+
+std::vector<std::string> Renderer::cachedEffects() const {
+    std::vector<std::string> names;
+    for (const EffectCache& cache : setup_->caches)
+        names.push_back(cache.name);
+    return names;
+}
+
+VkRect2D Renderer::refreshedTile(const std::string& effect) const {
+    for (const EffectCache& cache : setup_->caches) {
+        if (cache.name != effect || !cache.refresh || cache.refreshTile < 0) continue;
+        const uint32_t tile = cache.refresh->tileSize();
+        const uint32_t tilesX = (setup_->size.width + tile - 1) / tile;
+        const uint32_t x = (uint32_t(cache.refreshTile) % tilesX) * tile;
+        const uint32_t y = (uint32_t(cache.refreshTile) / tilesX) * tile;
+        return {{int32_t(x), int32_t(y)},
+                {std::min(tile, setup_->size.width - x), std::min(tile, setup_->size.height - y)}};
+    }
+    return {};
 }
 
 } // namespace ssgi

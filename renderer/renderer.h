@@ -31,6 +31,12 @@ public:
     // Moves the light from the next frame on. The cached effects that depend on it (shadow,
     // indirect light, SSDO's bounce) start over; AO, which does not, keeps its history.
     void setLight(const SpotLight& light);
+    // Places the scene's moving objects (its object paths) as they are at `seconds`, from the
+    // next frame on. What an object's move can change restarts: the AO within its radius of the
+    // object's old and new place and the shadow on paths to the light passing near them, per
+    // pixel; the indirect light and SSDO (whose bounce any moved shadow changes) whole; the RSM
+    // is drawn again. Before the first call the objects stand at their paths' first keys.
+    void setTime(float seconds);
     const SpotLight& light() const { return light_; }
     const std::vector<graph::PassTiming>& timings() const { return graph_->timings(); }
 
@@ -40,6 +46,13 @@ public:
     // (world position, rotation count in alpha), as the last frame wrote them.
     std::vector<float> readImage(const std::string& name);
     VkExtent2D size() const { return setup_->size; }
+    // For the viewer: records into cmd, after the last frame, the barrier that makes image `name`
+    // ("ldr") a transfer source, and returns it.
+    const vk::Image& prepareCopySource(VkCommandBuffer cmd, const std::string& name);
+    // The cached effects of this frame ("shadow", "ao", ...), and the pixels of the tile a cached
+    // effect refreshed in the last frame (extent 0 when none).
+    std::vector<std::string> cachedEffects() const;
+    VkRect2D refreshedTile(const std::string& effect) const;
     const graph::FrameGraph& frameGraph() const { return *graph_; }
 
 private:
@@ -52,7 +65,9 @@ private:
     std::unique_ptr<PassSetup> setup_;
     SpotLight light_;
     uint32_t frameIndex_ = 0;
-    uint32_t stillFrames_ = 0; // frames in a row with this camera and light
+    uint32_t stillFrames_ = 0;          // frames in a row with this camera and light
+    std::vector<glm::mat4> transforms_; // where the instances stand
+    std::vector<Aabb> moved_;           // boxes of the objects moved since the last frame
     glm::mat4 previousViewProjection_{1.0f};
 };
 

@@ -5,6 +5,8 @@
 namespace ssgi {
 
 SceneGpu::SceneGpu(vk::Context& ctx, const Scene& scene) : ctx_(ctx), scene_(scene) {
+    for (const Instance& instance : scene.instances)
+        transforms_.push_back(instance.transform);
     const uint32_t limit = ctx.properties.limits.maxImageDimension2D;
     for (size_t i = 0; i < scene.textures.size(); ++i) {
         const Texture& t = scene.textures[i];
@@ -57,13 +59,14 @@ void SceneGpu::draw(VkCommandBuffer cmd, const vk::Pipeline& pipeline, VkBuffer 
                     VkDeviceSize frameUniformsSize,
                     const std::function<void(vk::Descriptors&)>& extra) const {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline);
-    for (const Instance& instance : scene_.instances) {
+    for (size_t i = 0; i < scene_.instances.size(); ++i) {
+        const Instance& instance = scene_.instances[i];
         const MeshBuffers& mesh = meshes_[instance.mesh];
         if (mesh.indexCount == 0) continue;
         const Material& material = scene_.materials[scene_.meshes[instance.mesh].material];
         const bool textured = material.baseColorTexture >= 0;
         shader::DrawConstants constants{};
-        constants.model = instance.transform;
+        constants.model = transforms_[i];
         constants.baseColorFactor = material.baseColorFactor;
         constants.material = {textured ? 1.0f : 0.0f,
                               material.alphaMask ? material.alphaCutoff : 0.0f, 0.0f, 0.0f};

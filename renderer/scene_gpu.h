@@ -23,6 +23,8 @@ public:
     void draw(VkCommandBuffer cmd, const vk::Pipeline& pipeline, VkBuffer frameUniforms,
               VkDeviceSize frameUniformsSize,
               const std::function<void(vk::Descriptors&)>& extra = {}) const;
+    // Places the instances (moving objects) for the draws recorded from now on.
+    void setTransforms(const std::vector<glm::mat4>& transforms) { transforms_ = transforms; }
 
 private:
     struct MeshBuffers {
@@ -32,6 +34,7 @@ private:
     vk::Context& ctx_;
     const Scene& scene_;
     std::vector<MeshBuffers> meshes_;
+    std::vector<glm::mat4> transforms_; // per instance
     std::vector<vk::Image> textures_;
     vk::Image whiteTexture_;
     VkSampler sampler_ = VK_NULL_HANDLE;

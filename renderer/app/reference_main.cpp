@@ -3,6 +3,7 @@
 #include "app/cli.h"
 #include "image_io.h"
 #include "reference/cache.h"
+#include "scene/animation.h"
 #include "scene/camera.h"
 
 #include <algorithm>
@@ -12,6 +13,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 
 namespace fs = std::filesystem;
 using namespace ssgi;
@@ -27,7 +29,7 @@ const char* kUsage = R"(usage: reference [SCENE] [options]
   --noise T             stop sooner once the estimated relative error is at most T (e.g. 0.01)
   --seed S              random seed (default 1); same seed and options, same image
   --threads N           worker threads (default: every hardware thread); the image is the same
-  --time T              camera-path time in seconds (scenes with a camera_path)
+  --time T              time in seconds along the scene's camera path and object paths
   --jitter              random sub-pixel positions (full and multi only); without it every
                         sample goes through the pixel centre, as the real-time G-buffer's does
   --light-radius R      replace the light's disk radius (0: a point light, hard shadows)
@@ -150,9 +152,13 @@ int run(int argc, char** argv) {
     if (args.lightRadius >= 0.0f) scene.light.radius = args.lightRadius;
     Camera camera = scene.camera;
     if (args.time >= 0.0f) {
-        if (scene.cameraPath.empty())
-            throw InputError(args.scene + ": --time given but the scene has no camera_path");
-        camera = cameraAt(scene.cameraPath, args.time);
+        if (scene.cameraPath.empty() && scene.objectPaths.empty())
+            throw InputError(args.scene +
+                             ": --time given but the scene has no camera_path or object_paths");
+        if (!scene.cameraPath.empty()) camera = cameraAt(scene.cameraPath, args.time);
+        scene = posedAt(scene, args.time);
+    } else {
+        scene = posedAt(scene, std::numeric_limits<float>::lowest()); // the paths' first keys
     }
 
     const auto start = std::chrono::steady_clock::now();

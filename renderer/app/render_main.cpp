@@ -25,7 +25,7 @@ const char* kUsage = R"(usage: render [SCENE] [options]
   --view NAME           final, albedo, normal, depth, direct, rsm-flux, rsm-normal, shadow,
                         ao, indirect, ssdo, contact (red: what contact shadows darkened),
                         peel (distance to the second depth layer)
-  --time T              camera-path time in seconds (scenes with a camera_path)
+  --time T              time in seconds along the scene's camera path and object paths
   --profile             print a table of per-pass GPU milliseconds
   --profile-json FILE   write the timings, device and driver as JSON
 )";
@@ -82,9 +82,11 @@ int run(int argc, char** argv) {
 
     Camera camera = scene.camera;
     if (args.time >= 0.0f) {
-        if (scene.cameraPath.empty())
-            throw InputError(common.scene + ": --time given but the scene has no camera_path");
-        camera = cameraAt(scene.cameraPath, args.time);
+        if (scene.cameraPath.empty() && scene.objectPaths.empty())
+            throw InputError(common.scene +
+                             ": --time given but the scene has no camera_path or object_paths");
+        if (!scene.cameraPath.empty()) camera = cameraAt(scene.cameraPath, args.time);
+        renderer.setTime(args.time);
     }
 
     // Per pass, its milliseconds in each frame after the first (warm-up) frame.

@@ -85,6 +85,7 @@ int run(int argc, char** argv) {
     std::vector<double> totals;
     for (uint32_t f = 0; f < args.frames; ++f) {
         const float t = args.still || args.frames == 1 ? 0.0f : duration * f / (args.frames - 1);
+        renderer.setTime(t);
         renderer.renderFrame(scene.cameraPath.empty() ? scene.camera
                                                       : cameraAt(scene.cameraPath, t));
         double total = 0.0;

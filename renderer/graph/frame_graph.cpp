@@ -153,6 +153,18 @@ void FrameGraph::endFrame() {
     }
 }
 
+const vk::Image& FrameGraph::prepareTransferSource(VkCommandBuffer cmd, ImageRef ref) {
+    Resource& r = resources_[resolve(ref)];
+    if (auto b = transition(r.state, Use::TransferSrc, PassKind::Transfer, false, r.image.image,
+                            r.image.aspect)) {
+        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        dep.imageMemoryBarrierCount = 1;
+        dep.pImageMemoryBarriers = &*b;
+        vkCmdPipelineBarrier2(cmd, &dep);
+    }
+    return r.image;
+}
+
 std::vector<float> FrameGraph::download(ImageRef ref) {
     const uint32_t id = resolve(ref);
     Resource& r = resources_[id];
@@ -161,13 +173,7 @@ std::vector<float> FrameGraph::download(ImageRef ref) {
     vk::Buffer staging = vk::createBuffer(ctx_, VkDeviceSize(e.width) * e.height * texel,
                                           VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     ctx_.submitAndWait([&](VkCommandBuffer cmd) {
-        if (auto b = transition(r.state, Use::TransferSrc, PassKind::Transfer, false, r.image.image,
-                                r.image.aspect)) {
-            VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-            dep.imageMemoryBarrierCount = 1;
-            dep.pImageMemoryBarriers = &*b;
-            vkCmdPipelineBarrier2(cmd, &dep);
-        }
+        prepareTransferSource(cmd, ref);
         VkBufferImageCopy region{};
         region.imageSubresource = {r.image.aspect, 0, 0, 1};
         region.imageExtent = {e.width, e.height, 1};

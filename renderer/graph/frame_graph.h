@@ -91,6 +91,9 @@ public:
     const vk::Image& image(ImageRef ref) const;
     // Copies an image to the host as RGBA float (depth: R = depth), after the last frame.
     std::vector<float> download(ImageRef ref);
+    // Records into cmd (submitted after the last frame) the barrier that makes the image a
+    // transfer source, keeping the graph's record of its state (the viewer copies the frame out).
+    const vk::Image& prepareTransferSource(VkCommandBuffer cmd, ImageRef ref);
     ImageRef find(const std::string& name) const;
     // Every image the graph owns (history pairs as two), with the device memory it holds.
     std::vector<std::pair<std::string, VkDeviceSize>> imageMemory() const;

@@ -23,6 +23,10 @@ struct EffectCache {
     std::unique_ptr<TileRefresh> refresh;
     int refreshTile = -1;        // this frame's
     bool lightDependent = false; // reset when the light changes
+    // What an object that moved restarts: 0 the whole history; per pixel, 1 those within
+    // `motionReach` of it, 2 those whose path to the light passes near it.
+    int motionTest = 0;
+    float motionReach = 0.0f;
 };
 
 struct PassSetup {

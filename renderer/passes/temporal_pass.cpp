@@ -35,6 +35,7 @@ shader::CacheConstants cacheConstants(const PassSetup& s, const EffectCache* cac
                cache->refreshTile, cache->refresh ? int(cache->refresh->tileSize()) : 1};
     c.accumulation = {float(s.model.setting("cache_bias")), float(s.model.setting("cache_epsilon")),
                       float(s.model.setting("cache_method")), s.settled ? 1.0f : 0.0f};
+    c.invalidation = {float(cache->motionTest), cache->motionReach, 0.0f, 0.0f};
     return c;
 }
 

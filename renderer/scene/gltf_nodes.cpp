@@ -93,7 +93,7 @@ public:
             const auto& primitives = model_.meshes[size_t(node.mesh)].primitives;
             for (size_t p = 0; p < primitives.size(); ++p) {
                 const int mesh = sceneMeshOf(node.mesh, int(p));
-                if (mesh >= 0) scene_.instances.push_back({mesh, world});
+                if (mesh >= 0) scene_.instances.push_back({mesh, world, node.name});
             }
         }
         if (node.camera >= 0) noteCamera(node.camera, world);

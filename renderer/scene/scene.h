@@ -50,10 +50,24 @@ struct Mesh {
     int material = 0;
 };
 
-// A mesh placed in the world (glTF node transform, or identity for primitives).
+// A mesh placed in the world (glTF node transform, or identity for primitives). `name` is the
+// scene file object's or the glTF node's, which object paths refer to.
 struct Instance {
     int mesh = 0;
     glm::mat4 transform{1.0f};
+    std::string name;
+};
+
+// A moving object (GUIDE: the thesis's stated limit): keys of a translation added to the
+// placement of every instance named `object`, interpolated linearly and held beyond the ends.
+struct ObjectKey {
+    float time = 0.0f;
+    glm::vec3 translation{0.0f};
+};
+struct ObjectPath {
+    std::string object;
+    std::vector<ObjectKey> keys; // sorted by time
+    std::vector<int> instances;  // the instances it moves
 };
 
 struct Aabb {
@@ -119,7 +133,8 @@ struct Scene {
     Sky sky;
     Camera camera;
     CameraPath cameraPath;
-    Aabb bounds; // world space, over all instances
+    std::vector<ObjectPath> objectPaths;
+    Aabb bounds; // world space, over all instances, wherever their paths take them
     // Method settings by name (numbers only), already checked against the known keys.
     std::map<std::string, double> settings;
 

@@ -1,5 +1,6 @@
 // loadScene(): a scene description file, or a bare glTF, into the scene model. What the files
 // leave out (light, camera, clip planes) is derived from the scene's bounds.
+#include "scene/animation.h"
 #include "scene/gltf_internal.h"
 #include "scene/primitives.h"
 #include "scene/scene_json.h"
@@ -156,7 +157,7 @@ void addObjects(const SceneDescription& description, const std::string& file, Sc
             break;
         }
         scene.meshes.push_back(std::move(mesh));
-        scene.instances.push_back({int(scene.meshes.size()) - 1, glm::mat4(1.0f)});
+        scene.instances.push_back({int(scene.meshes.size()) - 1, glm::mat4(1.0f), object.name});
     }
 }
 
@@ -182,6 +183,8 @@ Scene buildScene(const std::string& path, const SceneDescription& description) {
         fail(path, "the glTF light lies beyond 1e10 units from the origin");
     addObjects(description, path, scene);
     scene.bounds = worldBounds(scene, path);
+    scene.objectPaths = description.objectPaths;
+    resolveObjectPaths(scene, path);
     if (scene.bounds.empty()) fail(path, "the scene has no triangles");
     if (glm::length(scene.bounds.size()) == 0.0f) fail(path, "all of the scene is at one point");
 

@@ -194,7 +194,7 @@ ObjectSpec readObject(const JsonObject& in) {
     if (!in.has("material")) in.fail("material", "is missing");
     const std::string type = in.string("type");
     object.material = in.string("material");
-    if (in.has("name")) in.string("name");
+    if (in.has("name")) object.name = in.string("name");
     if (type == "quad") {
         in.allowOnly({"type", "name", "material", "corners"});
         if (!in.has("corners")) in.fail("corners", "is missing");
@@ -218,6 +218,26 @@ ObjectSpec readObject(const JsonObject& in) {
         in.fail("type", "is '" + type + "', must be quad, box or sphere");
     }
     return object;
+}
+
+ObjectPath readObjectPath(const JsonObject& in) {
+    in.allowOnly({"object", "keys"});
+    if (!in.has("object")) in.fail("object", "is missing");
+    if (!in.has("keys")) in.fail("keys", "is missing");
+    ObjectPath path;
+    path.object = in.string("object");
+    for (const JsonObject& key : in.objects("keys")) {
+        key.allowOnly({"time", "translation"});
+        if (!key.has("time")) key.fail("time", "is missing");
+        ObjectKey k;
+        k.time = float(key.number("time", {-1e9, 1e9}));
+        if (!path.keys.empty() && k.time <= path.keys.back().time)
+            key.fail("time", "is not later than the key before it; keys must be sorted by time");
+        k.translation = key.optionalVec3("translation", kCoordinate).value_or(glm::vec3(0.0f));
+        path.keys.push_back(k);
+    }
+    if (path.keys.empty()) in.fail("keys", "is empty");
+    return path;
 }
 
 std::map<std::string, double> readSettings(const JsonObject& in) {
@@ -253,7 +273,7 @@ SceneDescription readSceneDescription(const std::string& path) {
     if (!document.is_object()) throw InputError(path + ": a scene file must hold a JSON object");
     const JsonObject top(path, document, "");
     top.allowOnly({"description", "gltf", "gltf_scale", "materials", "objects", "light", "sky",
-                   "camera", "camera_path", "settings"});
+                   "camera", "camera_path", "object_paths", "settings"});
     SceneDescription scene;
     if (top.has("description")) top.string("description");
     if (top.has("gltf")) {
@@ -310,6 +330,9 @@ SceneDescription readSceneDescription(const std::string& path) {
             scene.cameraPath.emplace_back(time, readCameraKeys(in));
         }
     }
+    if (top.has("object_paths"))
+        for (const JsonObject& in : top.objects("object_paths"))
+            scene.objectPaths.push_back(readObjectPath(in));
     if (top.has("settings")) scene.settings = readSettings(top.object("settings"));
     return scene;
 }

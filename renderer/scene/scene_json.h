@@ -29,6 +29,7 @@ struct ObjectSpec {
     enum class Type { Quad, Box, Sphere } type = Type::Quad;
     std::string where;    // "objects[3]"
     std::string material; // a key of "materials"
+    std::string name;
     std::array<glm::vec3, 4> corners{};
     glm::vec3 center{0.0f}, size{1.0f};
     float rotateYDegrees = 0.0f, radius = 1.0f;
@@ -44,6 +45,7 @@ struct SceneDescription {
     Sky sky;
     std::optional<CameraSpec> camera;
     std::vector<std::pair<float, CameraSpec>> cameraPath; // (time, key), sorted by time
+    std::vector<ObjectPath> objectPaths;                  // instances not yet resolved
     std::map<std::string, double> settings;
 };
 

@@ -1,8 +1,7 @@
 // The scripted cases of the stability suite: where screen-space methods and temporal caches are
 // known to fail, each a scene file in scenes/stability/ with a camera path, plus what the scene
-// file cannot say (a light path, a resize, the region to measure). A moving object is not a
-// case: the renderer draws static geometry only (no node animation), and a faked one would
-// measure nothing the renderer does.
+// file cannot say (a light path, a resize, the region to measure). Moving objects are the scene
+// file's object paths, played along the same time as the camera path.
 #pragma once
 
 #include "scene/scene.h"
@@ -14,14 +13,15 @@ namespace ssgi::stability {
 
 // The pixels a case's error is measured in, taken at the final camera.
 enum class Region {
-    Disoccluded,  // surfaces the first camera did not see (revealed from behind an occluder)
-    Carried,      // pixels whose history the renderer kept across the last change (a cut)
-    Thin,         // thin geometry and the background right beside it
-    NearOccluder, // receivers of an occluder's occlusion (Case::occluder)
-    LightChanged, // where the moved light changed the converged image
-    Grazing,      // surfaces seen at a grazing angle
-    DepthEdges,   // both sides of depth discontinuities (halos)
-    Geometry,     // every pixel with geometry
+    Disoccluded,   // surfaces the first camera did not see (revealed from behind an occluder)
+    Carried,       // pixels whose history the renderer kept across the last change (a cut)
+    Thin,          // thin geometry and the background right beside it
+    NearOccluder,  // receivers of an occluder's occlusion (Case::occluder)
+    LightChanged,  // where the moved light changed the converged image
+    ObjectChanged, // where the moved object changed the converged image
+    Grazing,       // surfaces seen at a grazing angle
+    DepthEdges,    // both sides of depth discontinuities (halos)
+    Geometry,      // every pixel with geometry
 };
 
 inline const char* regionName(Region r) {
@@ -36,6 +36,8 @@ inline const char* regionName(Region r) {
         return "near the occluder";
     case Region::LightChanged:
         return "changed by the light";
+    case Region::ObjectChanged:
+        return "changed by the object";
     case Region::Grazing:
         return "grazing angles";
     case Region::DepthEdges:
@@ -96,6 +98,9 @@ inline std::vector<Case> suite() {
     light->movesLight = true;
     light->lightTo = {0.12f, 0.5478f, 0.2f};
     light->lightAim = {0.2f, 0.0f, 0.25f};
+    add("moving-object", "moving-object.json",
+        "a moving object (the thesis's stated limit): its old shadow and occlusion go stale",
+        Region::ObjectChanged);
     add("grazing", "grazing.json",
         "grazing angles: long pixel footprints for the reprojection test and screen-space samples",
         Region::Grazing);

@@ -7,6 +7,7 @@
 #include "metrics/error_map.h"
 #include "reference/cache.h"
 #include "renderer.h"
+#include "scene/animation.h"
 #include "stability/cases.h"
 #include "stability/measures.h"
 
@@ -113,6 +114,7 @@ inline Mask regionMask(const Case& c, const View& start, const View& before, con
     case Region::NearOccluder:
         return nearBoxMask(end, c.occluder, aoRadius(scene));
     case Region::LightChanged:
+    case Region::ObjectChanged:
         return changedMask(oldHdr, end.hdr, geometryMask(end), 0.2);
     case Region::Grazing:
         return grazingMask(end, 0.2f);

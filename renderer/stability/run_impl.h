@@ -12,23 +12,25 @@ struct Step {
     Camera camera;
     SpotLight light;
     uint32_t width, height;
+    float time; // along the camera and object paths
 };
 
 inline bool sameLight(const SpotLight& a, const SpotLight& b) {
     return a.position == b.position && a.direction == b.direction;
 }
 
-inline bool sameStep(const Step& a, const Step& b) {
+inline bool sameStep(const Step& a, const Step& b, const Scene& scene) {
     return a.camera.position == b.camera.position && a.camera.orientation == b.camera.orientation &&
-           sameLight(a.light, b.light) && a.width == b.width && a.height == b.height;
+           sameLight(a.light, b.light) && a.width == b.width && a.height == b.height &&
+           instanceTransformsAt(scene, a.time) == instanceTransformsAt(scene, b.time);
 }
 
 inline std::vector<Step> timeline(const Case& c, const Scene& scene, const RunOptions& o) {
     const CameraPath& path = scene.cameraPath;
     const float duration = path.keys.back().time - path.keys.front().time;
     const float start = path.keys.front().time;
-    std::vector<Step> steps(o.warmup,
-                            {"warmup", cameraAt(path, start), scene.light, o.width, o.height});
+    std::vector<Step> steps(
+        o.warmup, {"warmup", cameraAt(path, start), scene.light, o.width, o.height, start});
     SpotLight light = scene.light;
     uint32_t width = o.width, height = o.height;
     const glm::vec3 finalDirection = glm::normalize(c.lightAim - c.lightTo);
@@ -42,10 +44,11 @@ inline std::vector<Step> timeline(const Case& c, const Scene& scene, const RunOp
             width = std::max(1u, uint32_t(std::lround(o.width * c.resizeScale)));
             height = std::max(1u, uint32_t(std::lround(o.height * c.resizeScale)));
         }
-        steps.push_back({"path", cameraAt(path, start + duration * s), light, width, height});
+        const float time = start + duration * s;
+        steps.push_back({"path", cameraAt(path, time), light, width, height, time});
     }
     for (uint32_t i = 0; i < o.hold; ++i)
-        steps.push_back({"hold", steps.back().camera, light, width, height});
+        steps.push_back({"hold", steps.back().camera, light, width, height, steps.back().time});
     return steps;
 }
 
@@ -102,7 +105,7 @@ inline CaseResult runCase(vk::Context& ctx, const Case& c, const RunOptions& o,
     const std::vector<Step> steps = timeline(c, scene, o);
     size_t lastChange = 0;
     for (size_t i = 1; i < steps.size(); ++i)
-        if (!sameStep(steps[i], steps[i - 1])) lastChange = i;
+        if (!sameStep(steps[i], steps[i - 1], scene)) lastChange = i;
     const Step& last = steps.back();
     const bool truthAo = c.truth == Truth::Ao;
 
@@ -121,6 +124,7 @@ inline CaseResult runCase(vk::Context& ctx, const Case& c, const RunOptions& o,
         if (fresh) a = std::make_unique<Renderer>(ctx, scene, RenderOptions{s.width, s.height});
         const bool lightMoved = !sameLight(a->light(), s.light);
         if (lightMoved) a->setLight(s.light);
+        a->setTime(s.time);
         a->renderFrame(s.camera);
         FrameRecord& rec = res.frames[i];
         rec.phase = s.phase;
@@ -152,6 +156,7 @@ inline CaseResult runCase(vk::Context& ctx, const Case& c, const RunOptions& o,
     // start without history fares, and the flicker of a still camera once converged.
     Renderer f(ctx, scene, {last.width, last.height});
     f.setLight(last.light);
+    f.setTime(last.time);
     std::vector<Pixels> freshFrames;
     std::vector<double> stillFlicker;
     Pixels referenceAo;
@@ -179,6 +184,7 @@ inline CaseResult runCase(vk::Context& ctx, const Case& c, const RunOptions& o,
     twice("shadow_taps", 64);
     Renderer r(ctx, meanScene, {last.width, last.height});
     r.setLight(last.light);
+    r.setTime(last.time);
     View converged;
     for (uint32_t k = 0; k < o.converge; ++k) {
         r.renderFrame(last.camera);
@@ -212,7 +218,8 @@ inline CaseResult runCase(vk::Context& ctx, const Case& c, const RunOptions& o,
             rec.freshError = maskedRelMse(freshFrames[k], converged.hdr, res.region);
             rec.freshRest = maskedRelMse(freshFrames[k], converged.hdr, rest);
         }
-        if (c.movesLight) rec.stale = staleFraction(after[k], start.hdr, converged.hdr, res.region);
+        if (c.movesLight || c.region == Region::ObjectChanged)
+            rec.stale = staleFraction(after[k], start.hdr, converged.hdr, res.region);
         errors.push_back(rec.error), rests.push_back(rec.errorRest);
         freshErrors.push_back(rec.freshError);
         if (k > 0 && std::isfinite(rec.stale))
@@ -264,7 +271,7 @@ inline CaseResult runCase(vk::Context& ctx, const Case& c, const RunOptions& o,
         ro.mode = truthAo ? reference::Mode::Ao : reference::Mode::Full;
         ro.spp = truthAo ? 4 * o.truthSpp : o.truthSpp; // AO rays are short: more is cheap
         ro.width = last.width, ro.height = last.height;
-        Scene lit = scene;
+        Scene lit = posedAt(scene, last.time);
         lit.light = last.light;
         const Pixels truth = reference::cachedReference(lit, last.camera, ro).rgba;
         Pixels truth0;
@@ -274,9 +281,11 @@ inline CaseResult runCase(vk::Context& ctx, const Case& c, const RunOptions& o,
         res.truthRest = maskedRelMse(truthAo ? referenceAo : freshFrames.back(), truth, rest);
         // At the first camera, for regions that a single view defines.
         if (c.region != Region::Disoccluded && c.region != Region::LightChanged &&
-            c.region != Region::Carried) {
+            c.region != Region::ObjectChanged && c.region != Region::Carried) {
             ro.width = start.width, ro.height = start.height;
-            truth0 = reference::cachedReference(scene, start.camera, ro).rgba;
+            truth0 =
+                reference::cachedReference(posedAt(scene, steps.front().time), start.camera, ro)
+                    .rgba;
             res.truthStart = maskedRelMse(truthAo ? startAo : start.hdr, truth0,
                                           regionMask(c, start, start, start, scene));
         }

@@ -34,8 +34,12 @@ struct FrameUniforms {
     vec4 skyGround;
     vec4 viewport;       // x = width, y = height, z = 1/width, w = 1/height
     vec4 params;         // x = exposure, y = shadow bias (texels), z = frame index, w = scene diagonal
+    // Objects that moved since the last frame: box i spans movedBoxes[2i].xyz..movedBoxes[2i+1].xyz
+    // (world space, old and new place together); motion.x = number of boxes (at most 4).
+    vec4 movedBoxes[8];
+    vec4 motion;
 };
-SSGI_CHECK_SIZE(FrameUniforms, 7 * 64 + 10 * 16);
+SSGI_CHECK_SIZE(FrameUniforms, 7 * 64 + 19 * 16);
 
 // Per draw in the raster passes (push constants).
 struct DrawConstants {
@@ -52,8 +56,11 @@ struct CacheConstants {
     vec4 accumulation; // x = bias of the confidence rule (eq. 4), y = reprojection epsilon in
                        // pixel footprints (eq. 3), z = 1 for the running mean, w = 1 when the
                        // whole screen is converged and passes run over the refresh tile alone
+    vec4 invalidation; // what a moved object (FrameUniforms.motion) restarts: x = 0 nothing
+                       // here (the renderer resets the whole history), 1 pixels within y of a
+                       // moved box, 2 pixels whose path to the light passes within y of one
 };
-SSGI_CHECK_SIZE(CacheConstants, 32);
+SSGI_CHECK_SIZE(CacheConstants, 48);
 
 // Per-frame values of the screen-space passes (push constants). Structural settings (tap and
 // sample counts, variants) are specialization constants instead. `rotation` turns the
@@ -63,27 +70,27 @@ struct ShadowConstants {
     vec4 pattern; // x = rotation (radians), y = scale, z = normal offset (texels), w = unused
     CacheConstants cache;
 };
-SSGI_CHECK_SIZE(ShadowConstants, 48);
+SSGI_CHECK_SIZE(ShadowConstants, 64);
 
 struct AoConstants {
     vec4 pattern; // x = rotation, y = scale, z = AO radius (scene units), w = unused
     vec4 falloff; // x = a, y = b of D(d) = 1 + a d + b d^2 (d in AO radii)
     CacheConstants cache;
 };
-SSGI_CHECK_SIZE(AoConstants, 64);
+SSGI_CHECK_SIZE(AoConstants, 80);
 
 struct IndirectConstants {
     vec4 pattern; // x = rotation, y = scale, z = sampling radius (fraction of the RSM), w = unused
     ivec4 target; // xy = size of the half-resolution image
     CacheConstants cache;
 };
-SSGI_CHECK_SIZE(IndirectConstants, 64);
+SSGI_CHECK_SIZE(IndirectConstants, 80);
 
 struct SsdoConstants {
     vec4 pattern; // x = rotation, y = scale, z = r_max (scene units), w = bounce strength
     CacheConstants cache;
 };
-SSGI_CHECK_SIZE(SsdoConstants, 48);
+SSGI_CHECK_SIZE(SsdoConstants, 64);
 
 struct ContactConstants {
     vec4 params; // x = segment length in shadow-map texels at the pixel
@@ -94,7 +101,7 @@ SSGI_CHECK_SIZE(ContactConstants, 16);
 struct TemporalConstants {
     CacheConstants cache;
 };
-SSGI_CHECK_SIZE(TemporalConstants, 32);
+SSGI_CHECK_SIZE(TemporalConstants, 48);
 
 // Composite's choice of output (push constants): x = view (see VIEW_*).
 struct CompositeConstants {

@@ -11,13 +11,44 @@ struct Reprojection {
     float count; // rotations accumulated there
 };
 
+// Whether an object that moved since the last frame may have changed this pixel's value: the
+// pixel lies within reach of a moved box (occlusion within a radius), or its segment to the
+// light passes within reach of one (shadows; the reach covers the light's disk and the shadow
+// map's filter). Beyond the thesis, which assumes static objects.
+bool movedNearby(vec3 world, CacheConstants cache) {
+    int mode = int(cache.invalidation.x);
+    if (mode == 0) return false;
+    for (int i = 0; i < int(frame.motion.x); ++i) {
+        vec3 lo = frame.movedBoxes[2 * i].xyz, hi = frame.movedBoxes[2 * i + 1].xyz;
+        if (mode == 1) {
+            vec3 outside = max(max(lo - world, world - hi), vec3(0.0));
+            if (length(outside) <= cache.invalidation.y) return true;
+            continue;
+        }
+        vec3 light = frame.lightPosition.xyz;
+        float texel = distance(light, 0.5 * (lo + hi)) * 2.0 * frame.lightFrustum.z /
+                      frame.lightFrustum.w;
+        float reach = cache.invalidation.y + 3.0 * texel;
+        lo -= reach;
+        hi += reach;
+        // Slab test of the segment world -> light against the widened box.
+        vec3 d = light - world;
+        vec3 inv = 1.0 / (abs(d) + 1e-30) * sign(d + 1e-30);
+        vec3 t0 = (lo - world) * inv, t1 = (hi - world) * inv;
+        float enter = max(max(min(t0.x, t1.x), min(t0.y, t1.y)), max(min(t0.z, t1.z), 0.0));
+        float leave = min(min(max(t0.x, t1.x), max(t0.y, t1.y)), min(max(t0.z, t1.z), 1.0));
+        if (enter <= leave) return true;
+    }
+    return false;
+}
+
 // C = P_{t-1} V_{t-1} W_t (1), divided by w and mapped to texture space; valid where the
 // history holds a world position within epsilon of W_t (2-3). Epsilon is a number of pixel
 // footprints at W_t, so one setting serves every scene scale, widened where the surface is seen
 // at a grazing angle, since there neighbouring pixels lie farther apart than one footprint.
 Reprojection reproject(vec3 world, vec3 normal, CacheConstants cache) {
     Reprojection r = Reprojection(false, vec2(0.0), 0.0);
-    if (cache.state.x == 0) return r;
+    if (cache.state.x == 0 || movedNearby(world, cache)) return r;
     vec4 clip = frame.previousViewProjection * vec4(world, 1.0);
     if (clip.w <= 0.0) return r;
     r.uv = clip.xy / clip.w * 0.5 + 0.5;
