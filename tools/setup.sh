@@ -9,6 +9,7 @@ packages=(
   mesa-vulkan-drivers libvulkan-dev vulkan-validationlayers glslang-tools
   libglm-dev libglfw3-dev libtinygltf-dev nlohmann-json3-dev libopenimageio-dev
   libgtest-dev libembree-dev
+  libimgui-dev xvfb xauth
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -65,9 +65,10 @@ static bool hasDeviceExtension(VkPhysicalDevice device, const char* name) {
 }
 
 // A device is usable when it speaks Vulkan 1.3, has a compute+graphics queue and push
-// descriptors. Among usable devices, a discrete GPU wins unless a name is asked for.
+// descriptors (and, with a surface, a swapchain and that queue able to present to it). Among
+// usable devices, a discrete GPU wins unless a name is asked for.
 static VkPhysicalDevice pickDevice(VkInstance instance, const std::string& wanted,
-                                   uint32_t& queueFamily) {
+                                   VkSurfaceKHR surface, uint32_t& queueFamily) {
     uint32_t count = 0;
     vkEnumeratePhysicalDevices(instance, &count, nullptr);
     std::vector<VkPhysicalDevice> devices(count);
@@ -84,6 +85,7 @@ static VkPhysicalDevice pickDevice(VkInstance instance, const std::string& wante
         if (props.apiVersion < VK_API_VERSION_1_3 ||
             !hasDeviceExtension(device, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME))
             continue;
+        if (surface && !hasDeviceExtension(device, VK_KHR_SWAPCHAIN_EXTENSION_NAME)) continue;
         uint32_t familyCount = 0;
         vkGetPhysicalDeviceQueueFamilyProperties(device, &familyCount, nullptr);
         std::vector<VkQueueFamilyProperties> families(familyCount);
@@ -92,6 +94,9 @@ static VkPhysicalDevice pickDevice(VkInstance instance, const std::string& wante
             const VkQueueFlags need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
             if ((families[i].queueFlags & need) != need || families[i].timestampValidBits == 0)
                 continue;
+            VkBool32 present = VK_TRUE;
+            if (surface) vkGetPhysicalDeviceSurfaceSupportKHR(device, i, surface, &present);
+            if (!present) continue;
             int score = props.deviceType == VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU ? 2 : 1;
             if (score > bestScore) {
                 best = device;
@@ -105,7 +110,8 @@ static VkPhysicalDevice pickDevice(VkInstance instance, const std::string& wante
         std::string msg = "no usable Vulkan device";
         if (!wanted.empty()) msg += " named '" + wanted + "'";
         msg += " (need Vulkan 1.3, a graphics+compute queue with timestamps, "
-               "VK_KHR_push_descriptor)";
+               "VK_KHR_push_descriptor";
+        msg += surface ? ", VK_KHR_swapchain and presentation to the window)" : ")";
         msg += seen.empty() ? "; no Vulkan device found at all (is mesa-vulkan-drivers installed?)"
                             : "; devices seen: " + seen;
         throw VulkanError(msg);
@@ -124,6 +130,8 @@ Context::Context(const ContextOptions& options) {
     app.pApplicationName = "ssgi";
     app.apiVersion = VK_API_VERSION_1_3;
     std::vector<const char*> extensions = {VK_EXT_DEBUG_UTILS_EXTENSION_NAME};
+    for (const std::string& e : options.instanceExtensions)
+        extensions.push_back(e.c_str());
 
     VkValidationFeatureEnableEXT enables[] = {
         VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
@@ -170,7 +178,8 @@ Context::Context(const ContextOptions& options) {
     setObjectName = (PFN_vkSetDebugUtilsObjectNameEXT)vkGetInstanceProcAddr(
         instance, "vkSetDebugUtilsObjectNameEXT");
 
-    physicalDevice = pickDevice(instance, options.deviceName, queueFamily);
+    if (options.createSurface) surface = options.createSurface(instance);
+    physicalDevice = pickDevice(instance, options.deviceName, surface, queueFamily);
     vkGetPhysicalDeviceProperties(physicalDevice, &properties);
     vkGetPhysicalDeviceMemoryProperties(physicalDevice, &memoryProperties);
     VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
@@ -194,12 +203,13 @@ Context::Context(const ContextOptions& options) {
     features2.pNext = &features13;
     features2.features.shaderStorageImageWriteWithoutFormat = VK_FALSE;
 
-    const char* deviceExtensions[] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+    const char* deviceExtensions[] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME,
+                                      VK_KHR_SWAPCHAIN_EXTENSION_NAME};
     VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
     deviceInfo.pNext = &features2;
     deviceInfo.queueCreateInfoCount = 1;
     deviceInfo.pQueueCreateInfos = &queueInfo;
-    deviceInfo.enabledExtensionCount = 1;
+    deviceInfo.enabledExtensionCount = surface ? 2 : 1;
     deviceInfo.ppEnabledExtensionNames = deviceExtensions;
     VK_CHECK(vkCreateDevice(physicalDevice, &deviceInfo, nullptr, &device));
     vkGetDeviceQueue(device, queueFamily, 0, &queue);
@@ -223,6 +233,7 @@ Context::~Context() {
             instance, "vkDestroyDebugUtilsMessengerEXT");
         destroy(instance, messenger_, nullptr);
     }
+    if (surface) vkDestroySurfaceKHR(instance, surface, nullptr);
     if (instance) vkDestroyInstance(instance, nullptr);
 }
 

@@ -8,6 +8,7 @@
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace ssgi::vk {
 
@@ -29,6 +30,11 @@ const char* resultName(VkResult result);
 struct ContextOptions {
     bool validation = false; // Khronos validation layer with synchronization validation
     std::string deviceName;  // substring of the device name to pick; empty = automatic
+    // For a window (the viewer): the instance extensions its surface needs, and a function that
+    // creates the surface once the instance exists. With one, the device must be able to present
+    // to it from its queue and VK_KHR_swapchain is enabled. Headless programs leave both empty.
+    std::vector<std::string> instanceExtensions;
+    std::function<VkSurfaceKHR(VkInstance)> createSurface;
 };
 
 class Context {
@@ -43,6 +49,7 @@ public:
     VkDevice device = VK_NULL_HANDLE;
     VkQueue queue = VK_NULL_HANDLE;
     uint32_t queueFamily = 0;
+    VkSurfaceKHR surface = VK_NULL_HANDLE; // only with ContextOptions::createSurface
     VkCommandPool commandPool = VK_NULL_HANDLE;
     VkPhysicalDeviceProperties properties{};
     VkPhysicalDeviceMemoryProperties memoryProperties{};

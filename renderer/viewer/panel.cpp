@@ -1,0 +1,229 @@
+#include "viewer/panel.h"
+
+#include "renderer.h"
+#include "viewer/debug_views.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace ssgi::viewer {
+
+void TimingHistory::add(const std::vector<graph::PassTiming>& timings) {
+    float sum = 0.0f;
+    for (const graph::PassTiming& t : timings) {
+        if (!perPass.count(t.name)) order.push_back(t.name);
+        std::deque<float>& h = perPass[t.name];
+        h.push_back(float(t.milliseconds));
+        if (h.size() > kFrames) h.pop_front();
+        sum += float(t.milliseconds);
+    }
+    total.push_back(sum);
+    if (total.size() > kFrames) total.pop_front();
+}
+
+void TimingHistory::clear() {
+    order.clear();
+    perPass.clear();
+    total.clear();
+}
+
+namespace {
+
+// Settings grouped by what they belong to, in the order a reader meets the passes.
+const char* groupOf(const std::string& key) {
+    static const std::pair<const char*, const char*> prefixes[] = {
+        {"shadow", "Shadow"},       {"contact", "Shadow"},     {"ao", "Ambient occlusion"},
+        {"ssdo", "SSDO"},           {"depth_peeling", "SSDO"}, {"indirect", "Indirect light"},
+        {"cache", "Temporal cache"}};
+    for (const auto& [prefix, group] : prefixes)
+        if (key.rfind(prefix, 0) == 0) return group;
+    return "Image";
+}
+
+void plot(const char* id, const std::deque<float>& values, ImVec2 size) {
+    std::vector<float> v(values.begin(), values.end());
+    // ImGui 1.86 draws nothing for a plot sized "to the edge" (negative width): give it the width.
+    size.x = std::max(8.0f, ImGui::GetContentRegionAvail().x);
+    ImGui::PlotLines(id, v.data(), int(v.size()), 0, nullptr, 0.0f, FLT_MAX, size);
+}
+
+// One setting's widget: a checkbox for on/off, integer or float drags within the spec's range.
+// Drags apply on release (a change rebuilds the renderer, which restarts its caches).
+bool settingWidget(const std::string& key, const SettingSpec& spec, double& value) {
+    bool changed = false;
+    if (spec.whole && spec.min == 0.0 && spec.max == 1.0) {
+        bool on = value != 0.0;
+        if (ImGui::Checkbox(key.c_str(), &on)) {
+            value = on ? 1.0 : 0.0;
+            changed = true;
+        }
+    } else if (spec.whole) {
+        int v = int(value);
+        const int hi = int(std::min(spec.max, 1e6));
+        ImGui::DragInt(key.c_str(), &v, std::max(1.0f, float(hi - spec.min) / 400.0f),
+                       int(spec.min), hi, "%d", ImGuiSliderFlags_AlwaysClamp);
+        value = std::clamp(double(v), spec.min, spec.max);
+        changed = ImGui::IsItemDeactivatedAfterEdit();
+    } else {
+        float v = float(value);
+        const float span = float(std::min(spec.max, 1e3) - spec.min);
+        ImGui::DragFloat(key.c_str(), &v, std::max(span / 1000.0f, 1e-4f), float(spec.min),
+                         float(std::min(spec.max, 1e9)), "%.4g", ImGuiSliderFlags_AlwaysClamp);
+        value = std::clamp(double(v), spec.min, spec.max);
+        changed = ImGui::IsItemDeactivatedAfterEdit();
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", spec.meaning);
+    return changed;
+}
+
+void timingsSection(PanelState& s) {
+    if (!ImGui::CollapsingHeader("GPU timings", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    if (!s.history.total.empty()) {
+        char label[64];
+        std::snprintf(label, sizeof label, "frame %.1f ms", s.history.total.back());
+        plot("##total", s.history.total, ImVec2(-1.0f, 48.0f));
+        ImGui::TextUnformatted(label);
+    }
+    if (!s.timings) return;
+    const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp;
+    if (!ImGui::BeginTable("passes", 3, flags)) return;
+    ImGui::TableSetupColumn("pass", ImGuiTableColumnFlags_WidthStretch, 1.4f);
+    ImGui::TableSetupColumn("ms", ImGuiTableColumnFlags_WidthStretch, 0.6f);
+    ImGui::TableSetupColumn("last frames", ImGuiTableColumnFlags_WidthStretch, 1.2f);
+    ImGui::TableHeadersRow();
+    for (const graph::PassTiming& t : *s.timings) {
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(t.name.c_str());
+        ImGui::TableNextColumn();
+        ImGui::Text("%8.2f", t.milliseconds);
+        ImGui::TableNextColumn();
+        ImGui::PushID(t.name.c_str());
+        plot("##h", s.history.perPass[t.name], ImVec2(-1.0f, 14.0f));
+        ImGui::PopID();
+    }
+    ImGui::EndTable();
+}
+
+void viewSection(PanelState& s) {
+    if (!ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    const std::vector<std::string>& names = viewNames();
+    for (int i = 0; i < int(names.size()); ++i) {
+        if (ImGui::RadioButton(names[i].c_str(), s.cacheView < 0 && s.view == i)) {
+            s.viewChanged = s.view != i || s.cacheView >= 0;
+            s.view = i;
+            s.cacheView = -1;
+        }
+        if (i % 3 != 2 && i + 1 < int(names.size())) ImGui::SameLine(float(1 + i % 3) * 105.0f);
+    }
+    if (!s.cacheAvailable) {
+        ImGui::TextDisabled("cache views: turn the cache on");
+        return;
+    }
+    ImGui::Separator();
+    const auto& views = cacheViews();
+    for (int i = 0; i < int(views.size()); ++i) {
+        if (ImGui::RadioButton(views[i].name, s.cacheView == i)) {
+            s.viewChanged = s.cacheView != i;
+            s.cacheView = i;
+        }
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", views[i].meaning);
+        if (i % 2 == 0) ImGui::SameLine(160.0f);
+    }
+    s.cacheEffect = std::clamp(s.cacheEffect, 0, int(s.cachedEffects.size()) - 1);
+    if (ImGui::BeginCombo("effect", s.cachedEffects[size_t(s.cacheEffect)].c_str())) {
+        for (int i = 0; i < int(s.cachedEffects.size()); ++i)
+            if (ImGui::Selectable(s.cachedEffects[size_t(i)].c_str(), i == s.cacheEffect))
+                s.cacheEffect = i;
+        ImGui::EndCombo();
+    }
+}
+
+void cameraSection(PanelState& s) {
+    if (!ImGui::CollapsingHeader("Camera and path", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    ImGui::TextDisabled("WASD/QE move, Shift faster, right drag turns");
+    ImGui::DragFloat("speed", &s.cameraSpeed, 0.01f, 0.001f, 1e4f, "%.3g /s");
+    if (ImGui::Button("scene camera")) s.resetCamera = true;
+    ImGui::SameLine();
+    if (s.pathLength > 0.0f) {
+        ImGui::Checkbox("play path", &s.playPath);
+        ImGui::SliderFloat("time", &s.pathTime, 0.0f, s.pathLength, "%.2f s");
+    } else {
+        ImGui::TextDisabled("the scene has no camera path");
+    }
+    if (!s.recording) {
+        if (ImGui::Button("record path")) s.startRecording = true;
+    } else if (ImGui::Button("stop recording")) {
+        s.stopRecording = true;
+    }
+    ImGui::SameLine();
+    ImGui::Text("%zu keys", s.recordedKeys);
+    ImGui::InputText("##saveto", s.savePathTo, sizeof s.savePathTo);
+    ImGui::SameLine();
+    if (ImGui::Button("save path")) s.saveCameraPath = true;
+}
+
+void lightSection(PanelState& s) {
+    if (!ImGui::CollapsingHeader("Light")) return;
+    ImGui::TextDisabled("Ctrl + left drag on the image: across the floor");
+    ImGui::TextDisabled("(+ Shift: up and down)");
+    bool changed = ImGui::DragFloat3("position", &s.light.position.x, 0.005f);
+    glm::vec3 d = glm::normalize(s.light.direction);
+    float yaw = glm::degrees(std::atan2(d.x, -d.z)), pitch = glm::degrees(std::asin(d.y));
+    if (ImGui::DragFloat("yaw", &yaw, 0.5f) |
+        ImGui::DragFloat("pitch", &pitch, 0.5f, -89.9f, 89.9f)) {
+        const float y = glm::radians(yaw), p = glm::radians(pitch);
+        s.light.direction = {std::sin(y) * std::cos(p), std::sin(p), -std::cos(y) * std::cos(p)};
+        changed = true;
+    }
+    changed |= ImGui::DragFloat("intensity", &s.light.intensity, 0.01f, 0.0f, 1e6f);
+    changed |= ImGui::DragFloat("disk radius", &s.light.radius, 0.001f, 0.0f, 1e3f);
+    changed |= ImGui::ColorEdit3("colour", &s.light.color.x);
+    s.lightChanged |= changed;
+}
+
+void settingsSection(PanelState& s) {
+    if (!ImGui::CollapsingHeader("Settings", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    ImGui::TextDisabled("a change rebuilds the frame (caches restart)");
+    for (const char* group :
+         {"Image", "Shadow", "Ambient occlusion", "SSDO", "Indirect light", "Temporal cache"}) {
+        if (!ImGui::TreeNode(group)) continue;
+        for (const auto& [key, spec] : settingSpecs())
+            if (std::string(groupOf(key)) == group)
+                s.settingsChanged |= settingWidget(key, spec, s.settings[key]);
+        ImGui::TreePop();
+    }
+}
+
+} // namespace
+
+void drawPanel(PanelState& s, float width, float height) {
+    ImGui::SetNextWindowPos(ImVec2(0.0f, 0.0f));
+    ImGui::SetNextWindowSize(ImVec2(width, height));
+    ImGui::Begin("ssgi viewer", nullptr,
+                 ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+    ImGui::PushItemWidth(-90.0f);
+    ImGui::TextWrapped("%s", s.sceneFile.c_str());
+    ImGui::TextDisabled("%s", s.device.c_str());
+    ImGui::Text("window %ux%u  image %ux%u", s.windowSize.width, s.windowSize.height,
+                s.renderSize.width, s.renderSize.height);
+    ImGui::Text("frame %u  %.0f ms/frame", s.frame, 1000.0f * s.secondsPerFrame);
+    if (!s.message.empty())
+        ImGui::TextColored(ImVec4(1.0f, 0.6f, 0.3f, 1.0f), "%s", s.message.c_str());
+    if (ImGui::Button("screenshot (F12)")) s.screenshot = true;
+    ImGui::InputText("##scene", s.scenePath, sizeof s.scenePath);
+    ImGui::SameLine();
+    if (ImGui::Button("load scene")) s.loadScene = true;
+    timingsSection(s);
+    viewSection(s);
+    settingsSection(s);
+    lightSection(s);
+    cameraSection(s);
+    ImGui::PopItemWidth();
+    ImGui::End();
+}
+
+} // namespace ssgi::viewer
