@@ -91,30 +91,31 @@ graph::ImageRef addTemporalPass(PassSetup& s, EffectCache* cache, graph::ImageRe
     using graph::FrameGraph;
     using graph::Use;
     const graph::ImageRef value = FrameGraph::current(cache->value);
-    s.graph.addPass(
-        cache->name + ".temporal", graph::PassKind::Compute,
-        {{in.gbuffer.position, Use::Sampled},
-         {in.gbuffer.normal, Use::Sampled},
-         {raw, Use::Sampled},
-         {FrameGraph::previous(cache->value), Use::Sampled},
-         {FrameGraph::previous(cache->meta), Use::Sampled},
-         {value, Use::StorageWrite},
-         {FrameGraph::current(cache->meta), Use::StorageWrite}},
-        [&s, cache, raw, in, pipeline](const graph::PassContext& pc) {
-            vk::Descriptors()
-                .uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size)
-                .sampledImage(1, pc.image(in.gbuffer.position).view, s.nearestSampler)
-                .sampledImage(2, pc.image(in.gbuffer.normal).view, s.nearestSampler)
-                .sampledImage(3, pc.image(raw).view, s.nearestSampler)
-                .sampledImage(4, pc.image(FrameGraph::previous(cache->value)).view, s.linearSampler)
-                .sampledImage(5, pc.image(FrameGraph::previous(cache->meta)).view, s.nearestSampler)
-                .storageImage(6, pc.image(FrameGraph::current(cache->value)).view)
-                .storageImage(7, pc.image(FrameGraph::current(cache->meta)).view)
-                .push(s.ctx, pc.cmd, pipeline);
-            shader::TemporalConstants constants{cacheConstants(s, cache)};
-            const VkExtent2D area = cacheDispatch(s, cache, s.size);
-            vk::dispatch(pc.cmd, pipeline, area.width, area.height, constants);
-        });
+    s.graph.addPass(cache->name + ".temporal", graph::PassKind::Compute,
+                    {{in.gbuffer.position, Use::Sampled},
+                     {in.gbuffer.normal, Use::Sampled},
+                     {raw, Use::Sampled},
+                     {FrameGraph::previous(cache->value), Use::Sampled},
+                     {FrameGraph::previous(cache->meta), Use::Sampled},
+                     {value, Use::StorageWrite},
+                     {FrameGraph::current(cache->meta), Use::StorageWrite}},
+                    [&s, cache, raw, in, pipeline](const graph::PassContext& pc) {
+                        vk::Descriptors()
+                            .uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size)
+                            .sampledImage(1, pc.image(in.gbuffer.position).view, s.nearestSampler)
+                            .sampledImage(2, pc.image(in.gbuffer.normal).view, s.nearestSampler)
+                            .sampledImage(3, pc.image(raw).view, s.nearestSampler)
+                            .sampledImage(4, pc.image(FrameGraph::previous(cache->value)).view,
+                                          s.nearestSampler)
+                            .sampledImage(5, pc.image(FrameGraph::previous(cache->meta)).view,
+                                          s.nearestSampler)
+                            .storageImage(6, pc.image(FrameGraph::current(cache->value)).view)
+                            .storageImage(7, pc.image(FrameGraph::current(cache->meta)).view)
+                            .push(s.ctx, pc.cmd, pipeline);
+                        shader::TemporalConstants constants{cacheConstants(s, cache)};
+                        const VkExtent2D area = cacheDispatch(s, cache, s.size);
+                        vk::dispatch(pc.cmd, pipeline, area.width, area.height, constants);
+                    });
     return value;
 }
 

@@ -18,7 +18,7 @@ layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; }
 layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
 layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
 layout(set = 0, binding = 3) uniform sampler2D current; // a = 1 computed this frame, 0 skipped
-layout(set = 0, binding = 4) uniform sampler2D historyValue; // linear filtering
+layout(set = 0, binding = 4) uniform sampler2D historyValue;
 layout(set = 0, binding = 5) uniform sampler2D historyMeta;
 layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D newValue;
 layout(set = 0, binding = 7, rgba32f) uniform writeonly image2D newMeta;
@@ -26,6 +26,27 @@ layout(push_constant) uniform TemporalBlock { TemporalConstants constants; };
 
 #include "screen_space.glsl"
 #include "temporal.glsl"
+
+// The history at the reprojected point, filtered bilinearly over the four texels around it that
+// hold the same surface (their world positions pass the reprojection test), so that across a
+// depth edge the other side's value does not bleed in; the nearest texel passed already.
+vec3 historyAt(Reprojection r, vec3 world) {
+    vec2 texel = r.uv * frame.viewport.xy - 0.5;
+    ivec2 base = ivec2(floor(texel));
+    vec2 f = texel - vec2(base);
+    ivec2 last = ivec2(frame.viewport.xy) - 1;
+    vec4 sum = vec4(0.0);
+    for (int i = 0; i < 4; ++i) {
+        ivec2 offset = ivec2(i & 1, i >> 1);
+        ivec2 q = clamp(base + offset, ivec2(0), last);
+        vec4 meta = texelFetch(historyMeta, q, 0);
+        if (meta.w == 0.0 || distance(meta.xyz, world) > r.epsilon) continue;
+        float w = (offset.x == 1 ? f.x : 1.0 - f.x) * (offset.y == 1 ? f.y : 1.0 - f.y);
+        sum += vec4(texelFetch(historyValue, q, 0).rgb * w, w);
+    }
+    return sum.w > 1e-6 ? sum.rgb / sum.w
+                        : texelFetch(historyValue, ivec2(r.uv * frame.viewport.xy), 0).rgb;
+}
 
 void main() {
     ivec2 pixel = cachePixel(gl_GlobalInvocationID.xy, constants.cache, 1);
@@ -39,7 +60,7 @@ void main() {
     CacheConstants cache = constants.cache;
     vec4 now = texelFetch(current, pixel, 0);
     Reprojection r = reproject(position.xyz, texelFetch(gbufferNormal, pixel, 0).xyz, cache);
-    vec3 history = r.valid ? texture(historyValue, r.uv).rgb : vec3(0.0);
+    vec3 history = r.valid ? historyAt(r, position.xyz) : vec3(0.0);
     vec3 value;
     float count;
     if (now.a < 0.5) { // skipped by the effect: converged, its cache is the value

@@ -6,9 +6,10 @@
 #define SSGI_TEMPORAL_GLSL
 
 struct Reprojection {
-    bool valid;  // the pixel saw the same surface last frame
-    vec2 uv;     // where, in last frame's image
-    float count; // rotations accumulated there
+    bool valid;    // the pixel saw the same surface last frame
+    vec2 uv;       // where, in last frame's image
+    float count;   // rotations accumulated there
+    float epsilon; // the world-space tolerance of the test
 };
 
 // Whether an object that moved since the last frame may have changed this pixel's value: the
@@ -47,7 +48,7 @@ bool movedNearby(vec3 world, CacheConstants cache) {
 // footprints at W_t, so one setting serves every scene scale, widened where the surface is seen
 // at a grazing angle, since there neighbouring pixels lie farther apart than one footprint.
 Reprojection reproject(vec3 world, vec3 normal, CacheConstants cache) {
-    Reprojection r = Reprojection(false, vec2(0.0), 0.0);
+    Reprojection r = Reprojection(false, vec2(0.0), 0.0, 0.0);
     if (cache.state.x == 0 || movedNearby(world, cache)) return r;
     vec4 clip = frame.previousViewProjection * vec4(world, 1.0);
     if (clip.w <= 0.0) return r;
@@ -57,6 +58,7 @@ Reprojection reproject(vec3 world, vec3 normal, CacheConstants cache) {
     vec4 meta = texelFetch(historyMeta, ivec2(r.uv * frame.viewport.xy), 0);
     float facing = abs(dot(normal, normalize(frame.cameraPosition.xyz - world)));
     float epsilon = cache.accumulation.y / (pixelsPerUnit(viewDepth(world)) * max(facing, 0.1));
+    r.epsilon = epsilon;
     r.valid = meta.w > 0.0 && distance(meta.xyz, world) <= epsilon;
     r.count = r.valid ? meta.w : 0.0;
     return r;
