@@ -19,6 +19,19 @@ const std::vector<std::string>& viewNames() {
     return names;
 }
 
+// The VIEW_* value of a view's name; InputError listing the views otherwise.
+static int viewIndex(const std::string& name) {
+    const auto& views = viewNames();
+    auto view = std::find(views.begin(), views.end(), name);
+    if (view == views.end()) {
+        std::string list;
+        for (const auto& v : views)
+            list += " " + v;
+        throw InputError("unknown view '" + name + "' (views:" + list + ")");
+    }
+    return int(view - views.begin());
+}
+
 Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& options)
     : ctx_(ctx), scene_(scene), light_(scene.light) {
     const uint32_t limit = ctx.properties.limits.maxImageDimension2D;
@@ -27,14 +40,7 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
         throw InputError("image size " + std::to_string(options.width) + "x" +
                          std::to_string(options.height) + " is outside 1.." +
                          std::to_string(limit) + " (this device's largest 2D image)");
-    const auto& views = viewNames();
-    auto view = std::find(views.begin(), views.end(), options.view);
-    if (view == views.end()) {
-        std::string list;
-        for (const auto& v : views)
-            list += " " + v;
-        throw InputError("unknown view '" + options.view + "' (views:" + list + ")");
-    }
+    const int view = viewIndex(options.view);
     const uint32_t rsmSize = uint32_t(scene.setting("shadow_map_size"));
     if (rsmSize == 0 || rsmSize > limit)
         throw InputError("shadow_map_size " + std::to_string(rsmSize) + " is outside 1.." +
@@ -93,7 +99,8 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
         terms.indirect =
             addTemporalPass(*setup_, cache, addIndirectPasses(*setup_, scenes, cache), scenes);
     }
-    addCompositePass(*setup_, scenes, terms, int(view - views.begin()));
+    setup_->view = view;
+    addCompositePass(*setup_, scenes, terms);
 }
 
 Renderer::~Renderer() {
@@ -161,6 +168,10 @@ void Renderer::renderFrame(const Camera& camera) {
     setup_->rsmStale = false;
     moved_.clear();
     ++frameIndex_;
+}
+
+void Renderer::setView(const std::string& view) {
+    setup_->view = viewIndex(view);
 }
 
 void Renderer::setTime(float seconds) {

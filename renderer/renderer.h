@@ -37,6 +37,8 @@ public:
     // pixel; the indirect light and SSDO (whose bounce any moved shadow changes) whole; the RSM
     // is drawn again. Before the first call the objects stand at their paths' first keys.
     void setTime(float seconds);
+    // Shows another view (see viewNames()) from the next frame on; the caches are untouched.
+    void setView(const std::string& view);
     const SpotLight& light() const { return light_; }
     const std::vector<graph::PassTiming>& timings() const { return graph_->timings(); }
 

@@ -6,8 +6,8 @@
 
 namespace ssgi {
 
-CompositeOutputs addCompositePass(PassSetup& s, const GBufferAndRsm& in, const LightingTerms& terms,
-                                  int view) {
+CompositeOutputs addCompositePass(PassSetup& s, const GBufferAndRsm& in,
+                                  const LightingTerms& terms) {
     const VkImageUsageFlags storage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     CompositeOutputs out;
     out.hdr = s.graph.createImage("hdr", VK_FORMAT_R32G32B32A32_SFLOAT, s.size, storage);
@@ -30,7 +30,7 @@ CompositeOutputs addCompositePass(PassSetup& s, const GBufferAndRsm& in, const L
     uses.push_back({out.ldr, graph::Use::StorageWrite});
     std::vector<graph::ImageRef> sampled(std::begin(inputs), std::end(inputs));
     s.graph.addPass("composite", graph::PassKind::Compute, uses,
-                    [&s, sampled, out, pipeline, view](const graph::PassContext& pc) {
+                    [&s, sampled, out, pipeline](const graph::PassContext& pc) {
                         vk::Descriptors d;
                         d.uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size);
                         for (uint32_t i = 0; i < sampled.size(); ++i)
@@ -40,7 +40,7 @@ CompositeOutputs addCompositePass(PassSetup& s, const GBufferAndRsm& in, const L
                             .storageImage(13, pc.image(out.ldr).view)
                             .push(s.ctx, pc.cmd, pipeline);
                         shader::CompositeConstants constants{};
-                        constants.mode.x = view;
+                        constants.mode.x = s.view;
                         vk::dispatch(pc.cmd, pipeline, s.size.width, s.size.height, constants);
                     });
     return out;

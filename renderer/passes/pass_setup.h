@@ -49,6 +49,8 @@ struct PassSetup {
     // Camera and light unchanged for as many frames as a pixel needs rotations: every pixel is
     // converged, and the cached effects run over their refresh tiles alone.
     bool settled = false;
+    // What the composite shows (a VIEW_* value); the renderer may change it between frames.
+    int view = 0;
 
     // A compute pipeline whose bindings are set 0's: binding 0 the frame uniforms, then
     // `sampled` combined image samplers, then `storage` storage images.
@@ -131,8 +133,8 @@ struct LightingTerms {
 struct CompositeOutputs {
     graph::ImageRef hdr, ldr;
 };
-// composite: HDR radiance, tonemapped sRGB image, or a debug view.
+// composite: HDR radiance, tonemapped sRGB image, or the debug view PassSetup::view names.
 CompositeOutputs addCompositePass(PassSetup& setup, const GBufferAndRsm& inputs,
-                                  const LightingTerms& terms, int view);
+                                  const LightingTerms& terms);
 
 } // namespace ssgi

@@ -50,7 +50,13 @@ void Viewer::applyPanelRequests() {
         renderer_->setLight(p.light);
         p.lightChanged = false;
     }
-    if (p.settingsChanged || p.viewChanged) {
+    // A view changes what the composite shows (or what the viewer makes of the cache's images)
+    // and nothing else: the caches keep converging.
+    if (p.viewChanged && !p.settingsChanged) {
+        renderer_->setView(viewNames()[size_t(p.view)]);
+        p.viewChanged = false;
+    }
+    if (p.settingsChanged) {
         const auto previous = scene_.settings;
         for (const auto& [key, value] : p.settings)
             scene_.settings[key] = value;

@@ -1,7 +1,8 @@
 // The viewer: a window around the same Renderer the headless programs use. Each frame it moves
 // the camera (fly camera or the scene's path), renders the frame with the renderer, and
-// presents it with the panel over it. Changing a setting, the view or the window's size builds
-// the renderer again (its caches restart: no history carries across sizes or settings).
+// presents it with the panel over it. Changing a setting or the window's size builds the
+// renderer again (its caches restart: no history carries across sizes or settings); changing
+// the view does not.
 #pragma once
 
 #include "app/cli.h"
