@@ -1,5 +1,6 @@
-// Scene loading: the default scene file, the shared glTF scenes, hand-written glTF files with
-// known answers, and every kind of bad input the loader must reject with a useful message.
+// Scene loading: the default scene file, hand-written glTF files with known answers, and every
+// kind of bad input the loader must reject with a useful message (the shared glTF scenes are in
+// test_shared_scenes.cpp).
 #include "scene/scene.h"
 
 #include <gtest/gtest.h>
@@ -23,13 +24,6 @@ namespace {
 
 const std::string kSourceDir = SSGI_SOURCE_DIR;
 const std::string kSharedScenes = kSourceDir + "/../shared/scenes/";
-
-size_t triangleCount(const Scene& scene) {
-    size_t triangles = 0;
-    for (const ssgi::Instance& instance : scene.instances)
-        triangles += scene.meshes[size_t(instance.mesh)].indices.size() / 3;
-    return triangles;
-}
 
 std::string base64(const std::vector<uint8_t>& bytes) {
     static const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -170,98 +164,6 @@ TEST(DefaultScene, PrimitivesFaceOutwardWithUnitNormals) {
             EXPECT_NEAR(glm::dot(face, mesh.vertices[mesh.indices[t]].normal), 1.0f, 1e-5f);
         }
     }
-}
-
-struct SharedScene {
-    const char* file;
-    size_t triangles;
-};
-void PrintTo(const SharedScene& scene, std::ostream* out) {
-    *out << scene.file;
-}
-
-class SharedScenes : public ::testing::TestWithParam<SharedScene> {};
-
-TEST_P(SharedScenes, LoadBareWithTheReadmeTriangleCount) {
-    const std::string path = kSharedScenes + GetParam().file;
-    if (!fs::exists(path)) GTEST_SKIP() << path << " is not there";
-    const Scene scene = loadScene(path);
-    EXPECT_EQ(triangleCount(scene), GetParam().triangles);
-    EXPECT_FALSE(scene.bounds.empty());
-    EXPECT_LT(scene.light.outerConeAngle, glm::radians(89.0f));
-    EXPECT_LT(scene.camera.znear, scene.camera.zfar);
-    for (const ssgi::Mesh& mesh : scene.meshes) {
-        EXPECT_LT(size_t(mesh.material), scene.materials.size());
-        for (uint32_t index : mesh.indices)
-            ASSERT_LT(index, mesh.vertices.size());
-        for (const ssgi::Vertex& v : mesh.vertices)
-            ASSERT_NEAR(glm::length(v.normal), 1.0f, 1e-4f);
-    }
-}
-
-INSTANTIATE_TEST_SUITE_P(
-    Readme, SharedScenes,
-    ::testing::Values(SharedScene{"cornell-box.glb", 36},
-                      SharedScene{"cornell-box-sphere.glb", 2188}, SharedScene{"bunny.glb", 69451},
-                      SharedScene{"mori-knob.glb", 11970}, SharedScene{"sponza.glb", 66450},
-                      SharedScene{"sibenik.glb", 75283}, SharedScene{"conference.glb", 331179},
-                      SharedScene{"scrub-pine.glb", 527}),
-    [](const ::testing::TestParamInfo<SharedScene>& info) {
-        std::string name = info.param.file;
-        name = name.substr(0, name.find('.'));
-        std::replace(name.begin(), name.end(), '-', '_');
-        return name;
-    });
-
-TEST(SharedSceneDetails, CornellBoxWithoutNormalsIsFlatShaded) {
-    const std::string path = kSharedScenes + "cornell-box.glb";
-    if (!fs::exists(path)) GTEST_SKIP() << path << " is not there";
-    const Scene scene = loadScene(path);
-    for (const ssgi::Mesh& mesh : scene.meshes) {
-        for (size_t t = 0; t < mesh.indices.size(); t += 3) {
-            const ssgi::Vertex* v[3] = {&mesh.vertices[mesh.indices[t]],
-                                        &mesh.vertices[mesh.indices[t + 1]],
-                                        &mesh.vertices[mesh.indices[t + 2]]};
-            const glm::vec3 cross =
-                glm::cross(v[1]->position - v[0]->position, v[2]->position - v[0]->position);
-            if (glm::length(cross) < 1e-12f) continue; // degenerate: any normal will do
-            for (const ssgi::Vertex* corner : v)
-                EXPECT_NEAR(glm::distance(corner->normal, glm::normalize(cross)), 0.0f, 1e-5f);
-        }
-    }
-}
-
-TEST(SharedSceneDetails, SponzaLoadsItsTextures) {
-    const std::string path = kSharedScenes + "sponza.glb";
-    if (!fs::exists(path)) GTEST_SKIP() << path << " is not there";
-    const Scene scene = loadScene(path);
-    ASSERT_EQ(scene.textures.size(), 18u);
-    for (const ssgi::Texture& texture : scene.textures) {
-        EXPECT_GT(texture.width, 0u);
-        EXPECT_GT(texture.height, 0u);
-        EXPECT_EQ(texture.rgba.size(), size_t(texture.width) * texture.height * 4);
-    }
-    const bool textured =
-        std::any_of(scene.materials.begin(), scene.materials.end(),
-                    [](const ssgi::Material& m) { return m.baseColorTexture >= 0; });
-    EXPECT_TRUE(textured);
-}
-
-TEST(SceneFileSet, EverySceneFileLoads) {
-    size_t count = 0;
-    for (const auto& entry : fs::directory_iterator(kSourceDir + "/scenes")) {
-        if (entry.path().extension() != ".json") continue;
-        SCOPED_TRACE(entry.path().string());
-        const std::string text =
-            (std::ostringstream() << std::ifstream(entry.path()).rdbuf()).str();
-        if (text.find("shared/scenes") != std::string::npos && !fs::exists(kSharedScenes)) continue;
-        const Scene scene = loadScene(entry.path().string());
-        EXPECT_FALSE(scene.instances.empty());
-        for (size_t k = 1; k < scene.cameraPath.keys.size(); ++k)
-            EXPECT_LE(scene.cameraPath.keys[k - 1].time, scene.cameraPath.keys[k].time);
-        ++count;
-    }
-    EXPECT_GE(count, 1u);
 }
 
 TEST_F(SceneFiles, NodeTransformsGiveWorldBounds) {
