@@ -17,7 +17,9 @@ graph::ImageRef addIndirectPasses(PassSetup& s, const GBufferAndRsm& in, EffectC
         s.graph.createImage("indirect", VK_FORMAT_R16G16B16A16_SFLOAT, s.size, usage);
     const vk::Specialization spec{{int(s.model.setting("indirect_vpls")),
                                    int(s.model.setting("indirect_visibility")),
-                                   int(s.model.setting("indirect_visibility_steps"))}};
+                                   int(s.model.setting("indirect_visibility_steps")),
+                                   int(s.model.setting("indirect_half_res"))}};
+    const bool halfRes = s.model.setting("indirect_half_res") != 0.0;
     const vk::Pipeline gather =
         s.computePipeline("indirect.comp", 6, 1, sizeof(shader::IndirectConstants), spec);
     const vk::Pipeline upsample =
@@ -58,7 +60,8 @@ graph::ImageRef addIndirectPasses(PassSetup& s, const GBufferAndRsm& in, EffectC
             d.storageImage(7, pc.image(half).view).push(s.ctx, pc.cmd, gather);
             const VkExtent2D area = cacheDispatch(s, cache, s.size, 2);
             vk::dispatch(pc.cmd, gather, area.width, area.height, constants());
-        });
+        },
+        [halfRes] { return halfRes; }); // at full resolution, upsample gathers every pixel
 
     std::vector<graph::ImageUse> upsampleUses = reads;
     upsampleUses.push_back({half, Use::Sampled});

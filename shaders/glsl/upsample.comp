@@ -11,6 +11,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(constant_id = 0) const int VPLS = 512;
 layout(constant_id = 1) const int VISIBILITY = 1;
 layout(constant_id = 2) const int VISIBILITY_STEPS = 6;
+layout(constant_id = 3) const int HALF_RES = 1; // 0: no half-res gather, every pixel gathers
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
 layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
@@ -48,7 +49,7 @@ void main() {
     vec2 f = (vec2(pixel) - vec2(base * 2)) * 0.5;
     vec3 sum = vec3(0.0);
     float weightSum = 0.0;
-    for (int j = 0; j < 4; ++j) {
+    for (int j = 0; j < (HALF_RES != 0 ? 4 : 0); ++j) {
         ivec2 offset = ivec2(j & 1, j >> 1);
         ivec2 h = clamp(base + offset, ivec2(0), halfSize - 1);
         vec4 q = texelFetch(gbufferPosition, h * 2, 0);

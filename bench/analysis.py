@@ -1,0 +1,275 @@
+"""Numbers derived from the benchmark's JSON: Pareto fronts, best configurations at time
+budgets, each pass as a fraction of the ceiling probe, the still camera's ratio to its floor,
+Table 4.1, memory. Every derived figure is a ratio of times measured in one process."""
+
+import glob
+import json
+import os
+import statistics
+
+# The passes a converged still frame cannot avoid (issue 5's floor).
+FLOOR_PASSES = ("gbuffer", "direct", "composite")
+# The passes in the order a frame runs them (tables and charts list them so).
+FRAME_ORDER = ("gbuffer", "rsm", "shadow", "shadow.temporal", "shadow.keep", "direct", "ao",
+               "ssdo", "ao.temporal", "ao.keep", "ssdo.temporal", "ssdo.keep", "indirect",
+               "upsample", "indirect.temporal", "indirect.keep", "composite")
+
+
+def frame_order(names):
+    return sorted(names, key=lambda n: (FRAME_ORDER.index(n) if n in FRAME_ORDER else 99, n))
+
+
+# A pass timestamp below this is taken as collapsed: llvmpipe writes timestamps from its
+# rasterizer threads when they reach the query, and on a busy machine they can reach the begin
+# query only after the compute work it should precede (the pass then reads ~0.02 ms).
+COLLAPSED_MS = 0.2
+# Time budgets as fractions of the scene's default configuration (cache off).
+BUDGETS = (0.1, 0.25, 0.5, 1.0)
+# Frames at the end of a still series taken as converged.
+CONVERGED_FRAMES = 5
+# Bytes each bandwidth-bound pass reads and writes per pixel (formats of renderer/passes/):
+# direct reads position 16, normal 8, albedo 4, shadow 8 and writes 8; composite reads those,
+# AO, indirect (8 each) and writes HDR 16 + LDR 4. (The gbuffer pass is left out:
+# rasterization, not bytes, bounds it on a CPU device.)
+PASS_BYTES = {"direct": 44, "composite": 80}
+VISIBILITY_STEPS = 6  # indirect_visibility_steps' default
+
+
+def load(results_dir):
+    """sweeps[scene][size] and walks[scene], from the JSON files of one run; every sweep's
+    configurations get their composed "passes" and "total_ms" (compose_times)."""
+    sweeps, walks = {}, {}
+    for path in sorted(glob.glob(os.path.join(results_dir, "*.json"))):
+        with open(path) as f:
+            j = json.load(f)
+        size = "%dx%d" % (j["width"], j["height"])
+        if j.get("kind") == "sweep":
+            compose_times(j)
+            sweeps.setdefault(j["scene"], {})[size] = j
+        elif j.get("kind") == "walkthrough":
+            walks[j["scene"]] = j
+    return sweeps, walks
+
+
+def valid(values):
+    """The timestamps that did not collapse (see COLLAPSED_MS)."""
+    return [v for v in values if v >= COLLAPSED_MS]
+
+
+def robust_median(values):
+    """Median of the valid timestamps; 0 when every one collapsed."""
+    v = valid(values)
+    return statistics.median(v) if v else 0.0
+
+
+def skipped(settings):
+    """Passes a configuration records a timestamp for but never runs (the graph writes both
+    timestamps of a disabled pass back to back): the half-res gather at full resolution."""
+    return {"indirect"} if settings.get("indirect_half_res", 1) == 0 else set()
+
+
+def compose_times(sweep):
+    """Each pass's time is the median of its valid frames pooled over every row that runs it
+    with the same value of its axis (the passes of no axis over every row); a configuration's
+    time is the sum of its passes plus the host's overhead per frame (wall clock less the sum
+    of the passes, over frames where no timestamp collapsed). A pass whose every frame
+    collapsed gets its row's unexplained wall-clock time instead."""
+    warm, rows = sweep["warmup"], sweep["rows"]
+    axis_names = [a["name"] for a in sweep["axes"]]
+    axis_of = {p: i for i, a in enumerate(sweep["axes"]) for p in a["passes"]}
+    key = lambda row, p: (p, row["index"][axis_of[p]] if p in axis_of else None)
+    pools, overheads = {}, []
+    for row in rows:
+        for f in range(warm, len(row["wall_ms"])):
+            skip = skipped(row["settings"])
+            frame = {p: v[f] for p, v in row["passes"].items() if p not in skip}
+            for p, v in frame.items():
+                pools.setdefault(key(row, p), []).append(v)
+            if all(v >= COLLAPSED_MS for v in frame.values()):
+                overheads.append(row["wall_ms"][f] - sum(frame.values()))
+    medians = {k: robust_median(v) for k, v in pools.items()}
+    overhead = statistics.median(overheads) if overheads else 0.0
+
+    def unexplained(row, target):
+        residuals = []
+        for f in range(warm, len(row["wall_ms"])):
+            known = sum(v[f] if v[f] >= COLLAPSED_MS else medians[key(row, p)]
+                        for p, v in row["passes"].items()
+                        if p != target and p not in skipped(row["settings"]))
+            residuals.append(row["wall_ms"][f] - overhead - known)
+        return max(0.0, statistics.median(residuals))
+
+    def passes_of(index):
+        out = {}
+        default_row = rows[sweep["row_of"][axis_names[0]][0]]
+        for a, name in enumerate(axis_names):
+            row = rows[sweep["row_of"][name][index[a]]]
+            for p in row["passes"]:
+                if p in axis_of and axis_of[p] == a and p not in skipped(row["settings"]):
+                    out[p] = medians[key(row, p)] or unexplained(row, p)
+        for p in default_row["passes"]:
+            if p not in axis_of:
+                out[p] = medians[key(default_row, p)] or unexplained(default_row, p)
+        return out
+
+    for c in sweep["configs"]:
+        c["passes"] = passes_of(c["index"])
+        c["total_ms"] = sum(c["passes"].values()) + overhead
+    check = rows[sweep["check_row"]]
+    sweep["timing"] = {"overhead_ms": overhead, "check_label": check["label"],
+                       "check_measured_ms": statistics.median(check["wall_ms"][warm:]),
+                       "check_composed_ms": sum(passes_of(check["index"]).values()) + overhead,
+                       "collapsed": sum(1 for v in pools.values() for x in v if x < COLLAPSED_MS),
+                       "timestamps": sum(len(v) for v in pools.values())}
+
+
+def default_config(sweep):
+    return next(c for c in sweep["configs"] if c["group"] == "default")
+
+
+def pareto(points):
+    """The points (ms, error, ...) no other point beats on both time and error, by time."""
+    front, best = [], float("inf")
+    for p in sorted(points, key=lambda p: (p[0], p[1])):
+        if p[1] < best:
+            front.append(p)
+            best = p[1]
+    return front
+
+
+def cached_points(sweep):
+    """(settled frame ms: median wall clock of the series' last frames, error at its last frame,
+    label) of each cached method on the still camera."""
+    points = []
+    for s in sweep.get("series", []):
+        if "wall_ms" in s and "rel_mse" in s:
+            points.append((statistics.median(s["wall_ms"][-CONVERGED_FRAMES:]), s["rel_mse"][-1],
+                           s["label"] + ", settled"))
+    return points
+
+
+def best_at_budgets(sweep, errors_from=None):
+    """For each budget: the configuration (cache off) with the least error within it."""
+    errors = {c["label"]: c.get("rel_mse") for c in (errors_from or sweep)["configs"]}
+    default_ms = default_config(sweep)["total_ms"]
+    rows = []
+    for budget in BUDGETS:
+        fits = [(errors[c["label"]], c["total_ms"], c["label"]) for c in sweep["configs"]
+                if c["total_ms"] <= budget * default_ms and errors.get(c["label"]) is not None]
+        rows.append((budget, min(fits) if fits else None))
+    return default_ms, rows
+
+
+def still_camera(sweep):
+    """The still camera under the thesis rule: converged frame time against its floor, both
+    sums of per-pass medians of the last frames (collapsed timestamps left out)."""
+    series = next((s for s in sweep.get("series", []) if "total_ms" in s), None)
+    if not series:
+        return None
+    n = len(series["wall_ms"])
+    tail = slice(n - CONVERGED_FRAMES, n)
+    # Per frame: every pass's timestamps over the floor passes' in the same frame (a collapsed
+    # timestamp moves time to the pass before it, so the sum of all passes keeps it; frames
+    # where a floor pass collapsed are left out); the median of those ratios.
+    ratios = []
+    for f in range(n - CONVERGED_FRAMES, n):
+        frame = {p: v[f] for p, v in series["passes"].items()}
+        floor_f = [frame.get(p, 0.0) for p in FLOOR_PASSES]
+        if min(floor_f) >= COLLAPSED_MS:
+            ratios.append(sum(frame.values()) / sum(floor_f))
+    passes = {p: statistics.median(v[tail]) for p, v in series["passes"].items()}
+    converged = sum(passes.values())
+    floor = sum(passes.get(p, 0.0) for p in FLOOR_PASSES)
+    walls = series["wall_ms"]
+    first_cheap = next((f for f, t in enumerate(walls)
+                        if t <= 1.5 * statistics.median(walls[tail])), None)
+    return {"label": series["label"], "converged_ms": converged, "floor_ms": floor,
+            "ratio": statistics.median(ratios) if ratios else converged / floor,
+            "ratio_frames": len(ratios), "converged_wall_ms": statistics.median(walls[tail]),
+            "uncached_ms": default_config(sweep)["total_ms"],
+            "first_frame_within_1_5x": None if first_cheap is None else first_cheap + 1,
+            "frames": n, "passes": passes}
+
+
+def value_taps(axis, settings):
+    """(local taps, scattered taps) the pass of an axis value fetches per computed pixel, at
+    most (early rejections skip some, so a fraction computed from these is an upper bound)."""
+    if axis == "ao" and settings.get("ssdo"):
+        return settings["ssdo_samples"], 0
+    if axis == "ao" and settings.get("ao"):
+        n = settings["ao_directions"] * settings["ao_steps"]
+        return (2 * n if settings["ao_variant"] == 2 else n), 0  # horizon: both sides
+    if axis == "shadow":
+        taps = settings["shadow_taps"]
+        return (1 if taps == 1 else 2 * taps), 0  # blocker search + filter
+    if axis == "indirect" and settings.get("indirect"):
+        vpls = settings["indirect_vpls"]
+        # position, normal and flux of each VPL in the RSM; the visibility march in the G-buffer
+        return VISIBILITY_STEPS * vpls * settings["indirect_visibility"], 3 * vpls
+    return None
+
+
+def ceiling_fractions(sweep):
+    """Each axis value's pass, and the bandwidth-bound passes of the defaults, as a fraction of
+    what the probe says the device can do: the probe's time for the same fetches or bytes over
+    the pass's time (composed as for the configurations)."""
+    probe = sweep["probe"]
+    w, h = sweep["width"], sweep["height"]
+    geometry = sweep["geometry_fraction"]
+    by_label = {c["label"]: c for c in sweep["configs"]}
+    default = default_config(sweep)
+    out = []
+    for a, axis in enumerate(sweep["axes"]):
+        for value in axis["values"]:
+            taps = value_taps(axis["name"], value["settings"])
+            if not taps:
+                continue
+            label = " + ".join(value["label"] if i == a else v["values"][0]["label"]
+                               for i, v in enumerate(sweep["axes"]))
+            passes = by_label[label]["passes"]
+            name = next(p for p in axis["passes"] if p in passes)
+            pixels = geometry * w * h / (4 if name == "indirect" else 1)
+            ideal = pixels * (taps[0] / probe["taps_local_per_ms"] +
+                              taps[1] / probe["taps_scattered_per_ms"])
+            out.append({"what": "%s: %s" % (name, value["label"]), "ms": passes[name],
+                        "kind": "taps", "fraction": ideal / passes[name]})
+    for name, per_pixel in PASS_BYTES.items():
+        ms = default["passes"].get(name)
+        if ms:
+            out.append({"what": name, "ms": ms, "kind": "bandwidth",
+                        "fraction": w * h * per_pixel / probe["bytes_per_ms"] / ms})
+    return out
+
+
+def table_4_1(walk):
+    """Per pass: mean ms over the frames after the first, cache off and on, and their ratio."""
+    runs = {r["label"]: r for r in walk["walkthrough"]["runs"]}
+    off, on = runs["cache off"], runs["cache: thesis rule"]
+    names = frame_order(set(off["passes"]) | set(on["passes"]))
+    def mean(values):  # over the frames after the first, collapsed timestamps left out
+        v = valid(values[1:]) if len(values) > 1 else valid(values)
+        return statistics.mean(v) if v else 0.0
+    rows = []
+    for name in names:
+        a = mean(off["passes"][name]) if name in off["passes"] else None
+        b = mean(on["passes"][name]) if name in on["passes"] else None
+        rows.append((name, a, b))
+    total_off = sum(a for _, a, _ in rows if a)
+    total_on = sum(b for _, _, b in rows if b)
+    wall = ("frame wall clock (host)", mean(off["wall_ms"]), mean(on["wall_ms"]))
+    errors = list(zip(walk["walkthrough"]["error_frames"], off.get("rel_mse", []),
+                      on.get("rel_mse", [])))
+    return rows, total_off, total_on, wall, errors
+
+
+def memory_totals(sweep):
+    return {size: sum(e["bytes"] for e in images) for size, images in sweep["memory"].items()}
+
+
+def memory_by_resource(images):
+    """History pairs ("X A", "X B") summed under X, largest first."""
+    grouped = {}
+    for e in images:
+        name = e["image"][:-2] + " (pair)" if e["image"][-2:] in (" A", " B") else e["image"]
+        grouped[name] = grouped.get(name, 0) + e["bytes"]
+    return sorted(grouped.items(), key=lambda kv: -kv[1])

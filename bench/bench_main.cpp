@@ -1,0 +1,147 @@
+// benchmark: measures one scene and writes what it measured as JSON (bench/run.sh runs it for
+// every scene and size, bench/report.py draws the charts and tables).
+//   benchmark sweep SCENE --out FILE       probe, configurations, cached series, memory
+//   benchmark walkthrough SCENE --out FILE the camera path with the cache off and on
+#include "app/cli.h"
+#include "bench.h"
+
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <iostream>
+
+namespace fs = std::filesystem;
+using namespace ssgi;
+
+namespace {
+
+const char* kUsage = R"(usage: benchmark sweep|walkthrough SCENE --out FILE.json [options]
+  --out FILE.json       where the results go (written whole or not at all)
+  --error-size N        real-time and reference images for the error are NxN (default 128)
+  --warmup N            frames rendered before timing (default 1)
+  --frames N            frames timed; medians (default 5)
+  --series-frames N     sweep: cached still-camera frames (default 64)
+  --path-frames N       walkthrough: frames along the camera path (default 120)
+  --error-frames N      walkthrough: frames whose error is measured (default 4)
+  --spp N               reference samples per pixel, at most (default 4096)
+  --no-error            timing only: no reference, no error renders
+  --no-series           sweep: no cached still-camera series
+  --series-methods N    sweep: 1 = the thesis rule only, 2 = also the running mean (default)
+  --commit TEXT         the source's commit, recorded with the results
+)";
+
+struct Args {
+    std::string command;
+    cli::CommonArgs common;
+    bench::Options options;
+    std::string out, commit = "unknown";
+    uint32_t pathFrames = 120, errorFrames = 4;
+};
+
+uint32_t positive(const std::string& option, const std::string& text) {
+    const uint32_t n = cli::parseCount(option, text);
+    if (n == 0) throw InputError(option + ": must be at least 1");
+    return n;
+}
+
+Args parseArgs(int argc, char** argv) {
+    Args a;
+    if (argc < 2 || (std::string(argv[1]) != "sweep" && std::string(argv[1]) != "walkthrough")) {
+        std::cout << kUsage << cli::kCommonUsage;
+        std::exit(argc >= 2 && std::string(argv[1]) == "--help" ? 0 : 2);
+    }
+    a.command = argv[1];
+    for (int i = 2; i < argc; ++i) {
+        const std::string arg = argv[i];
+        auto value = [&] { return cli::optionValue(argc, argv, i); };
+        if (arg == "--out")
+            a.out = value();
+        else if (arg == "--error-size")
+            a.options.errorWidth = a.options.errorHeight = positive(arg, value());
+        else if (arg == "--warmup")
+            a.options.warmup = cli::parseCount(arg, value());
+        else if (arg == "--frames")
+            a.options.frames = positive(arg, value());
+        else if (arg == "--series-frames")
+            a.options.seriesFrames = positive(arg, value());
+        else if (arg == "--path-frames")
+            a.pathFrames = positive(arg, value());
+        else if (arg == "--error-frames")
+            a.errorFrames = positive(arg, value());
+        else if (arg == "--spp")
+            a.options.referenceSpp = positive(arg, value());
+        else if (arg == "--no-error")
+            a.options.error = false;
+        else if (arg == "--no-series")
+            a.options.series = false;
+        else if (arg == "--series-methods")
+            a.options.seriesMethods = positive(arg, value());
+        else if (arg == "--commit")
+            a.commit = value();
+        else if (!cli::parseCommonArg(argc, argv, i, a.common))
+            throw InputError("unknown option " + arg + " (see benchmark --help)");
+    }
+    if (a.out.empty() || fs::path(a.out).extension() != ".json")
+        throw InputError("--out FILE.json is required");
+    cli::finishCommonArgs(a.common);
+    a.options.width = a.common.width;
+    a.options.height = a.common.height;
+    a.errorFrames = std::min(a.errorFrames, a.pathFrames);
+    return a;
+}
+
+std::string utcNow() {
+    char text[32];
+    const std::time_t now = std::time(nullptr);
+    std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+    return text;
+}
+
+int run(int argc, char** argv) {
+    const Args args = parseArgs(argc, argv);
+    const Scene scene = cli::loadSceneWithSettings(args.common);
+    vk::Context ctx({args.common.validation, args.common.device});
+    const bench::Options& o = args.options;
+    bench::Json j = {{"kind", args.command},
+                     {"scene", fs::path(args.common.scene).stem().string()},
+                     {"scene_file", args.common.scene},
+                     {"device", bench::deviceJson(ctx)},
+                     {"commit", args.commit},
+                     {"date", utcNow()},
+                     {"width", o.width},
+                     {"height", o.height},
+                     {"error_width", o.errorWidth},
+                     {"error_height", o.errorHeight},
+                     {"warmup", o.warmup},
+                     {"frames", o.frames},
+                     {"scene_settings", bench::settingsJson(scene.settings)}};
+    if (args.command == "sweep") {
+        j["series_frames"] = o.series ? o.seriesFrames : 0;
+        j.update(bench::sweep(ctx, scene, o));
+    } else {
+        j["walkthrough"] =
+            bench::walkthrough(ctx, scene, o, args.pathFrames, o.error ? args.errorFrames : 0);
+    }
+    if (ctx.validationMessageCount() > 0) {
+        std::fprintf(stderr, "error: the validation layer reported %u message(s)\n",
+                     ctx.validationMessageCount());
+        return 1;
+    }
+    fs::create_directories(fs::absolute(args.out).parent_path());
+    cli::writeTextAtomically(args.out, j.dump(1) + "\n");
+    return 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return run(argc, argv);
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 1;
+    }
+}

@@ -1,0 +1,98 @@
+#!/usr/bin/env bash
+# Regenerates every benchmark: builds, measures each scene (build/benchmark), then writes the
+# CSV files, the charts and the tables (bench/report.py). See bench/README.md.
+#   bench/run.sh           docs: Cornell box, bunny, Sponza at 512x512 (+ 1280x720 timings of
+#                          Sponza), into docs/ (about 55 min on 2 cores)
+#   bench/run.sh --quick   quick: the same scenes at 256x256, into out/bench/quick/ (4 min)
+#   bench/run.sh --all     every scene (+ Sibenik, Conference Room, Mori knob; about 2 h)
+# Options: --scenes "a b"  only these scenes (names of scenes/*.json)
+#          --report-only   redraw charts and tables from the last run's JSON
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+mode=full scenes="" report_only=0
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --quick) mode=quick ;;
+    --all) mode=all ;;
+    --scenes) scenes="$2"; shift ;;
+    --report-only) report_only=1 ;;
+    -h|--help) sed -n '2,11p' "$0"; exit 0 ;;
+    *) echo "error: unknown option $1 (see bench/run.sh --help)" >&2; exit 2 ;;
+  esac
+  shift
+done
+
+build=${SSGI_BUILD_DIR:-build}
+out=out/bench/$mode
+if [ "$mode" = quick ]; then
+  scenes=${scenes:-"cornell-box bunny sponza"}
+  size=256x256 error=128 frames=2 series=44 series_methods=1 other_sizes=""
+  walk_scenes="bunny" path_frames=48 error_frames=2
+  images=$out/images doc=""
+else
+  all="cornell-box bunny sponza sibenik conference mori-knob"
+  [ "$mode" = all ] || all="cornell-box bunny sponza"
+  scenes=${scenes:-$all}
+  size=512x512 error=256 frames=3 series=64 series_methods=2 other_sizes="1280x720"
+  other_scenes="sponza" other_frames=1
+  [ "$mode" = all ] && other_scenes=$scenes other_frames=2
+  walk_scenes="bunny" path_frames=96 error_frames=3
+  images=docs/images doc=docs/bench.md out=out/bench/full
+fi
+
+# matplotlib from Debian (the system Python, whatever python3 is first on PATH).
+py=/usr/bin/python3
+if ! "$py" -c "import matplotlib" 2>/dev/null; then
+  echo "installing python3-matplotlib (apt-get)"
+  sudo_=""; [ "$(id -u)" -ne 0 ] && sudo_=sudo
+  $sudo_ apt-get update -qq && $sudo_ apt-get install -y -qq python3-matplotlib >/dev/null
+fi
+
+start=$(date +%s)
+commit=$(git rev-parse --short HEAD 2>/dev/null || echo unknown)
+if [ -n "$(git status --porcelain --untracked-files=no 2>/dev/null)" ]; then commit="$commit-dirty"; fi
+
+if [ "$report_only" = 0 ]; then
+  echo "building ($build)"
+  [ -f "$build/build.ninja" ] || cmake -S . -B "$build" -G Ninja >/dev/null
+  ninja -C "$build" -j"$(nproc)" benchmark shaders >/dev/null
+  mkdir -p "$out"
+  rm -f "$out"/*.json
+  # The steps: a sweep per scene and size, a walkthrough per walkthrough scene.
+  steps=()
+  for s in $scenes; do
+    steps+=("sweep $s $size --error-size $error --series-frames $series --series-methods $series_methods")
+    case " ${other_scenes:-} " in *" $s "*)
+      for z in $other_sizes; do
+        steps+=("sweep $s $z --no-error --no-series --frames ${other_frames:-1}")
+      done ;;
+    esac
+  done
+  for s in $walk_scenes; do
+    case " $scenes " in *" $s "*) steps+=("walkthrough $s $size --error-size $error \
+      --path-frames $path_frames --error-frames $error_frames") ;; esac
+  done
+  n=${#steps[@]} k=0
+  for step in "${steps[@]}"; do
+    k=$((k + 1))
+    read -r kind scene sz rest <<<"$step"
+    # A step's own --frames (the other sizes) comes after the default and wins.
+    t0=$(date +%s)
+    echo "[$k/$n] $kind $scene $sz ($(( (t0 - start) / 60 )) min so far)"
+    # shellcheck disable=SC2086
+    "$build/benchmark" "$kind" "scenes/$scene.json" --size "$sz" --frames "$frames" $rest \
+      --commit "$commit" --out "$out/$kind-$scene-$sz.json"
+    echo "      $(( $(date +%s) - t0 )) s"
+  done
+fi
+
+seconds=$(( $(date +%s) - start ))
+if [ "$report_only" = 0 ]; then
+  echo "Mode: $mode; $(echo $scenes | wc -w) scenes measured in $((seconds / 60)) min on" \
+    "$(nproc) cores ($(date -u +%Y-%m-%d))." >"$out/run.txt"
+fi
+note=$(cat "$out/run.txt" 2>/dev/null || echo "Mode: $mode.")
+"$py" bench/report.py --results "$out" --images "$images" --size "$size" \
+  ${doc:+--doc "$doc"} --note "$note"
+echo "done in $((seconds / 60)) min $((seconds % 60)) s: results in $out/, charts in $images/"

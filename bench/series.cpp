@@ -1,0 +1,110 @@
+// Frame-by-frame measurements of the temporal cache: a still camera (the frame time should fall
+// towards G-buffer + direct + composite as pixels converge, and the error should fall), and the
+// scene's camera path with the cache off and on (the thesis's Table 4.1).
+#include "bench.h"
+
+#include "scene/camera.h"
+
+#include <algorithm>
+
+namespace ssgi::bench {
+
+namespace {
+
+struct Method {
+    const char* label;
+    Settings settings;
+};
+
+const std::vector<Method>& cacheMethods() {
+    static const std::vector<Method> methods = {
+        {"cache: thesis rule", {{"cache", 1}, {"cache_method", 0}}},
+        {"cache: running mean", {{"cache", 1}, {"cache_method", 1}}}};
+    return methods;
+}
+
+// Each method's frames timed at the timing size, and (with options.error) its error at the
+// error size against `references[k]` after frame errorAt[k].
+Json measureMethods(vk::Context& ctx, const Scene& scene, const std::vector<Method>& methods,
+                    const Options& options, uint32_t frames,
+                    const std::function<Camera(uint32_t)>& cameraOf,
+                    const std::vector<uint32_t>& errorAt, const std::vector<Reference>& references,
+                    Progress& progress, const std::string& what) {
+    std::vector<Scene> scenes;
+    for (const Method& method : methods)
+        scenes.push_back(withSettings(scene, method.settings));
+    progress.step(what + ": " + std::to_string(frames) + " frames, timed");
+    std::vector<FrameLog> logs(methods.size());
+    interleaved(ctx, scenes, {options.width, options.height}, frames, cameraOf,
+                [&](size_t m, uint32_t, const Renderer& r, double wall) { logs[m].add(r, wall); });
+    Json result = Json::array();
+    for (size_t m = 0; m < methods.size(); ++m) {
+        Json j = logs[m].json();
+        j["label"] = methods[m].label;
+        j["settings"] = settingsJson(methods[m].settings);
+        result.push_back(j);
+    }
+    if (!options.error) return result;
+    progress.step(what + ": " + std::to_string(frames) + " frames, error");
+    interleaved(ctx, scenes, {options.errorWidth, options.errorHeight}, frames, cameraOf,
+                [&](size_t m, uint32_t f, Renderer& r, double) {
+                    const auto k = std::find(errorAt.begin(), errorAt.end(), f) - errorAt.begin();
+                    if (size_t(k) == errorAt.size()) return;
+                    const Error e = hdrError(r, references[k]);
+                    result[m]["rel_mse"].push_back(e.relMse);
+                    result[m]["ssim"].push_back(e.ssim);
+                });
+    return result;
+}
+
+} // namespace
+
+size_t cachedSeriesSteps(const Options& options) {
+    return options.error ? 2 : 1;
+}
+
+Json cachedSeries(vk::Context& ctx, const Scene& scene, const Options& options,
+                  const Reference& reference, Progress& progress) {
+    std::vector<uint32_t> everyFrame(options.seriesFrames);
+    for (uint32_t f = 0; f < options.seriesFrames; ++f)
+        everyFrame[f] = f;
+    const std::vector<Reference> references(options.seriesFrames, reference);
+    const std::vector<Method> methods(
+        cacheMethods().begin(),
+        cacheMethods().begin() + std::min(cacheMethods().size(), size_t(options.seriesMethods)));
+    return measureMethods(
+        ctx, scene, methods, options, options.seriesFrames, [&](uint32_t) { return scene.camera; },
+        everyFrame, references, progress, "still camera, cache");
+}
+
+Json walkthrough(vk::Context& ctx, const Scene& scene, const Options& options, uint32_t pathFrames,
+                 uint32_t errorFrames) {
+    if (scene.cameraPath.empty())
+        throw InputError(scene.sourcePath + ": the scene has no camera_path to walk");
+    const float duration = scene.cameraPath.keys.back().time;
+    const std::function<Camera(uint32_t)> cameraOf = [&](uint32_t f) {
+        return cameraAt(scene.cameraPath, pathFrames > 1 ? duration * f / (pathFrames - 1) : 0.0f);
+    };
+    // The frames whose error is measured: evenly spaced, the last frame among them.
+    std::vector<uint32_t> errorAt;
+    for (uint32_t k = 1; k <= errorFrames; ++k)
+        errorAt.push_back(uint32_t((uint64_t(pathFrames - 1) * k) / errorFrames));
+
+    const std::vector<Method> methods = {{"cache off", {{"cache", 0}}},
+                                         {"cache: thesis rule", {{"cache", 1}}}};
+    Progress progress("  walkthrough " + scene.sourcePath,
+                      1 + (options.error ? 1 + errorAt.size() : 0));
+    std::vector<Reference> references;
+    if (options.error)
+        for (uint32_t f : errorAt) {
+            progress.step("reference of frame " + std::to_string(f));
+            references.push_back(fullReference(scene, cameraOf(f), options));
+        }
+    Json result = {{"frames", pathFrames}, {"error_frames", errorAt}};
+    result["runs"] = measureMethods(ctx, scene, methods, options, pathFrames, cameraOf, errorAt,
+                                    references, progress, "camera path, cache off and on");
+    progress.done();
+    return result;
+}
+
+} // namespace ssgi::bench
