@@ -2,7 +2,11 @@
 
 #include "renderer.h"
 
+#include <array>
+#include <cstdio>
 #include <memory>
+
+#include <sys/wait.h>
 
 namespace ssgi::test {
 
@@ -71,6 +75,18 @@ bool segmentBlocked(const Scene& scene, glm::vec3 origin, glm::vec3 target) {
         }
     }
     return false;
+}
+
+CommandResult runCommand(const std::string& command) {
+    CommandResult r;
+    FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+    if (!pipe) return r;
+    std::array<char, 4096> buffer;
+    while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe))
+        r.output.append(buffer.data(), n);
+    const int status = pclose(pipe);
+    r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
 }
 
 } // namespace ssgi::test

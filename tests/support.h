@@ -41,6 +41,14 @@ Frame render(const Scene& scene, uint32_t width, uint32_t height, uint32_t frame
 // CPU): the independent geometry the image tests compare against.
 bool segmentBlocked(const Scene& scene, glm::vec3 origin, glm::vec3 target);
 
+// A command line run through the shell, its stdout and stderr together, and its exit status
+// (-1 when it did not exit normally or could not be started).
+struct CommandResult {
+    int status = -1;
+    std::string output;
+};
+CommandResult runCommand(const std::string& command);
+
 class VulkanTest : public ::testing::Test {
 protected:
     void SetUp() override { messagesBefore_ = context().validationMessageCount(); }

@@ -281,14 +281,9 @@ TEST_F(BadInput, ProgramsExitStatusAndNoPartialOutput) {
         {noDevice + " " + walk + " " + box + " --still --timings " + timings, 1, "Vulkan"},
     };
     for (const Case& c : cases) {
-        FILE* pipe = popen((c.command + " 2>&1").c_str(), "r");
-        ASSERT_NE(pipe, nullptr);
-        std::string output;
-        char buffer[4096];
-        while (size_t n = fread(buffer, 1, sizeof buffer, pipe))
-            output.append(buffer, n);
-        const int status = pclose(pipe);
-        EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, c.status) << c.command << output;
+        const test::CommandResult run = test::runCommand(c.command);
+        const std::string& output = run.output;
+        EXPECT_EQ(run.status, c.status) << c.command << output;
         EXPECT_NE(output.find("error: "), std::string::npos) << c.command << "\n" << output;
         EXPECT_NE(output.find(c.expected), std::string::npos) << c.command << "\n" << output;
         EXPECT_FALSE(fs::exists(timings)) << c.command;

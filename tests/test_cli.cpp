@@ -3,7 +3,6 @@
 #include "image_io.h"
 #include "support.h"
 
-#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -12,22 +11,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-    int status = -1;
-    std::string output; // stdout and stderr together
-};
+using Result = ssgi::test::CommandResult;
 
 Result run(const std::string& arguments, const std::string& environment = "") {
-    const std::string command = environment + " " + SSGI_RENDER_BINARY + " " + arguments + " 2>&1";
-    Result r;
-    FILE* pipe = popen(command.c_str(), "r");
-    if (!pipe) return r;
-    std::array<char, 4096> buffer;
-    while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe))
-        r.output.append(buffer.data(), n);
-    int status = pclose(pipe);
-    r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
+    return ssgi::test::runCommand(environment + " " + SSGI_RENDER_BINARY + " " + arguments);
 }
 
 class Cli : public ::testing::Test {
@@ -82,9 +69,9 @@ TEST_F(Cli, ProfilePrintsEveryPassAndWritesJson) {
     Result r = run("--size 64x64 --frames 3 --profile --profile-json " + json + " --output " +
                    (dir / "out.png").string());
     ASSERT_EQ(r.status, 0) << r.output;
-    for (const char* pass : {"gbuffer", "rsm", "shadow", "direct", "ao", "indirect", "upsample",
-                             "shadow.temporal", "ao.temporal", "indirect.temporal", "composite",
-                             "total", "device:"})
+    for (const char* pass :
+         {"gbuffer", "rsm", "shadow", "direct", "ao", "indirect", "upsample", "shadow.temporal",
+          "ao.temporal", "indirect.temporal", "composite", "total", "device:"})
         EXPECT_NE(r.output.find(pass), std::string::npos) << pass << " missing in\n" << r.output;
     std::ifstream in(json);
     std::string text((std::istreambuf_iterator<char>(in)), {});

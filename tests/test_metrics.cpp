@@ -2,6 +2,7 @@
 // ground truth, `compare` and `reference`, as a user runs them.
 #include "image_io.h"
 #include "metrics/error_map.h"
+#include "support.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -148,13 +149,9 @@ protected:
         const fs::path binary =
             fs::read_symlink("/proc/self/exe").parent_path().parent_path() / program;
         if (!fs::exists(binary)) ADD_FAILURE() << binary << " is not built";
-        FILE* pipe = popen((binary.string() + " " + arguments + " 2>&1").c_str(), "r");
-        std::array<char, 4096> buffer;
-        output.clear();
-        while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe))
-            output.append(buffer.data(), n);
-        const int status = pclose(pipe);
-        return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+        const test::CommandResult r = test::runCommand(binary.string() + " " + arguments);
+        output = r.output;
+        return r.status;
     }
     std::string image(const std::string& name, const Image& image) {
         writeImage((dir / name).string(), image.width, image.height, image.rgba);

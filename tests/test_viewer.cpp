@@ -11,7 +11,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include <array>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -66,26 +65,14 @@ bool hasXvfb() {
     return std::system("command -v Xvfb >/dev/null 2>&1") == 0;
 }
 
-struct Result {
-    int status = -1;
-    std::string output; // stdout and stderr together
-};
+using Result = test::CommandResult;
 
 Result runViewer(const std::string& environment, const std::string& arguments) {
 #ifdef SSGI_VIEWER_BINARY
-    const std::string command = environment + " " + SSGI_VIEWER_BINARY + " " + arguments + " 2>&1";
+    return test::runCommand(environment + " " + SSGI_VIEWER_BINARY + " " + arguments);
 #else
-    const std::string command = "false";
+    return test::runCommand("false");
 #endif
-    Result r;
-    FILE* pipe = popen(command.c_str(), "r");
-    if (!pipe) return r;
-    std::array<char, 4096> buffer;
-    while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe))
-        r.output.append(buffer.data(), n);
-    const int status = pclose(pipe);
-    r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
 }
 
 struct Image {
