@@ -126,6 +126,25 @@ void destroyImage(const Context& ctx, Image& img) {
     img = {};
 }
 
+void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from,
+                  VkImageLayout to, VkPipelineStageFlags2 srcStages, VkAccessFlags2 srcAccess,
+                  VkPipelineStageFlags2 dstStages, VkAccessFlags2 dstAccess) {
+    VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+    b.srcStageMask = srcStages;
+    b.srcAccessMask = srcAccess;
+    b.dstStageMask = dstStages;
+    b.dstAccessMask = dstAccess;
+    b.oldLayout = from;
+    b.newLayout = to;
+    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.image = image;
+    b.subresourceRange = {aspect, 0, 1, 0, 1};
+    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.imageMemoryBarrierCount = 1;
+    dep.pImageMemoryBarriers = &b;
+    vkCmdPipelineBarrier2(cmd, &dep);
+}
+
 Image createTexture(Context& ctx, const std::string& name, VkFormat format, VkExtent2D extent,
                     const void* pixels, VkDeviceSize size) {
     Image img = createImage(ctx, name, format, extent,
@@ -133,19 +152,9 @@ Image createTexture(Context& ctx, const std::string& name, VkFormat format, VkEx
     Buffer staging = createBuffer(ctx, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
     std::memcpy(staging.mapped, pixels, size);
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
-        VkImageMemoryBarrier2 toDst{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-        toDst.srcStageMask = VK_PIPELINE_STAGE_2_NONE;
-        toDst.dstStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-        toDst.dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-        toDst.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-        toDst.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-        toDst.srcQueueFamilyIndex = toDst.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-        toDst.image = img.image;
-        toDst.subresourceRange = {img.aspect, 0, 1, 0, 1};
-        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-        dep.imageMemoryBarrierCount = 1;
-        dep.pImageMemoryBarriers = &toDst;
-        vkCmdPipelineBarrier2(cmd, &dep);
+        imageBarrier(cmd, img.image, img.aspect, VK_IMAGE_LAYOUT_UNDEFINED,
+                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0,
+                     VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
 
         VkBufferImageCopy region{};
         region.imageSubresource = {img.aspect, 0, 0, 1};
@@ -153,16 +162,12 @@ Image createTexture(Context& ctx, const std::string& name, VkFormat format, VkEx
         vkCmdCopyBufferToImage(cmd, staging.buffer, img.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                                1, &region);
 
-        VkImageMemoryBarrier2 toRead = toDst;
-        toRead.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-        toRead.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-        toRead.dstStageMask =
-            VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-        toRead.dstAccessMask = VK_ACCESS_2_SHADER_SAMPLED_READ_BIT;
-        toRead.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-        toRead.newLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-        dep.pImageMemoryBarriers = &toRead;
-        vkCmdPipelineBarrier2(cmd, &dep);
+        imageBarrier(cmd, img.image, img.aspect, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT,
+                     VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                     VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
+                         VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                     VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
     });
     destroyBuffer(ctx, staging);
     return img;
