@@ -38,12 +38,6 @@ struct Args {
     uint32_t pathFrames = 120, errorFrames = 4;
 };
 
-uint32_t positive(const std::string& option, const std::string& text) {
-    const uint32_t n = cli::parseCount(option, text);
-    if (n == 0) throw InputError(option + ": must be at least 1");
-    return n;
-}
-
 Args parseArgs(int argc, char** argv) {
     Args a;
     if (argc < 2 || (std::string(argv[1]) != "sweep" && std::string(argv[1]) != "walkthrough")) {
@@ -57,25 +51,25 @@ Args parseArgs(int argc, char** argv) {
         if (arg == "--out")
             a.out = value();
         else if (arg == "--error-size")
-            a.options.errorWidth = a.options.errorHeight = positive(arg, value());
+            a.options.errorWidth = a.options.errorHeight = cli::parsePositiveCount(arg, value());
         else if (arg == "--warmup")
             a.options.warmup = cli::parseCount(arg, value());
         else if (arg == "--frames")
-            a.options.frames = positive(arg, value());
+            a.options.frames = cli::parsePositiveCount(arg, value());
         else if (arg == "--series-frames")
-            a.options.seriesFrames = positive(arg, value());
+            a.options.seriesFrames = cli::parsePositiveCount(arg, value());
         else if (arg == "--path-frames")
-            a.pathFrames = positive(arg, value());
+            a.pathFrames = cli::parsePositiveCount(arg, value());
         else if (arg == "--error-frames")
-            a.errorFrames = positive(arg, value());
+            a.errorFrames = cli::parsePositiveCount(arg, value());
         else if (arg == "--spp")
-            a.options.referenceSpp = positive(arg, value());
+            a.options.referenceSpp = cli::parsePositiveCount(arg, value());
         else if (arg == "--no-error")
             a.options.error = false;
         else if (arg == "--no-series")
             a.options.series = false;
         else if (arg == "--series-methods")
-            a.options.seriesMethods = positive(arg, value());
+            a.options.seriesMethods = cli::parsePositiveCount(arg, value());
         else if (arg == "--commit")
             a.commit = value();
         else if (!cli::parseCommonArg(argc, argv, i, a.common))
@@ -135,13 +129,5 @@ int run(int argc, char** argv) {
 } // namespace
 
 int main(int argc, char** argv) {
-    try {
-        return run(argc, argv);
-    } catch (const InputError& e) {
-        std::fprintf(stderr, "error: %s\n", e.what());
-        return 2;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "error: %s\n", e.what());
-        return 1;
-    }
+    return cli::guardedMain(argc, argv, run);
 }

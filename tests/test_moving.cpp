@@ -104,8 +104,7 @@ TEST_F(MovingObjectTest, AMovedObjectRestartsWhatItChangesAndLeavesNoStaleShadow
     // The block's old and new place, and the AO's reach (its radius at the largest scale).
     const size_t block = size_t(scene.objectPaths[0].instances[0]);
     Aabb moved = instanceBounds(scene, block, scene.instances[block].transform);
-    const Aabb now = instanceBounds(posedAt(scene, 1.0f), block,
-                                    posedAt(scene, 1.0f).instances[block].transform);
+    const Aabb now = instanceBounds(scene, block, instanceTransformsAt(scene, 1.0f)[block]);
     moved.extend(now.min);
     moved.extend(now.max);
     const float reach = aoRadius(scene) * (1.0f + float(scene.setting("cache_scale_jitter")));

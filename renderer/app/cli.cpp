@@ -33,6 +33,12 @@ uint32_t parseCount(const std::string& option, const std::string& text) {
     return uint32_t(v);
 }
 
+uint32_t parsePositiveCount(const std::string& option, const std::string& text) {
+    const uint32_t n = parseCount(option, text);
+    if (n == 0) throw InputError(option + ": must be at least 1");
+    return n;
+}
+
 bool parseCommonArg(int argc, char** argv, int& i, CommonArgs& a) {
     const std::string arg = argv[i];
     if (arg == "--size") {

@@ -32,6 +32,8 @@ Scene loadSceneWithSettings(const CommonArgs& args);
 // The value of option argv[i], advancing i; InputError when there is none.
 std::string optionValue(int argc, char** argv, int& i);
 uint32_t parseCount(const std::string& option, const std::string& text);
+// The same, at least 1 (a number of frames, steps, ...).
+uint32_t parsePositiveCount(const std::string& option, const std::string& text);
 
 // Runs `run` and turns what it throws into the exit status, with `error: ...` on stderr: 2 for
 // bad input (InputError), 1 for anything else. Every program's main() is this.

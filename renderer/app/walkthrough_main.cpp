@@ -45,8 +45,7 @@ Args parseArgs(int argc, char** argv) {
             std::cout << kUsage << cli::kCommonUsage;
             std::exit(0);
         } else if (arg == "--frames") {
-            a.frames = cli::parseCount(arg, cli::optionValue(argc, argv, i));
-            if (a.frames == 0) throw InputError("--frames: must be at least 1");
+            a.frames = cli::parsePositiveCount(arg, cli::optionValue(argc, argv, i));
         } else if (arg == "--still") {
             a.still = true;
         } else if (arg == "--cache") {

@@ -52,8 +52,7 @@ viewer::ViewerOptions parseArgs(int argc, char** argv) {
             std::cout << kUsage << cli::kCommonUsage;
             std::exit(0);
         } else if (arg == "--frames") {
-            o.frames = cli::parseCount(arg, cli::optionValue(argc, argv, i));
-            if (o.frames == 0) throw InputError("--frames: must be at least 1");
+            o.frames = cli::parsePositiveCount(arg, cli::optionValue(argc, argv, i));
         } else if (arg == "--play-path") {
             o.playPath = true;
         } else if (arg == "--path-step") {
