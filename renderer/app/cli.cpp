@@ -33,6 +33,15 @@ uint32_t parseCount(const std::string& option, const std::string& text) {
     return uint32_t(v);
 }
 
+std::pair<std::string, double> parseSetting(const std::string& option, const std::string& text) {
+    const size_t eq = text.find('=');
+    char* end = nullptr;
+    const double number = eq == std::string::npos ? 0.0 : std::strtod(text.c_str() + eq + 1, &end);
+    if (eq == std::string::npos || eq == 0 || eq + 1 == text.size() || *end != '\0')
+        throw InputError(option + ": expected KEY=NUMBER, got '" + text + "'");
+    return {text.substr(0, eq), number};
+}
+
 uint32_t parsePositiveCount(const std::string& option, const std::string& text) {
     const uint32_t n = parseCount(option, text);
     if (n == 0) throw InputError(option + ": must be at least 1");
@@ -48,13 +57,7 @@ bool parseCommonArg(int argc, char** argv, int& i, CommonArgs& a) {
         a.width = parseCount("--size", v.substr(0, x));
         a.height = parseCount("--size", v.substr(x + 1));
     } else if (arg == "--set") {
-        std::string v = optionValue(argc, argv, i);
-        size_t eq = v.find('=');
-        char* end = nullptr;
-        double number = eq == std::string::npos ? 0.0 : std::strtod(v.c_str() + eq + 1, &end);
-        if (eq == std::string::npos || eq + 1 == v.size() || *end != '\0')
-            throw InputError("--set: expected KEY=NUMBER, got '" + v + "'");
-        a.settings.push_back({v.substr(0, eq), number});
+        a.settings.push_back(parseSetting("--set", optionValue(argc, argv, i)));
     } else if (arg == "--device") {
         a.device = optionValue(argc, argv, i);
     } else if (arg == "--validation") {

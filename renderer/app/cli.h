@@ -32,7 +32,9 @@ Scene loadSceneWithSettings(const CommonArgs& args);
 // The value of option argv[i], advancing i; InputError when there is none.
 std::string optionValue(int argc, char** argv, int& i);
 uint32_t parseCount(const std::string& option, const std::string& text);
-// The same, at least 1 (a number of frames, steps, ...).
+// "KEY=NUMBER" (a setting); the key is checked when the scene takes it.
+std::pair<std::string, double> parseSetting(const std::string& option, const std::string& text);
+// parseCount, at least 1 (a number of frames, steps, ...).
 uint32_t parsePositiveCount(const std::string& option, const std::string& text);
 
 // Runs `run` and turns what it throws into the exit status, with `error: ...` on stderr: 2 for

@@ -27,6 +27,9 @@ const char* kUsage = R"(usage: walkthrough SCENE [options]
   --cache 0|1           the temporal cache off or on (default: the scene's setting)
   --timings FILE        per-frame, per-pass GPU milliseconds (.csv or .json)
   --frames-dir DIR      write every frame as DIR/frame_NNNN.png
+  --exr                 with --frames-dir, also DIR/frame_NNNN.exr: the linear radiance (or
+                        the view's linear quantity), for measuring frame by frame
+  --view NAME           the composite's view in the frames (default final; see render --help)
 )";
 
 struct Args {
@@ -34,7 +37,8 @@ struct Args {
     uint32_t frames = 120;
     bool still = false;
     int cache = -1;
-    std::string timings, framesDir;
+    std::string timings, framesDir, view = "final";
+    bool exr = false;
 };
 
 Args parseArgs(int argc, char** argv) {
@@ -59,10 +63,15 @@ Args parseArgs(int argc, char** argv) {
                 throw InputError("--timings: '" + a.timings + "' must end in .csv or .json");
         } else if (arg == "--frames-dir") {
             a.framesDir = cli::optionValue(argc, argv, i);
+        } else if (arg == "--exr") {
+            a.exr = true;
+        } else if (arg == "--view") {
+            a.view = cli::optionValue(argc, argv, i);
         } else if (!cli::parseCommonArg(argc, argv, i, a.common)) {
             throw InputError("unknown option " + arg + " (see walkthrough --help)");
         }
     }
+    if (a.exr && a.framesDir.empty()) throw InputError("--exr needs --frames-dir");
     if (a.cache >= 0) a.common.settings.push_back({"cache", double(a.cache)});
     cli::finishCommonArgs(a.common);
     return a;
@@ -76,7 +85,7 @@ int run(int argc, char** argv) {
         throw InputError(common.scene + ": the scene has no camera_path to walk (--still "
                                         "renders its camera)");
     vk::Context ctx({common.validation, common.device});
-    Renderer renderer(ctx, scene, {common.width, common.height, "final"});
+    Renderer renderer(ctx, scene, {common.width, common.height, args.view});
 
     const float duration = scene.cameraPath.empty() ? 0.0f : scene.cameraPath.keys.back().time;
     std::vector<std::string> passNames;
@@ -97,8 +106,11 @@ int run(int argc, char** argv) {
         if (!args.framesDir.empty()) {
             char name[32];
             std::snprintf(name, sizeof name, "frame_%04u.png", f);
-            writeImage((fs::path(args.framesDir) / name).string(), common.width, common.height,
-                       renderer.readImage("ldr"));
+            const fs::path path = fs::path(args.framesDir) / name;
+            writeImage(path.string(), common.width, common.height, renderer.readImage("ldr"));
+            if (args.exr)
+                writeImage(fs::path(path).replace_extension(".exr").string(), common.width,
+                           common.height, renderer.readImage("hdr"));
         }
         if (isatty(2)) std::fprintf(stderr, "\rframe %u/%u  %.1f ms", f + 1, args.frames, total);
     }
