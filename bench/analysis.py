@@ -160,10 +160,12 @@ def best_at_budgets(sweep, errors_from=None):
     return default_ms, rows
 
 
-def still_camera(sweep):
-    """The still camera under the thesis rule: converged frame time against its floor, both
-    sums of per-pass medians of the last frames (collapsed timestamps left out)."""
-    series = next((s for s in sweep.get("series", []) if "total_ms" in s), None)
+def still_camera(sweep, label=None):
+    """The still camera under a cache method (the first measured, the thesis rule, unless
+    `label` names another): converged frame time against its floor, both sums of per-pass
+    medians of the last frames (collapsed timestamps left out)."""
+    series = next((s for s in sweep.get("series", [])
+                   if "total_ms" in s and label in (None, s["label"])), None)
     if not series:
         return None
     n = len(series["wall_ms"])

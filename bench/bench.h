@@ -33,7 +33,11 @@ struct Options {
     double referenceNoise = 0.02; // stop the reference sooner at this relative error
     bool error = true;            // the error renders (off: timing only)
     bool series = true;           // the cached still-camera series
-    uint32_t seriesMethods = 2;   // the series' cache methods: 1 thesis rule, 2 + running mean
+    uint32_t seriesMethods = 3;   // the series' cache methods: 1 thesis rule, 2 + running mean,
+                                  // 3 + running mean with cheap frames
+    // Walkthrough: the configurations compared along the path (label, settings); empty: the
+    // default ones (cache off, the thesis rule, the running mean with cheap frames).
+    std::vector<std::pair<std::string, Settings>> methods;
 };
 
 // A progress bar on stderr (a line per step when stderr is not a terminal).

@@ -9,6 +9,7 @@
 #include <ctime>
 #include <filesystem>
 #include <iostream>
+#include <sstream>
 
 namespace fs = std::filesystem;
 using namespace ssgi;
@@ -26,7 +27,10 @@ const char* kUsage = R"(usage: benchmark sweep|walkthrough SCENE --out FILE.json
   --spp N               reference samples per pixel, at most (default 4096)
   --no-error            timing only: no reference, no error renders
   --no-series           sweep: no cached still-camera series
-  --series-methods N    sweep: 1 = the thesis rule only, 2 = also the running mean (default)
+  --series-methods N    sweep: 1 = the thesis rule only, 2 = also the running mean, 3 = also
+                        the running mean with cheap frames (default)
+  --method "LABEL: K=V ..."  walkthrough: a configuration to compare (repeatable); replaces the
+                        default ones (cache off; thesis rule; running mean with cheap frames)
   --commit TEXT         the source's commit, recorded with the results
 )";
 
@@ -37,6 +41,18 @@ struct Args {
     std::string out, commit = "unknown";
     uint32_t pathFrames = 120, errorFrames = 4;
 };
+
+// "LABEL: key=value key=value ..." (a walkthrough configuration).
+std::pair<std::string, bench::Settings> parseMethod(const std::string& text) {
+    const size_t colon = text.find(':');
+    if (colon == std::string::npos || colon == 0)
+        throw InputError("--method '" + text + "': expected LABEL: key=value ...");
+    std::pair<std::string, bench::Settings> method{text.substr(0, colon), {}};
+    std::istringstream words(text.substr(colon + 1));
+    for (std::string word; words >> word;)
+        method.second.insert(cli::parseSetting("--method", word));
+    return method;
+}
 
 Args parseArgs(int argc, char** argv) {
     Args a;
@@ -70,6 +86,8 @@ Args parseArgs(int argc, char** argv) {
             a.options.series = false;
         else if (arg == "--series-methods")
             a.options.seriesMethods = cli::parsePositiveCount(arg, value());
+        else if (arg == "--method")
+            a.options.methods.push_back(parseMethod(value()));
         else if (arg == "--commit")
             a.commit = value();
         else if (!cli::parseCommonArg(argc, argv, i, a.common))

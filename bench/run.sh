@@ -34,7 +34,7 @@ else
   all="cornell-box bunny sponza sibenik conference mori-knob"
   [ "$mode" = all ] || all="cornell-box bunny sponza"
   scenes=${scenes:-$all}
-  size=512x512 error=256 frames=3 series=64 series_methods=2 other_sizes="1280x720"
+  size=512x512 error=256 frames=3 series=64 series_methods=3 other_sizes="1280x720"
   other_scenes="sponza" other_frames=1
   [ "$mode" = all ] && other_scenes=$scenes other_frames=2
   walk_scenes="bunny" path_frames=96 error_frames=3
