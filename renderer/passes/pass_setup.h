@@ -15,7 +15,7 @@
 
 namespace ssgi {
 
-// The temporal cache of one effect: its history (value, and world position + rotation count)
+// The temporal cache of one effect: its history (value + blur, and world position + count)
 // as two ping-pong pairs, its tiled refresh, and this frame's state.
 struct EffectCache {
     std::string name;
@@ -27,6 +27,8 @@ struct EffectCache {
     // `motionReach` of it, 2 those whose path to the light passes near it.
     int motionTest = 0;
     float motionReach = 0.0f;
+    // The resampling blur (squared pixels) its history may carry under a moving camera.
+    float blurBudget = 0.0f;
 };
 
 struct PassSetup {

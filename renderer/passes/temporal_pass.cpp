@@ -9,7 +9,7 @@ namespace ssgi {
 
 EffectCache* createCache(PassSetup& s, const std::string& name, const std::string& tileSetting,
                          bool lightDependent) {
-    if (s.model.setting("cache") == 0.0) return nullptr;
+    if (s.model.setting("cache") == 0.0 || s.model.setting("cache_" + name) == 0.0) return nullptr;
     const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     EffectCache& c = s.caches.emplace_back();
     c.name = name;
@@ -21,6 +21,7 @@ EffectCache* createCache(PassSetup& s, const std::string& name, const std::strin
                                                   uint32_t(s.model.setting(tileSetting)),
                                                   uint32_t(s.caches.size()));
     c.lightDependent = lightDependent;
+    c.blurBudget = float(s.model.setting("cache_blur_" + name));
     return &c;
 }
 
@@ -35,7 +36,7 @@ shader::CacheConstants cacheConstants(const PassSetup& s, const EffectCache* cac
                cache->refreshTile, cache->refresh ? int(cache->refresh->tileSize()) : 1};
     c.accumulation = {float(s.model.setting("cache_bias")), float(s.model.setting("cache_epsilon")),
                       float(s.model.setting("cache_method")), s.settled ? 1.0f : 0.0f};
-    c.invalidation = {float(cache->motionTest), cache->motionReach, 0.0f, 0.0f};
+    c.invalidation = {float(cache->motionTest), cache->motionReach, cache->blurBudget, 0.0f};
     return c;
 }
 

@@ -29,6 +29,11 @@ const std::map<std::string, SettingSpec>& settingSpecs() {
         {"indirect_visibility_steps", {6, 1, 32, true, "log-spaced steps of the visibility test"}},
         {"indirect_half_res", {1, 0, 1, true, "gather at half resolution (1) or full (0)"}},
         {"cache", {1, 0, 1, true, "temporal cache of shadow, AO, SSDO and indirect light"}},
+        {"cache_shadow",
+         {1, 0, 1, true, "the shadow term cached (1), or computed anew each frame"}},
+        {"cache_ao", {1, 0, 1, true, "the AO cached (1), or computed anew each frame"}},
+        {"cache_ssdo", {1, 0, 1, true, "SSDO cached (1), or computed anew each frame"}},
+        {"cache_indirect", {1, 0, 1, true, "the indirect light cached (1), or computed anew"}},
         {"cache_method",
          {0, 0, 1, true, "0 the thesis's confidence rule (eq. 4-5), 1 running mean"}},
         {"cache_bias", {0.0, 0, 1e3, false, "bias of the confidence rule (eq. 4)"}},
@@ -41,6 +46,13 @@ const std::map<std::string, SettingSpec>& settingSpecs() {
         {"cache_tile_ao", {64, 1, 4096, true, "refresh tile size of the AO (pixels)"}},
         {"cache_tile_ssdo", {64, 1, 4096, true, "refresh tile size of SSDO (pixels)"}},
         {"cache_tile_indirect", {16, 1, 4096, true, "refresh tile size of the indirect light"}},
+        // How much resampling blur (squared pixels) a moving camera may leave in each effect's
+        // history before its weight is cut and the pixel computed again: none in the sharp
+        // shadow term, more in the smooth AO, SSDO and indirect light.
+        {"cache_blur_shadow", {0.0, 0, 1e6, false, "shadow history's blur budget (pixels^2)"}},
+        {"cache_blur_ao", {2.0, 0, 1e6, false, "AO history's blur budget (pixels^2)"}},
+        {"cache_blur_ssdo", {2.0, 0, 1e6, false, "SSDO history's blur budget (pixels^2)"}},
+        {"cache_blur_indirect", {4.0, 0, 1e6, false, "indirect history's blur budget (px^2)"}},
         {"ssdo", {0, 0, 1, true, "SSDO replaces AO: directional sky occlusion + one bounce"}},
         {"ssdo_samples", {16, 1, 64, true, "SSDO hemisphere samples per pixel"}},
         {"ssdo_radius", {0, 0, 1e9, false, "SSDO r_max in scene units; 0 = the AO radius"}},

@@ -58,7 +58,9 @@ struct CacheConstants {
                        // whole screen is converged and passes run over the refresh tile alone
     vec4 invalidation; // what a moved object (FrameUniforms.motion) restarts: x = 0 nothing
                        // here (the renderer resets the whole history), 1 pixels within y of a
-                       // moved box, 2 pixels whose path to the light passes within y of one
+                       // moved box, 2 pixels whose path to the light passes within y of one;
+                       // z = the resampling blur a cached value may carry (squared pixels):
+                       // beyond it the history's weight is cut and the pixel recomputed
 };
 SSGI_CHECK_SIZE(CacheConstants, 48);
 

@@ -30,22 +30,39 @@ layout(push_constant) uniform TemporalBlock { TemporalConstants constants; };
 // The history at the reprojected point, filtered bilinearly over the four texels around it that
 // hold the same surface (their world positions pass the reprojection test), so that across a
 // depth edge the other side's value does not bleed in; the nearest texel passed already.
-vec3 historyAt(Reprojection r, vec3 world) {
+// Alpha: the resampling blur the result carries, in squared pixels: the texels' own (stored in
+// the history's alpha) plus the spread of the filter around the point, sum w_i |x_i - x|^2.
+// Each frame of motion adds up to half a pixel^2; a still camera samples texel centres and adds
+// nothing.
+vec4 historyAt(Reprojection r, vec3 world, out float spread) {
     vec2 texel = r.uv * frame.viewport.xy - 0.5;
     ivec2 base = ivec2(floor(texel));
     vec2 f = texel - vec2(base);
     ivec2 last = ivec2(frame.viewport.xy) - 1;
     vec4 sum = vec4(0.0);
+    float weights = 0.0;
+    spread = 0.0;
     for (int i = 0; i < 4; ++i) {
         ivec2 offset = ivec2(i & 1, i >> 1);
         ivec2 q = clamp(base + offset, ivec2(0), last);
         vec4 meta = texelFetch(historyMeta, q, 0);
         if (meta.w == 0.0 || distance(meta.xyz, world) > r.epsilon) continue;
         float w = (offset.x == 1 ? f.x : 1.0 - f.x) * (offset.y == 1 ? f.y : 1.0 - f.y);
-        sum += vec4(texelFetch(historyValue, q, 0).rgb * w, w);
+        vec2 d = vec2(offset) - f;
+        vec4 v = texelFetch(historyValue, q, 0);
+        sum += w * v;
+        spread += w * dot(d, d);
+        weights += w;
     }
-    return sum.w > 1e-6 ? sum.rgb / sum.w
-                        : texelFetch(historyValue, ivec2(r.uv * frame.viewport.xy), 0).rgb;
+    // Offsets below a thirtieth of a pixel are rounding (a still camera): no blur.
+    if (weights > 1e-6) {
+        spread = spread / weights < 1e-3 ? 0.0 : spread / weights;
+        return vec4(sum.rgb / weights, sum.a / weights + spread);
+    }
+    vec2 d = fract(r.uv * frame.viewport.xy) - 0.5;
+    spread = dot(d, d) < 1e-3 ? 0.0 : dot(d, d);
+    vec4 v = texelFetch(historyValue, ivec2(r.uv * frame.viewport.xy), 0);
+    return vec4(v.rgb, v.a + spread);
 }
 
 void main() {
@@ -53,51 +70,70 @@ void main() {
     if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
     vec4 position = texelFetch(gbufferPosition, pixel, 0);
     if (position.w == 0.0) {
-        imageStore(newValue, pixel, texelFetch(current, pixel, 0));
+        imageStore(newValue, pixel, vec4(texelFetch(current, pixel, 0).rgb, 0.0));
         imageStore(newMeta, pixel, vec4(0.0));
         return;
     }
     CacheConstants cache = constants.cache;
     vec4 now = texelFetch(current, pixel, 0);
     Reprojection r = reproject(position.xyz, texelFetch(gbufferNormal, pixel, 0).xyz, cache);
-    vec3 history = r.valid ? historyAt(r, position.xyz) : vec3(0.0);
+    float spread = 0.0;
+    vec4 history = r.valid ? historyAt(r, position.xyz, spread) : vec4(0.0);
+    float budget = cache.invalidation.z;
     vec3 value;
-    float count;
+    float count, blur = 0.0;
     if (now.a < 0.5) { // skipped by the effect: converged, its cache is the value
-        value = history;
+        value = history.rgb;
         count = r.count;
+        blur = history.a;
     } else if (!r.valid) {
         value = now.rgb;
         count = 1.0;
-    } else if (cache.accumulation.z == 0.0) {
-        float confidence = 1.0 - clamp(length(history - now.rgb), 0.0, 1.0) /
-                                     (1.0 + cache.accumulation.x);
-        value = confidence * history + (1.0 - confidence) * now.rgb;
-        count = r.count + 1.0;
     } else {
-        // The history is clamped to this frame's values around the pixel, widened to their
-        // mean +- 2.5 standard deviations: a few samples a frame are noisy, and a box of their
-        // bare range would drag the history towards that noise.
-        vec3 sum = vec3(0.0), sumSquares = vec3(0.0);
-        float n = 0.0;
-        for (int y = -1; y <= 1; ++y)
-            for (int x = -1; x <= 1; ++x) {
-                ivec2 q = clamp(pixel + ivec2(x, y), ivec2(0), ivec2(frame.viewport.xy) - 1);
-                vec4 neighbour = texelFetch(current, q, 0);
-                if (neighbour.a < 0.5) continue;
-                sum += neighbour.rgb;
-                sumSquares += neighbour.rgb * neighbour.rgb;
-                n += 1.0;
-            }
-        vec3 mean = sum / n;
-        vec3 deviation = sqrt(max(sumSquares / n - mean * mean, vec3(0.0)));
-        // A converged pixel computed again (the refresh tile) is not clamped at all.
-        vec3 clamped = r.count >= float(cache.state.y)
-                           ? history
-                           : clamp(history, mean - 2.5 * deviation, mean + 2.5 * deviation);
-        value = clamped + (now.rgb - clamped) / (r.count + 1.0);
+        // The weight of this frame's value, by the rule...
+        float fresh;
+        if (cache.accumulation.z == 0.0) {
+            float confidence = 1.0 - clamp(length(history.rgb - now.rgb), 0.0, 1.0) /
+                                         (1.0 + cache.accumulation.x);
+            fresh = 1.0 - confidence;
+        } else {
+            // The history is clamped to this frame's values around the pixel, widened to their
+            // mean +- 2.5 standard deviations: a few samples a frame are noisy, and a box of
+            // their bare range would drag the history towards that noise.
+            vec3 sum = vec3(0.0), sumSquares = vec3(0.0);
+            float n = 0.0;
+            for (int y = -1; y <= 1; ++y)
+                for (int x = -1; x <= 1; ++x) {
+                    ivec2 q = clamp(pixel + ivec2(x, y), ivec2(0), ivec2(frame.viewport.xy) - 1);
+                    vec4 neighbour = texelFetch(current, q, 0);
+                    if (neighbour.a < 0.5) continue;
+                    sum += neighbour.rgb;
+                    sumSquares += neighbour.rgb * neighbour.rgb;
+                    n += 1.0;
+                }
+            vec3 mean = sum / n;
+            vec3 deviation = sqrt(max(sumSquares / n - mean * mean, vec3(0.0)));
+            // A converged pixel computed again (the refresh tile) is not clamped at all.
+            if (r.count < float(cache.state.y))
+                history.rgb = clamp(history.rgb, mean - 2.5 * deviation, mean + 2.5 * deviation);
+            fresh = 1.0 / (r.count + 1.0);
+        }
         count = r.count + 1.0;
+        // ...and at least enough that the blended value's blur stays within the budget. Where
+        // that cuts the history's weight, the count becomes the blend's effective number of
+        // samples, 1 / ((1 - w)^2 / n + w^2), so the pixel accumulates again before it is reused.
+        if ((1.0 - fresh) * history.a > budget) {
+            fresh = 1.0 - budget / history.a;
+            count = min(count, 1.0 / ((1.0 - fresh) * (1.0 - fresh) / max(r.count, 1.0) +
+                                      fresh * fresh));
+        }
+        value = mix(history.rgb, now.rgb, fresh);
+        blur = (1.0 - fresh) * history.a;
     }
-    imageStore(newValue, pixel, vec4(value, 1.0));
-    imageStore(newMeta, pixel, vec4(position.xyz, min(count, float(cache.state.y))));
+    // A value that one more frame of this motion would take past the budget is not reused then:
+    // its count stays below convergence, so the effect computes it again.
+    float rotations = float(cache.state.y);
+    if (blur + spread > budget && count >= rotations) count = rotations - 1.0;
+    imageStore(newValue, pixel, vec4(value, blur));
+    imageStore(newMeta, pixel, vec4(position.xyz, max(min(count, rotations), 1.0)));
 }
