@@ -159,6 +159,9 @@ void Renderer::renderFrame(const Camera& camera) {
     setup_->patternRotation = std::fmod(float(frameIndex_) * turn, 2.0f * glm::pi<float>());
     setup_->patternScale =
         1.0f + jitter * (2.0f * std::fmod(float(frameIndex_) * 0.618034f, 1.0f) - 1.0f);
+    // And moves each sample within its radial stratum (another low-discrepancy sequence, so
+    // that offset and scale do not repeat together).
+    setup_->patternOffset = std::fmod(0.5f + float(frameIndex_) * 0.7548777f, 1.0f);
     for (EffectCache& cache : setup_->caches)
         cache.refreshTile =
             cache.refresh && graph_->hasHistory(cache.value) ? int(cache.refresh->next()) : -1;

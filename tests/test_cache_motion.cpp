@@ -84,9 +84,10 @@ TEST_F(CacheMotionTest, HistoriesCarryNoMoreBlurThanTheirBudget) {
         ASSERT_EQ(ao[4 * i + 3], 0.0f) << "a still camera resamples at texel centres: no blur";
 }
 
-// The shadow term is sharp, so its budget is none: along a pan the cached shadow stays as close
-// to a shadow computed anew at the last camera as the uncached one is, while an unbounded
-// history drifts away from it (blurred edges).
+// The shadow term is sharp, so its budget is none: along a pan the cached shadow is computed
+// anew every frame and stays close to the uncached one (they differ by the cached pattern's
+// moving radial offset), while an unbounded history drifts away from it (blurred edges).
+// Measured at 96x96: unbounded 0.0677, budget 0 0.0065.
 TEST_F(CacheMotionTest, ABlurBudgetKeepsAPannedShadowSharp) {
     scene.settings["indirect"] = 0;
     scene.settings["ao"] = 0;

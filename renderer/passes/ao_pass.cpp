@@ -18,28 +18,29 @@ graph::ImageRef addAoPass(PassSetup& s, const GBufferAndRsm& in, EffectCache* ca
 
     addKeepPass(s, cache, {ao});
     using graph::Use;
-    s.graph.addPass(
-        "ao", graph::PassKind::Compute,
-        {{in.gbuffer.position, Use::Sampled},
-         {in.gbuffer.normal, Use::Sampled},
-         {meta, Use::Sampled},
-         {ao, Use::StorageWrite}},
-        [&s, in, ao, meta, cache, pipeline](const graph::PassContext& pc) {
-            vk::Descriptors()
-                .uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size)
-                .sampledImage(1, pc.image(in.gbuffer.position).view, s.nearestSampler)
-                .sampledImage(2, pc.image(in.gbuffer.normal).view, s.nearestSampler)
-                .sampledImage(3, pc.image(meta).view, s.nearestSampler)
-                .storageImage(4, pc.image(ao).view)
-                .push(s.ctx, pc.cmd, pipeline);
-            shader::AoConstants constants{};
-            constants.pattern = {s.patternRotation, s.patternScale, aoRadius(s.model), 0.0f};
-            constants.falloff = {float(s.model.setting("ao_attenuation_a")),
-                                 float(s.model.setting("ao_attenuation_b")), 0.0f, 0.0f};
-            constants.cache = cacheConstants(s, cache);
-            const VkExtent2D area = cacheDispatch(s, cache, s.size);
-            vk::dispatch(pc.cmd, pipeline, area.width, area.height, constants);
-        });
+    s.graph.addPass("ao", graph::PassKind::Compute,
+                    {{in.gbuffer.position, Use::Sampled},
+                     {in.gbuffer.normal, Use::Sampled},
+                     {meta, Use::Sampled},
+                     {ao, Use::StorageWrite}},
+                    [&s, in, ao, meta, cache, pipeline](const graph::PassContext& pc) {
+                        vk::Descriptors()
+                            .uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size)
+                            .sampledImage(1, pc.image(in.gbuffer.position).view, s.nearestSampler)
+                            .sampledImage(2, pc.image(in.gbuffer.normal).view, s.nearestSampler)
+                            .sampledImage(3, pc.image(meta).view, s.nearestSampler)
+                            .storageImage(4, pc.image(ao).view)
+                            .push(s.ctx, pc.cmd, pipeline);
+                        shader::AoConstants constants{};
+                        constants.pattern = {s.patternRotation, s.patternScale, aoRadius(s.model),
+                                             radialOffset(s, cache)};
+                        constants.falloff = {float(s.model.setting("ao_attenuation_a")),
+                                             float(s.model.setting("ao_attenuation_b")), 0.0f,
+                                             0.0f};
+                        constants.cache = cacheConstants(s, cache);
+                        const VkExtent2D area = cacheDispatch(s, cache, s.size);
+                        vk::dispatch(pc.cmd, pipeline, area.width, area.height, constants);
+                    });
     return ao;
 }
 

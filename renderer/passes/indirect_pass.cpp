@@ -29,7 +29,7 @@ graph::ImageRef addIndirectPasses(PassSetup& s, const GBufferAndRsm& in, EffectC
     auto constants = [&s, halfSize, cache]() {
         shader::IndirectConstants c{};
         c.pattern = {s.patternRotation, s.patternScale, float(s.model.setting("indirect_radius")),
-                     0.0f};
+                     radialOffset(s, cache)};
         c.target = {int(halfSize.width), int(halfSize.height), 0, 0};
         c.cache = cacheConstants(s, cache);
         return c;

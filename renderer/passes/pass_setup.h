@@ -45,6 +45,10 @@ struct PassSetup {
     // This frame's turn and scale of every sampling pattern (GUIDE 2.2); set by the renderer.
     float patternRotation = 0.0f;
     float patternScale = 1.0f;
+    // Where in their radial strata a cached effect's samples lie this frame, in [0, 1): frame
+    // by frame the accumulation fills the radii between one frame's samples (AO steps, VPL
+    // rings, PCF rings) as the turn fills the angles.
+    float patternOffset = 0.5f;
     std::deque<EffectCache> caches; // empty when caching is off
     // With the cache on, the RSM is drawn again only when the light changes.
     bool rsmStale = true;
@@ -79,6 +83,9 @@ EffectCache* createCache(PassSetup& setup, const std::string& name, const std::s
 // `fallback` (any image the pass reads anyway) without one.
 graph::ImageRef cacheMetaInput(const EffectCache* cache, graph::ImageRef fallback);
 shader::CacheConstants cacheConstants(const PassSetup& setup, const EffectCache* cache);
+// The pattern's radial offset for an effect's pass (the constants' pattern.w): this frame's
+// PassSetup::patternOffset when the effect is cached, else -1 (a single frame's fixed pattern).
+float radialOffset(const PassSetup& setup, const EffectCache* cache);
 // The threads a cached effect's pass dispatches: the whole image (`full`), or once settled only
 // its refresh tile (none without one); `divisor` 2 for the half-resolution pass.
 VkExtent2D cacheDispatch(const PassSetup& setup, const EffectCache* cache, VkExtent2D full,

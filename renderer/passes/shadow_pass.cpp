@@ -34,7 +34,8 @@ graph::ImageRef addShadowPass(PassSetup& s, const GBufferAndRsm& in, EffectCache
                             .push(s.ctx, pc.cmd, pipeline);
                         shader::ShadowConstants constants{};
                         constants.pattern = {s.patternRotation, s.patternScale,
-                                             float(s.model.setting("shadow_bias")), 0.0f};
+                                             float(s.model.setting("shadow_bias")),
+                                             radialOffset(s, cache)};
                         constants.cache = cacheConstants(s, cache);
                         const VkExtent2D area = cacheDispatch(s, cache, s.size);
                         vk::dispatch(pc.cmd, pipeline, area.width, area.height, constants);

@@ -40,6 +40,10 @@ shader::CacheConstants cacheConstants(const PassSetup& s, const EffectCache* cac
     return c;
 }
 
+float radialOffset(const PassSetup& s, const EffectCache* cache) {
+    return cache ? s.patternOffset : -1.0f;
+}
+
 VkExtent2D cacheDispatch(const PassSetup& s, const EffectCache* cache, VkExtent2D full,
                          uint32_t divisor) {
     if (!cache || !s.settled) return full;

@@ -7,12 +7,14 @@
 float thesisAo(vec2 center, vec3 p, vec3 n, float radius, float radiusPixels, float rotation) {
     float far = radiusPixels;
     float near = min(1.0, far);
+    // A single frame samples each step's far end, as (8) does; accumulated frames cover it.
+    float stratum = radialOffset(constants.pattern.w, 1.0);
     float occlusion = 0.0;
     for (int d = 0; d < DIRECTIONS; ++d) {
         float angle = rotation + 2.0 * PI * float(d) / float(DIRECTIONS);
         vec2 direction = vec2(cos(angle), sin(angle));
         for (int i = 1; i <= STEPS; ++i) {
-            float distance = near * pow(far / near, float(i) / float(STEPS));
+            float distance = near * pow(far / near, (float(i) - 1.0 + stratum) / float(STEPS));
             vec2 samplePixel = center + direction * distance;
             if (!insideViewport(samplePixel)) continue;
             vec4 q = positionAt(samplePixel);

@@ -27,12 +27,24 @@ float pixelRotation(ivec2 pixel) {
                                                0.00583715 * float(pixel.y)));
 }
 
+// Where in its radial stratum a pattern's sample lies this frame. For a cached effect the
+// renderer moves `offset` (the constants' pattern.w) over [0, 1) frame by frame, so that the
+// accumulated frames fill the radii between one frame's samples, as the turn fills the angles;
+// negative (not cached): the single frame's fixed place, `fixedAt`.
+float radialOffset(float offset, float fixedAt) {
+    return offset < 0.0 ? fixedAt : offset;
+}
+
 // Point i of n on the unit disk, evenly spread (Vogel's golden-angle spiral), turned by
-// `rotation`.
-vec2 vogelDisk(int i, int n, float rotation) {
-    float r = sqrt((float(i) + 0.5) / float(n));
+// `rotation`; `offset` places it within its ring (0.5: the middle).
+vec2 vogelDisk(int i, int n, float rotation, float offset) {
+    float r = sqrt((float(i) + offset) / float(n));
     float theta = float(i) * 2.39996323 + rotation;
     return r * vec2(cos(theta), sin(theta));
+}
+
+vec2 vogelDisk(int i, int n, float rotation) {
+    return vogelDisk(i, n, rotation, 0.5);
 }
 
 // A tangent frame around a unit normal.

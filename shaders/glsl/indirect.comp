@@ -45,7 +45,8 @@ void main() {
     if (position.w != 0.0) {
         vec3 n = texelFetch(gbufferNormal, source, 0).xyz;
         result = gatherIndirect(position.xyz, n, pixelRotation(pixel) + constants.pattern.x,
-                                constants.pattern.y, constants.pattern.z);
+                                constants.pattern.y, constants.pattern.z,
+                                radialOffset(constants.pattern.w, 0.5));
     }
     imageStore(halfIndirect, pixel, vec4(result, 1.0));
 }

@@ -40,7 +40,8 @@ bool vplVisible(vec3 p, vec3 q) {
 }
 
 // Irradiance / pi at p (normal n) from the RSM's VPLs.
-vec3 gatherIndirect(vec3 p, vec3 n, float rotation, float radiusScale, float radius) {
+vec3 gatherIndirect(vec3 p, vec3 n, float rotation, float radiusScale, float radius,
+                    float stratum) {
     vec4 clip = frame.lightViewProjection * vec4(p, 1.0);
     // The pattern is centred on p's projection (the map's centre when p is behind the light) and
     // clamped into the map. With radius 0 it reaches the map's farthest corner, so that every
@@ -56,7 +57,7 @@ vec3 gatherIndirect(vec3 p, vec3 n, float rotation, float radiusScale, float rad
     float weightScale = size * size * 2.0 * PI * samplingRadius * samplingRadius / float(VPLS);
     vec3 irradiance = vec3(0.0);
     for (int i = 0; i < VPLS; ++i) {
-        float xi1 = (float(i) + 0.5) / float(VPLS);
+        float xi1 = (float(i) + stratum) / float(VPLS);
         float theta = float(i) * 2.39996323 + rotation;
         vec2 uv = center + samplingRadius * xi1 * vec2(cos(theta), sin(theta));
         if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) continue;

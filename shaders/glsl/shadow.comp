@@ -68,6 +68,7 @@ void main() {
     float receiver = clip.w;
     float bias = receiver * texelAngle; // one texel of depth quantisation
     float rotation = pixelRotation(pixel) + constants.pattern.x;
+    float ring = radialOffset(constants.pattern.w, 0.5);
 
     if (TAPS == 1) {
         float lit = receiver <= occluderDepth(uv) + bias ? 1.0 : 0.0;
@@ -85,7 +86,7 @@ void main() {
     float blockerSum = 0.0;
     int blockers = 0;
     for (int i = 0; i < TAPS; ++i) {
-        vec2 tap = uv + vogelDisk(i, TAPS, rotation) * searchRadius * constants.pattern.y;
+        vec2 tap = uv + vogelDisk(i, TAPS, rotation, ring) * searchRadius * constants.pattern.y;
         float occluder = occluderDepth(tap);
         if (occluder + bias < receiverPlaneDepth(tap, p, n, receiver)) {
             blockerSum += occluder;
@@ -101,7 +102,7 @@ void main() {
     float filterRadius = clamp(penumbra * uvPerUnit, minRadius, maxRadius);
     float lit = 0.0;
     for (int i = 0; i < TAPS; ++i) {
-        vec2 tap = uv + vogelDisk(i, TAPS, rotation) * filterRadius * constants.pattern.y;
+        vec2 tap = uv + vogelDisk(i, TAPS, rotation, ring) * filterRadius * constants.pattern.y;
         lit += occluderDepth(tap) + bias >= receiverPlaneDepth(tap, p, n, receiver) ? 1.0 : 0.0;
     }
     imageStore(shadowImage, pixel, vec4(vec3(lit / float(TAPS)), 1.0));

@@ -69,20 +69,22 @@ SSGI_CHECK_SIZE(CacheConstants, 48);
 // sampling pattern each frame and `scale` varies its size, so that successive frames take
 // different samples (GUIDE 2.2).
 struct ShadowConstants {
-    vec4 pattern; // x = rotation (radians), y = scale, z = normal offset (texels), w = unused
+    vec4 pattern; // x = rotation (radians), y = scale, z = normal offset (texels), w = radial
+                  // offset (common.glsl radialOffset)
     CacheConstants cache;
 };
 SSGI_CHECK_SIZE(ShadowConstants, 64);
 
 struct AoConstants {
-    vec4 pattern; // x = rotation, y = scale, z = AO radius (scene units), w = unused
+    vec4 pattern; // x = rotation, y = scale, z = AO radius (scene units), w = radial offset
     vec4 falloff; // x = a, y = b of D(d) = 1 + a d + b d^2 (d in AO radii)
     CacheConstants cache;
 };
 SSGI_CHECK_SIZE(AoConstants, 80);
 
 struct IndirectConstants {
-    vec4 pattern; // x = rotation, y = scale, z = sampling radius (fraction of the RSM), w = unused
+    vec4 pattern; // x = rotation, y = scale, z = sampling radius (fraction of the RSM), w = radial
+                  // offset
     ivec4 target; // xy = size of the half-resolution image
     CacheConstants cache;
 };

@@ -8,7 +8,10 @@
 // frame's values around the pixel. A pixel the effect skipped (converged) keeps its history; a
 // disoccluded pixel starts over from V_t. The refresh tile was computed although converged, and
 // its fresh value is blended in like any other, which pulls back what the bilinear resampling
-// of the history has blurred without restarting the tile's accumulation.
+// of the history has blurred without restarting the tile's accumulation. Beyond the thesis, the
+// history's alpha holds that blur (squared pixels), and the effect's budget bounds it: a moving
+// camera's history loses weight, and converged pixels are computed again, before their blur
+// exceeds it (a budget of 0: computed anew while the camera moves, accumulated while still).
 #include "shared.h"
 #include "common.glsl"
 
@@ -97,25 +100,31 @@ void main() {
                                          (1.0 + cache.accumulation.x);
             fresh = 1.0 - confidence;
         } else {
-            // The history is clamped to this frame's values around the pixel, widened to their
-            // mean +- 2.5 standard deviations: a few samples a frame are noisy, and a box of
-            // their bare range would drag the history towards that noise.
-            vec3 sum = vec3(0.0), sumSquares = vec3(0.0);
-            float n = 0.0;
-            for (int y = -1; y <= 1; ++y)
-                for (int x = -1; x <= 1; ++x) {
-                    ivec2 q = clamp(pixel + ivec2(x, y), ivec2(0), ivec2(frame.viewport.xy) - 1);
-                    vec4 neighbour = texelFetch(current, q, 0);
-                    if (neighbour.a < 0.5) continue;
-                    sum += neighbour.rgb;
-                    sumSquares += neighbour.rgb * neighbour.rgb;
-                    n += 1.0;
-                }
-            vec3 mean = sum / n;
-            vec3 deviation = sqrt(max(sumSquares / n - mean * mean, vec3(0.0)));
-            // A converged pixel computed again (the refresh tile) is not clamped at all.
-            if (r.count < float(cache.state.y))
+            // Where the camera moved, the history is clamped to this frame's values around the
+            // pixel (every other pixel, so that a half-resolution effect's upsampled neighbours
+            // do not all repeat one sample), widened to their mean +- 2.5 standard deviations: a
+            // few samples a frame are noisy, and a box of their bare range would drag the
+            // history towards that noise. A still camera reprojects every pixel onto itself and
+            // its history cannot be stale (a moved light or object restarts what it changes), so
+            // there the clamp, which a noisy frame's neighbourhood makes too tight, is left out.
+            // Nor is a converged pixel computed again (the refresh tile).
+            if (r.count < float(cache.state.y) && spread > 0.0) {
+                vec3 sum = vec3(0.0), sumSquares = vec3(0.0);
+                float n = 0.0;
+                for (int y = -1; y <= 1; ++y)
+                    for (int x = -1; x <= 1; ++x) {
+                        ivec2 q = clamp(pixel + 2 * ivec2(x, y), ivec2(0),
+                                        ivec2(frame.viewport.xy) - 1);
+                        vec4 neighbour = texelFetch(current, q, 0);
+                        if (neighbour.a < 0.5) continue;
+                        sum += neighbour.rgb;
+                        sumSquares += neighbour.rgb * neighbour.rgb;
+                        n += 1.0;
+                    }
+                vec3 mean = sum / n;
+                vec3 deviation = sqrt(max(sumSquares / n - mean * mean, vec3(0.0)));
                 history.rgb = clamp(history.rgb, mean - 2.5 * deviation, mean + 2.5 * deviation);
+            }
             fresh = 1.0 / (r.count + 1.0);
         }
         count = r.count + 1.0;

@@ -69,7 +69,8 @@ void main() {
         imageStore(indirectImage, pixel, vec4(sum / weightSum, 1.0));
     } else {
         vec3 e = gatherIndirect(p, n, pixelRotation(pixel) + constants.pattern.x,
-                                constants.pattern.y, constants.pattern.z);
+                                constants.pattern.y, constants.pattern.z,
+                                radialOffset(constants.pattern.w, 0.5));
         imageStore(indirectImage, pixel, vec4(e, 1.0));
     }
 }
