@@ -41,12 +41,12 @@ Image createImage(const Context& ctx, const std::string& name, VkFormat format, 
                   VkImageUsageFlags usage);
 void destroyImage(const Context& ctx, Image& image);
 
-// Sampled texture (SHADER_READ_ONLY_OPTIMAL afterwards) from tightly packed pixels.
 // Records one layout transition of a single-level, single-layer image with its dependency.
 void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from,
                   VkImageLayout to, VkPipelineStageFlags2 srcStages, VkAccessFlags2 srcAccess,
                   VkPipelineStageFlags2 dstStages, VkAccessFlags2 dstAccess);
 
+// Sampled texture (SHADER_READ_ONLY_OPTIMAL afterwards) from tightly packed pixels.
 Image createTexture(Context& ctx, const std::string& name, VkFormat format, VkExtent2D extent,
                     const void* pixels, VkDeviceSize size);
 

@@ -57,14 +57,17 @@ vec4 historyAt(Reprojection r, vec3 world, out float spread) {
         spread += w * dot(d, d);
         weights += w;
     }
-    // Offsets below a thirtieth of a pixel are rounding (a still camera): no blur.
+    vec4 v;
     if (weights > 1e-6) {
-        spread = spread / weights < 1e-3 ? 0.0 : spread / weights;
-        return vec4(sum.rgb / weights, sum.a / weights + spread);
+        v = sum / weights;
+        spread /= weights;
+    } else { // no texel around passed: the nearest one, which did
+        vec2 d = fract(r.uv * frame.viewport.xy) - 0.5;
+        spread = dot(d, d);
+        v = texelFetch(historyValue, ivec2(r.uv * frame.viewport.xy), 0);
     }
-    vec2 d = fract(r.uv * frame.viewport.xy) - 0.5;
-    spread = dot(d, d) < 1e-3 ? 0.0 : dot(d, d);
-    vec4 v = texelFetch(historyValue, ivec2(r.uv * frame.viewport.xy), 0);
+    // Offsets below a thirtieth of a pixel are rounding (a still camera): no blur.
+    if (spread < 1e-3) spread = 0.0;
     return vec4(v.rgb, v.a + spread);
 }
 
