@@ -243,6 +243,20 @@ def ceiling_fractions(sweep):
     return out
 
 
+def walk_runs(walk):
+    """Every run of a walkthrough against the uncached one, in order: (label, wall-clock ms as a
+    mean over the frames after the first, cache off / run, mean relMSE over the error frames;
+    nan where a run has none)."""
+    runs = walk["walkthrough"]["runs"]
+    mean = lambda v: sum(v) / len(v) if v else float("nan")
+    off_ms = mean(next(r for r in runs if r["label"] == "cache off")["wall_ms"][1:])
+    out = []
+    for r in runs:
+        ms = mean(r["wall_ms"][1:])
+        out.append((r["label"], ms, off_ms / ms, mean(r.get("rel_mse", []))))
+    return out
+
+
 def table_4_1(walk):
     """Per pass: mean ms over the frames after the first, cache off and on, and their ratio."""
     runs = {r["label"]: r for r in walk["walkthrough"]["runs"]}

@@ -5,6 +5,7 @@ usage: report.py --results DIR --images DIR --size WxH [--doc FILE] [--note TEXT
 
 import argparse
 import csv
+import math
 import os
 import re
 
@@ -86,17 +87,14 @@ def targets(sweeps, walks, size):
                              "composite)" % st["label"], "<= 1.15", "%.3f" % st["ratio"],
                              "yes" if st["ratio"] <= 1.15 else "no"])
     for scene, w in walks.items():
-        runs = w["walkthrough"]["runs"]
-        off = next(r for r in runs if r["label"] == "cache off")
-        mean_of = lambda v: sum(v) / len(v) if v else float("nan")
-        for run in runs:
-            if run is off:
+        runs = analysis.walk_runs(w)
+        e_off = next(err for label, _, _, err in runs if label == "cache off")
+        for label, _, speed, e_on in runs:
+            if label == "cache off":
                 continue
-            speed = mean_of(off["wall_ms"][1:]) / mean_of(run["wall_ms"][1:])
-            e_off, e_on = mean_of(off.get("rel_mse", [])), mean_of(run.get("rel_mse", []))
-            ok = speed >= 4 and (not run.get("rel_mse") or e_on <= e_off)
+            ok = speed >= 4 and (math.isnan(e_on) or e_on <= e_off)
             rows.append([scene, "camera path (%s), frame time cache off / on (wall clock); mean "
-                         "relMSE" % run["label"], ">= 4x, error on <= off",
+                         "relMSE" % label, ">= 4x, error on <= off",
                          "%.2fx; %.4f off, %.4f on" % (speed, e_off, e_on), "yes" if ok else "no"])
     mem = {s: analysis.memory_totals(sweeps[s][size]).get("1920x1080") for s in sweeps}
     worst = max(v for v in mem.values() if v)
@@ -185,17 +183,10 @@ def tables(sweeps, walks, size, note):
                           [[f + 1, "%.4f" % a, "%.4f" % b] for f, a, b in errors]))
         # Any other cached run of the same walkthrough (the thesis's cheap frames), against
         # the uncached one: frame time ratio and mean error.
-        runs = {r["label"]: r for r in w["walkthrough"]["runs"]}
-        extra = [r for label, r in runs.items() if label not in ("cache off", "cache: thesis rule")]
-        if extra:
-            mean_of = lambda v: sum(v) / len(v) if v else float("nan")
-            off_run = runs["cache off"]
-            rows = [["cache off", "%.1f" % mean_of(off_run["wall_ms"][1:]), "1.00",
-                     "%.4f" % mean_of(off_run.get("rel_mse", []))]]
-            for r in [runs["cache: thesis rule"]] + extra:
-                ms = mean_of(r["wall_ms"][1:])
-                rows.append([r["label"], "%.1f" % ms, "%.2f" % (mean_of(off_run["wall_ms"][1:]) / ms),
-                             "%.4f" % mean_of(r.get("rel_mse", []))])
+        runs = analysis.walk_runs(w)
+        if any(label not in ("cache off", "cache: thesis rule") for label, *_ in runs):
+            rows = [[label, "%.1f" % ms, "%.2f" % speed, "%.4f" % err]
+                    for label, ms, speed, err in runs]
             md.append("\nEvery run of the walkthrough (wall clock, mean over the frames after the "
                       "first; mean relMSE over the error frames):\n\n" + table(
                           ["run", "frame, ms", "cache off / run", "mean relMSE"], rows))
