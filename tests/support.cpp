@@ -20,8 +20,8 @@ std::string sourcePath(const std::string& relative) {
     return std::string(SSGI_SOURCE_DIR) + "/" + relative;
 }
 
-std::string sharedScene(const std::string& name) {
-    return std::string(SSGI_SOURCE_DIR) + "/../shared/scenes/" + name;
+std::string sceneModel(const std::string& name) {
+    return std::string(SSGI_SOURCE_DIR) + "/scenes/models/" + name;
 }
 
 Frame render(const Scene& scene, uint32_t width, uint32_t height, uint32_t frames) {

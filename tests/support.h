@@ -17,7 +17,7 @@ namespace ssgi::test {
 vk::Context& context();
 
 std::string sourcePath(const std::string& relative); // a path inside the repository
-std::string sharedScene(const std::string& name);    // ../shared/scenes/NAME
+std::string sceneModel(const std::string& name);     // scenes/models/NAME
 
 // One frame of a scene with the real-time renderer, and the images a test reads from it.
 struct Frame {

@@ -191,7 +191,7 @@ TEST_F(BadInput, EveryTruncationIsAnError) {
     const std::string scene(std::istreambuf_iterator<char>(in), {});
     for (size_t n = 0; n < scene.rfind('}'); ++n)
         EXPECT_THROW(loadScene(write("cut.json", scene.substr(0, n))), InputError) << n << " bytes";
-    std::ifstream model(test::sharedScene("cornell-box.glb"), std::ios::binary);
+    std::ifstream model(test::sceneModel("cornell-box.glb"), std::ios::binary);
     const std::string bytes(std::istreambuf_iterator<char>(model), {});
     for (size_t n = 0; n + 1 < bytes.size(); n += 61)
         EXPECT_THROW(loadScene(write("shared.glb", bytes.substr(0, n))), InputError) << n;

@@ -60,7 +60,7 @@ TEST_F(Cli, EverySceneRenders) {
         EXPECT_GT(sum / (w * h * 3), 0.02) << entry.path() << " rendered (nearly) black";
         EXPECT_TRUE(fs::exists(fs::path(png).replace_extension(".exr")));
     }
-    EXPECT_GE(scenes, 9u) << "the default scene and the eight shared scenes";
+    EXPECT_GE(scenes, 9u) << "the default scene and the eight model scenes";
     expectNoTemporaries();
 }
 

@@ -1,6 +1,6 @@
 // Scene loading: the default scene file, hand-written glTF files with known answers, and every
-// kind of bad input the loader must reject with a useful message (the shared glTF scenes are in
-// test_shared_scenes.cpp).
+// kind of bad input the loader must reject with a useful message (the models of scenes/models/
+// are in test_scene_models.cpp).
 #include "scene/scene.h"
 
 #include <gtest/gtest.h>
@@ -23,7 +23,7 @@ using ssgi::Scene;
 namespace {
 
 const std::string kSourceDir = SSGI_SOURCE_DIR;
-const std::string kSharedScenes = kSourceDir + "/../shared/scenes/";
+const std::string kModels = kSourceDir + "/scenes/models/";
 
 std::string base64(const std::vector<uint8_t>& bytes) {
     static const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -269,7 +269,7 @@ TEST_F(SceneFiles, SettingsAreKept) {
     EXPECT_EQ(ssgi::settingSpecs().at("shadow_map_size").defaultValue, 1024.0);
 }
 TEST_F(SceneFiles, TruncatedGlb) {
-    const std::string bunny = kSharedScenes + "bunny.glb";
+    const std::string bunny = kModels + "bunny.glb";
     if (!fs::exists(bunny)) GTEST_SKIP() << bunny << " is not there";
     std::string bytes(1000, '\0');
     std::ifstream(bunny, std::ios::binary).read(bytes.data(), 1000);

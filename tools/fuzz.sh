@@ -2,7 +2,7 @@
 # Fuzzes the scene loader (glTF and scene files) for a bounded time:
 #   tools/fuzz.sh [SECONDS]        (default 600)
 # Builds tests/fuzz/fuzz_scene with clang (libFuzzer, ASan, UBSan) into build-fuzz/, seeds it
-# with the scene files and ../shared/scenes/*.glb, runs one fuzzing process for SECONDS and
+# with the scene files and scenes/models/*.glb, runs one fuzzing process for SECONDS and
 # prints the number of executions. The corpus it grows is kept in build-fuzz/fuzz-corpus/ for
 # the next run; anything it finds is written to build-fuzz/fuzz-findings/ and the exit status
 # is non-zero. Replay one finding with: build-fuzz/tests/fuzz/fuzz_scene FILE
@@ -37,11 +37,7 @@ rm -rf "$seeds"
 mkdir -p "$seeds" "$corpus" "$findings"
 cp scenes/*.json tests/scenes/*.json "$seeds"/
 for f in scenes/*/*.json; do [ -f "$f" ] && cp "$f" "$seeds/$(basename "$(dirname "$f")")-$(basename "$f")"; done
-if ls ../shared/scenes/*.glb >/dev/null 2>&1; then
-    cp ../shared/scenes/*.glb "$seeds"/
-else
-    echo "fuzz: ../shared/scenes/*.glb not there; seeding with scene files only"
-fi
+cp scenes/models/*.glb "$seeds"/
 
 # One process (the machine is shared); -max_len keeps executions fast: the large models are
 # read as their first 512 KiB, which keeps their whole JSON chunk and truncates the binary one.

@@ -22,9 +22,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Scene files name their glTF relative to themselves ("../../shared/scenes/bunny.glb", or three
-// levels up from scenes/stability/). Inputs are written three folders deep under a private root
-// whose shared/scenes/ holds every such name as a link to the smallest real model, so mutated
+// Scene files name their glTF relative to themselves ("models/bunny.glb" from scenes/,
+// "../models/bunny.glb" from scenes/stability/). Inputs are written under a private root whose
+// models/ folders hold every such name as a link to the smallest real model, so mutated
 // scene files reach buildScene() without loading a large model on every run.
 fs::path gRoot, gInputDir;
 // SSGI_FUZZ_VERBOSE=1 prints the loader's messages, to see why a replayed input is rejected.
@@ -143,14 +143,13 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
     gRoot = fs::temp_directory_path() / ("ssgi-fuzz-" + std::to_string(getpid()));
     gInputDir = gRoot / "a" / "b" / "c";
     fs::create_directories(gInputDir);
-    const fs::path shared = std::string(SSGI_SOURCE_DIR) + "/../shared/scenes";
-    const fs::path small = shared / "cornell-box.glb";
-    for (const fs::path& scenes :
-         {gRoot / "shared" / "scenes", gRoot / "a" / "shared" / "scenes"}) {
+    const fs::path models = std::string(SSGI_SOURCE_DIR) + "/scenes/models";
+    const fs::path small = models / "cornell-box.glb";
+    for (const fs::path& scenes : {gInputDir / "models", gRoot / "a" / "b" / "models"}) {
         fs::create_directories(scenes);
         std::error_code ignored;
-        if (fs::exists(shared) && fs::exists(small))
-            for (const auto& entry : fs::directory_iterator(shared))
+        if (fs::exists(models) && fs::exists(small))
+            for (const auto& entry : fs::directory_iterator(models))
                 if (entry.path().extension() == ".glb")
                     fs::create_symlink(small, scenes / entry.path().filename(), ignored);
     }

@@ -1,4 +1,4 @@
-// The shared test scenes (../shared/scenes/): each loads bare with the triangle count its README
+// The test models (scenes/models/): each loads bare with the triangle count its README
 // gives, and with sane bounds, light, camera, indices and normals; the Cornell box without
 // normals is flat-shaded, Sponza brings its textures; every scene file in scenes/ loads.
 #include "scene/scene.h"
@@ -17,7 +17,7 @@ using ssgi::Scene;
 namespace {
 
 const std::string kSourceDir = SSGI_SOURCE_DIR;
-const std::string kSharedScenes = kSourceDir + "/../shared/scenes/";
+const std::string kModels = kSourceDir + "/scenes/models/";
 
 size_t triangleCount(const Scene& scene) {
     size_t triangles = 0;
@@ -26,18 +26,18 @@ size_t triangleCount(const Scene& scene) {
     return triangles;
 }
 
-struct SharedScene {
+struct SceneModel {
     const char* file;
     size_t triangles;
 };
-void PrintTo(const SharedScene& scene, std::ostream* out) {
+void PrintTo(const SceneModel& scene, std::ostream* out) {
     *out << scene.file;
 }
 
-class SharedScenes : public ::testing::TestWithParam<SharedScene> {};
+class SceneModels : public ::testing::TestWithParam<SceneModel> {};
 
-TEST_P(SharedScenes, LoadBareWithTheReadmeTriangleCount) {
-    const std::string path = kSharedScenes + GetParam().file;
+TEST_P(SceneModels, LoadBareWithTheReadmeTriangleCount) {
+    const std::string path = kModels + GetParam().file;
     if (!fs::exists(path)) GTEST_SKIP() << path << " is not there";
     const Scene scene = loadScene(path);
     EXPECT_EQ(triangleCount(scene), GetParam().triangles);
@@ -54,13 +54,13 @@ TEST_P(SharedScenes, LoadBareWithTheReadmeTriangleCount) {
 }
 
 INSTANTIATE_TEST_SUITE_P(
-    Readme, SharedScenes,
-    ::testing::Values(SharedScene{"cornell-box.glb", 36},
-                      SharedScene{"cornell-box-sphere.glb", 2188}, SharedScene{"bunny.glb", 69451},
-                      SharedScene{"mori-knob.glb", 11970}, SharedScene{"sponza.glb", 66450},
-                      SharedScene{"sibenik.glb", 75283}, SharedScene{"conference.glb", 331179},
-                      SharedScene{"scrub-pine.glb", 527}),
-    [](const ::testing::TestParamInfo<SharedScene>& info) {
+    Readme, SceneModels,
+    ::testing::Values(SceneModel{"cornell-box.glb", 36},
+                      SceneModel{"cornell-box-sphere.glb", 2188}, SceneModel{"bunny.glb", 69451},
+                      SceneModel{"mori-knob.glb", 11970}, SceneModel{"sponza.glb", 66450},
+                      SceneModel{"sibenik.glb", 75283}, SceneModel{"conference.glb", 331179},
+                      SceneModel{"scrub-pine.glb", 527}),
+    [](const ::testing::TestParamInfo<SceneModel>& info) {
         std::string name = info.param.file;
         name = name.substr(0, name.find('.'));
         std::replace(name.begin(), name.end(), '-', '_');
@@ -68,7 +68,7 @@ INSTANTIATE_TEST_SUITE_P(
     });
 
 TEST(SharedSceneDetails, CornellBoxWithoutNormalsIsFlatShaded) {
-    const std::string path = kSharedScenes + "cornell-box.glb";
+    const std::string path = kModels + "cornell-box.glb";
     if (!fs::exists(path)) GTEST_SKIP() << path << " is not there";
     const Scene scene = loadScene(path);
     for (const ssgi::Mesh& mesh : scene.meshes) {
@@ -86,7 +86,7 @@ TEST(SharedSceneDetails, CornellBoxWithoutNormalsIsFlatShaded) {
 }
 
 TEST(SharedSceneDetails, SponzaLoadsItsTextures) {
-    const std::string path = kSharedScenes + "sponza.glb";
+    const std::string path = kModels + "sponza.glb";
     if (!fs::exists(path)) GTEST_SKIP() << path << " is not there";
     const Scene scene = loadScene(path);
     ASSERT_EQ(scene.textures.size(), 18u);
@@ -108,7 +108,6 @@ TEST(SceneFileSet, EverySceneFileLoads) {
         SCOPED_TRACE(entry.path().string());
         const std::string text =
             (std::ostringstream() << std::ifstream(entry.path()).rdbuf()).str();
-        if (text.find("shared/scenes") != std::string::npos && !fs::exists(kSharedScenes)) continue;
         const Scene scene = loadScene(entry.path().string());
         EXPECT_FALSE(scene.instances.empty());
         for (size_t k = 1; k < scene.cameraPath.keys.size(); ++k)
