@@ -69,11 +69,10 @@ struct CeilingProbe::Kernel {
 
     double frame(vk::Context& ctx, decltype(phase) p) {
         phase = p;
-        const auto start = std::chrono::steady_clock::now();
-        ctx.submitAndWait([&](VkCommandBuffer cmd) { graph.record(cmd); });
+        const vk::HostSpan span =
+            ctx.submitAndWait([&](VkCommandBuffer cmd) { graph.record(cmd); });
         graph.endFrame();
-        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-            .count();
+        return span.milliseconds;
     }
 
     void sample(vk::Context& ctx) {

@@ -166,11 +166,16 @@ void Renderer::renderFrame(const Camera& camera) {
         cache.refreshTile =
             cache.refresh && graph_->hasHistory(cache.value) ? int(cache.refresh->next()) : -1;
     updateUniforms(camera);
-    ctx_.submitAndWait([&](VkCommandBuffer cmd) { graph_->record(cmd); });
+    lastSubmission_ = ctx_.submitAndWait([&](VkCommandBuffer cmd) { graph_->record(cmd); });
     graph_->endFrame();
     setup_->rsmStale = false;
     moved_.clear();
     ++frameIndex_;
+}
+
+FrameProfile Renderer::lastFrameProfile() const {
+    return {frameIndex_ - 1, graph_->timings(), lastSubmission_.milliseconds,
+            lastSubmission_.startUs};
 }
 
 void Renderer::setView(const std::string& view) {

@@ -40,7 +40,9 @@ public:
     // Shows another view (see viewNames()) from the next frame on; the caches are untouched.
     void setView(const std::string& view);
     const SpotLight& light() const { return light_; }
-    const std::vector<graph::PassTiming>& timings() const { return graph_->timings(); }
+    const std::vector<PassTiming>& timings() const { return graph_->timings(); }
+    // The last frame's passes and the host's clock around its submission.
+    FrameProfile lastFrameProfile() const;
 
     // Reads an image of the last frame by name ("hdr", "ldr", "direct", "gbuffer.position",
     // "gbuffer.normal", "gbuffer.albedo", "gbuffer.depth", "rsm.flux", ...) as RGBA floats. A
@@ -67,6 +69,7 @@ private:
     std::unique_ptr<PassSetup> setup_;
     SpotLight light_;
     uint32_t frameIndex_ = 0;
+    vk::HostSpan lastSubmission_;
     uint32_t stillFrames_ = 0;          // frames in a row with this camera and light
     std::vector<glm::mat4> transforms_; // where the instances stand
     std::vector<Aabb> moved_;           // boxes of the objects moved since the last frame

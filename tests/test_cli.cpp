@@ -3,9 +3,13 @@
 #include "image_io.h"
 #include "support.h"
 
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 namespace fs = std::filesystem;
 
@@ -71,12 +75,87 @@ TEST_F(Cli, ProfilePrintsEveryPassAndWritesJson) {
     ASSERT_EQ(r.status, 0) << r.output;
     for (const char* pass :
          {"gbuffer", "rsm", "shadow", "direct", "ao", "indirect", "upsample", "shadow.temporal",
-          "ao.temporal", "indirect.temporal", "composite", "total", "device:"})
+          "ao.temporal", "indirect.temporal", "composite", "sum of passes", "host clock",
+          "device:", "2 timed frames after 1 warm-up frame"})
         EXPECT_NE(r.output.find(pass), std::string::npos) << pass << " missing in\n" << r.output;
-    std::ifstream in(json);
-    std::string text((std::istreambuf_iterator<char>(in)), {});
-    EXPECT_NE(text.find("\"median_ms\""), std::string::npos);
-    EXPECT_NE(text.find("\"driver\""), std::string::npos);
+    const nlohmann::json j = nlohmann::json::parse(std::ifstream(json));
+    EXPECT_EQ(j["warmup_frames"], 1);
+    EXPECT_EQ(j["host_frames_ms"].size(), 2u);
+    for (const auto& pass : j["passes"]) {
+        EXPECT_EQ(pass["frames_ms"].size(), 2u);
+        EXPECT_LE(pass["min_ms"].get<double>(), pass["median_ms"].get<double>());
+        EXPECT_LE(pass["median_ms"].get<double>(), pass["max_ms"].get<double>());
+    }
+    EXPECT_TRUE(j.contains("driver"));
+}
+
+// The trace opens in ui.perfetto.dev / chrome://tracing: Chrome's trace event format, one
+// complete ("X") event per pass that ran and per frame on the host, GPU events of a frame in
+// the order the frame declares its passes and not overlapping.
+TEST_F(Cli, ProfileTraceHoldsEveryPassInOrderWithoutOverlap) {
+    const std::string trace = (dir / "trace.json").string();
+    const std::string json = (dir / "profile.json").string();
+    Result r = run("--size 64x64 --frames 2 --profile-trace " + trace + " --profile-json " + json +
+                   " --output " + (dir / "out.png").string());
+    ASSERT_EQ(r.status, 0) << r.output;
+    const nlohmann::json t = nlohmann::json::parse(std::ifstream(trace));
+    const nlohmann::json profile = nlohmann::json::parse(std::ifstream(json));
+    ASSERT_TRUE(t["traceEvents"].is_array());
+    std::vector<std::string> declared;
+    for (const auto& pass : profile["passes"])
+        declared.push_back(pass["name"]);
+    std::map<int, std::vector<nlohmann::json>> gpu; // per frame
+    int hostFrames = 0;
+    for (const auto& e : t["traceEvents"]) {
+        ASSERT_TRUE(e.contains("ph") && e.contains("pid") && e.contains("name")) << e.dump();
+        if (e["ph"] != "X") continue;
+        ASSERT_TRUE(e["ts"].is_number() && e["dur"].is_number()) << e.dump();
+        EXPECT_GE(e["dur"].get<double>(), 0.0);
+        if (e["cat"] == "host") ++hostFrames;
+        if (e["cat"] == "gpu") gpu[e["args"]["frame"].get<int>()].push_back(e);
+    }
+    EXPECT_EQ(hostFrames, 2);
+    ASSERT_EQ(gpu.size(), 2u);
+    for (const auto& [frame, events] : gpu) {
+        SCOPED_TRACE("frame " + std::to_string(frame));
+        // Every event names a declared pass, each at most once, in declared order.
+        size_t next = 0;
+        for (size_t i = 0; i < events.size(); ++i) {
+            const std::string name = events[i]["name"];
+            while (next < declared.size() && declared[next] != name)
+                ++next;
+            ASSERT_LT(next, declared.size()) << name << " out of order or undeclared";
+            ++next;
+            if (i > 0)
+                EXPECT_LE(events[i - 1]["ts"].get<double>() + events[i - 1]["dur"].get<double>(),
+                          events[i]["ts"].get<double>() + 1e-3)
+                    << events[i - 1]["name"] << " overlaps " << name;
+        }
+        // The passes that always run are all there.
+        for (const char* pass : {"gbuffer", "shadow", "direct", "ao", "composite"})
+            EXPECT_TRUE(std::any_of(events.begin(), events.end(), [&](const nlohmann::json& e) {
+                return e["name"] == pass;
+            })) << pass;
+    }
+}
+
+TEST_F(Cli, WalkthroughWritesATraceAndTheHostClockBesideThePasses) {
+    const std::string trace = (dir / "walk.json").string();
+    const std::string timings = (dir / "timings.json").string();
+    Result r = ssgi::test::runCommand(std::string(SSGI_WALKTHROUGH_BINARY) +
+                                      " scenes/bunny.json --size 48x48 --frames 3 --timings " +
+                                      timings + " --profile-trace " + trace);
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("host clock"), std::string::npos) << r.output;
+    const nlohmann::json t = nlohmann::json::parse(std::ifstream(trace));
+    const nlohmann::json j = nlohmann::json::parse(std::ifstream(timings));
+    int hostFrames = 0;
+    for (const auto& e : t["traceEvents"])
+        hostFrames += e.value("cat", "") == "host";
+    EXPECT_EQ(hostFrames, 3);
+    ASSERT_EQ(j["host_ms"].size(), 3u);
+    for (size_t f = 0; f < 3; ++f)
+        EXPECT_GE(j["host_ms"][f].get<double>(), 0.0);
 }
 
 struct BadInput {

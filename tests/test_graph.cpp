@@ -153,4 +153,85 @@ TEST_F(HistoryTest, PairSwapsKeepsContentsAndReportsNoHistoryFirst) {
     EXPECT_EQ(graph.timings()[0].name, "write current");
 }
 
+// Timestamps (issue 16): on a CPU device (lavapipe) a full barrier follows every stamp, so the
+// stamp is written where it stands; a GPU records the stamps alone. Checked on what the graph
+// recorded, in both modes, on the real device; no timing is judged here.
+class TimestampTest : public test::VulkanTest {
+protected:
+    std::vector<RecordedCommand> recordTwoPasses(TimestampMode mode) {
+        vk::Context& ctx = test::context();
+        FrameGraph graph(ctx, mode);
+        const ImageRef image = graph.createImage("cleared", VK_FORMAT_R32G32B32A32_SFLOAT, {4, 4},
+                                                 VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+        auto clear = [&](const PassContext& pc) {
+            VkClearColorValue value{{1, 0, 0, 1}};
+            VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+            vkCmdClearColorImage(pc.cmd, pc.image(image).image,
+                                 VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &value, 1, &range);
+        };
+        graph.addPass("first", PassKind::Transfer, {{image, Use::TransferDst}}, clear);
+        graph.addPass("off", PassKind::Transfer, {{image, Use::TransferDst}}, clear,
+                      [] { return false; });
+        graph.addPass("second", PassKind::Transfer, {{image, Use::TransferDst}}, clear);
+        ctx.submitAndWait([&](VkCommandBuffer cmd) { graph.record(cmd); });
+        graph.endFrame();
+        timings = graph.timings();
+        return graph.lastCommands();
+    }
+    std::vector<PassTiming> timings;
+};
+
+TEST_F(TimestampTest, TheModeFollowsTheDeviceType) {
+    EXPECT_EQ(timestampModeFor(VK_PHYSICAL_DEVICE_TYPE_CPU), TimestampMode::BarrierAfterEach);
+    for (VkPhysicalDeviceType gpu :
+         {VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU, VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU,
+          VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU})
+        EXPECT_EQ(timestampModeFor(gpu), TimestampMode::AsRecorded);
+    // This suite's device is lavapipe, and the graph picks the mode from it by default.
+    FrameGraph graph(test::context());
+    EXPECT_EQ(graph.timestampMode(), timestampModeFor(test::context().properties.deviceType));
+}
+
+TEST_F(TimestampTest, ACpuDeviceGetsABarrierRightAfterEveryStamp) {
+    const std::vector<RecordedCommand> commands = recordTwoPasses(TimestampMode::BarrierAfterEach);
+    size_t stamps = 0;
+    for (size_t i = 0; i < commands.size(); ++i) {
+        if (commands[i].kind != RecordedCommand::Kind::Timestamp) continue;
+        ++stamps;
+        ASSERT_LT(i + 1, commands.size());
+        EXPECT_EQ(commands[i + 1].kind, RecordedCommand::Kind::TimestampBarrier)
+            << "stamp of " << commands[i].pass;
+    }
+    EXPECT_EQ(stamps, 4u) << "a begin and an end stamp for each pass that ran";
+}
+
+TEST_F(TimestampTest, AGpuGetsTheStampsAlone) {
+    const std::vector<RecordedCommand> commands = recordTwoPasses(TimestampMode::AsRecorded);
+    size_t stamps = 0;
+    for (const RecordedCommand& c : commands) {
+        EXPECT_NE(c.kind, RecordedCommand::Kind::TimestampBarrier) << c.pass;
+        stamps += c.kind == RecordedCommand::Kind::Timestamp;
+    }
+    EXPECT_EQ(stamps, 4u);
+    // Each pass: its image barrier, then its record between its two stamps.
+    using K = RecordedCommand::Kind;
+    const K expected[] = {K::Barrier, K::Timestamp, K::Pass, K::Timestamp,
+                          K::Barrier, K::Timestamp, K::Pass, K::Timestamp};
+    ASSERT_EQ(commands.size(), std::size(expected));
+    for (size_t i = 0; i < commands.size(); ++i)
+        EXPECT_EQ(commands[i].kind, expected[i]) << i;
+    EXPECT_EQ(commands[6].pass, "second");
+}
+
+TEST_F(TimestampTest, PassesAreTimedInOrderAndATurnedOffPassSpansNothing) {
+    recordTwoPasses(TimestampMode::BarrierAfterEach);
+    ASSERT_EQ(timings.size(), 3u);
+    EXPECT_TRUE(timings[0].ran);
+    EXPECT_FALSE(timings[1].ran);
+    EXPECT_EQ(timings[1].milliseconds, 0.0);
+    EXPECT_EQ(timings[0].startMs, 0.0) << "times count from the frame's first stamp";
+    EXPECT_LE(timings[0].endMs, timings[2].startMs);
+    EXPECT_LE(timings[2].startMs, timings[2].endMs);
+}
+
 } // namespace

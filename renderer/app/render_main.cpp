@@ -11,7 +11,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
-#include <map>
 
 namespace fs = std::filesystem;
 using namespace ssgi;
@@ -19,23 +18,30 @@ using namespace ssgi;
 namespace {
 
 const char* kUsage = R"(usage: render [SCENE] [options]
-  --frames N            frames to render (default 1); timings are medians after the first
+  --frames N            frames to render (default 1, or 2 with a profile: one warm-up frame
+                        and one timed); the image is the last frame's
   --output FILE.png     tonemapped sRGB image (default out/<scene>.png); the linear HDR image
                         (or the view's linear quantity) goes beside it as FILE.exr
   --view NAME           final, albedo, normal, depth, direct, rsm-flux, rsm-normal, shadow,
                         ao, indirect, ssdo, contact (red: what contact shadows darkened),
                         peel (distance to the second depth layer)
   --time T              time in seconds along the scene's camera path and object paths
-  --profile             print a table of per-pass GPU milliseconds
+  --profile             print per-pass GPU milliseconds (median, min, max over the timed
+                        frames) beside the host clock, and warn where they disagree
   --profile-json FILE   write the timings, device and driver as JSON
+  --profile-trace FILE  write a Chrome/Perfetto trace (.json): GPU passes and host frames,
+                        every frame, warm-up ones marked (open in ui.perfetto.dev)
+  --warmup W            frames left out of the timings (default 1 when more than one frame is
+                        rendered: the first compiles shader variants and starts the caches)
 )";
 
 struct Args {
     cli::CommonArgs common;
-    std::string output, view = "final", profileJson;
-    uint32_t frames = 1;
+    std::string output, view = "final", profileJson, profileTrace;
+    uint32_t frames = 0, warmup = UINT32_MAX; // 0, UINT32_MAX: not given
     float time = -1.0f;
     bool profile = false;
+    bool profiling() const { return profile || !profileJson.empty() || !profileTrace.empty(); }
 };
 
 Args parseArgs(int argc, char** argv) {
@@ -61,11 +67,23 @@ Args parseArgs(int argc, char** argv) {
             a.profile = true;
         } else if (arg == "--profile-json") {
             a.profileJson = cli::optionValue(argc, argv, i);
+        } else if (arg == "--profile-trace") {
+            a.profileTrace = cli::optionValue(argc, argv, i);
+            if (fs::path(a.profileTrace).extension() != ".json")
+                throw InputError("--profile-trace: '" + a.profileTrace + "' must end in .json");
+        } else if (arg == "--warmup") {
+            const std::string v = cli::optionValue(argc, argv, i);
+            a.warmup = v == "0" ? 0 : cli::parsePositiveCount(arg, v);
         } else if (!cli::parseCommonArg(argc, argv, i, a.common)) {
             throw InputError("unknown option " + arg + " (see render --help)");
         }
     }
     cli::finishCommonArgs(a.common);
+    if (a.frames == 0) a.frames = a.profiling() && a.warmup != 0 ? 2 : 1;
+    if (a.warmup == UINT32_MAX) a.warmup = a.frames > 1 ? 1 : 0;
+    if (a.warmup >= a.frames)
+        throw InputError("--warmup " + std::to_string(a.warmup) + " leaves none of the " +
+                         std::to_string(a.frames) + " frames to time");
     if (a.output.empty()) a.output = "out/" + fs::path(a.common.scene).stem().string() + ".png";
     if (fs::path(a.output).extension() != ".png")
         throw InputError("--output: '" + a.output + "' must end in .png");
@@ -88,16 +106,10 @@ int run(int argc, char** argv) {
         renderer.setTime(args.time);
     }
 
-    // Per pass, its milliseconds in each frame after the first (warm-up) frame.
-    std::vector<std::string> passNames;
-    std::map<std::string, std::vector<double>> perPass;
+    ProfileLog log(args.warmup);
     for (uint32_t f = 0; f < args.frames; ++f) {
         renderer.renderFrame(camera);
-        if (f == 0 && args.frames > 1) continue;
-        for (const auto& t : renderer.timings()) {
-            if (!perPass.count(t.name)) passNames.push_back(t.name);
-            perPass[t.name].push_back(t.milliseconds);
-        }
+        log.add(renderer.lastFrameProfile());
     }
 
     const std::string exrPath = fs::path(args.output).replace_extension(".exr").string();
@@ -107,30 +119,44 @@ int run(int argc, char** argv) {
                 exrPath.c_str(), common.width, common.height, args.frames,
                 args.frames == 1 ? "" : "s", common.scene.c_str());
 
-    double total = 0.0;
-    nlohmann::json passes = nlohmann::json::array();
-    for (const auto& name : passNames) {
-        const double ms = cli::median(perPass[name]);
-        total += ms;
-        passes.push_back({{"name", name}, {"median_ms", ms}, {"frames_ms", perPass[name]}});
-    }
-    if (args.profile) {
-        std::printf("device: %s (%s)\n", ctx.properties.deviceName, ctx.driverName.c_str());
-        std::printf("%-18s %10s\n", "pass", "GPU ms");
-        for (const auto& p : passes)
-            std::printf("%-18s %10.3f\n", p["name"].get<std::string>().c_str(),
-                        p["median_ms"].get<double>());
-        const size_t counted = perPass.empty() ? 0 : perPass.begin()->second.size();
-        std::printf("%-18s %10.3f  (median over %zu frame%s)\n", "total", total, counted,
-                    counted == 1 ? "" : "s");
-    }
+    const std::string device = std::string(ctx.properties.deviceName) + " (" + ctx.driverName + ")";
+    if (args.profile) std::printf("%s", log.table(device).c_str());
     if (!args.profileJson.empty()) {
-        nlohmann::json j = {{"scene", common.scene},    {"device", ctx.properties.deviceName},
-                            {"driver", ctx.driverName}, {"width", common.width},
-                            {"height", common.height},  {"frames", args.frames},
-                            {"passes", passes},         {"total_median_ms", total}};
+        const ProfileSummary summary = log.summary();
+        nlohmann::json passes = nlohmann::json::array();
+        double total = 0.0;
+        for (size_t p = 0; p < summary.passes.size(); ++p) {
+            const PassStatistics& s = summary.passes[p];
+            std::vector<double> frames;
+            for (size_t f = summary.warmupFrames; f < log.frames().size(); ++f)
+                frames.push_back(log.frames()[f].passes[p].milliseconds);
+            passes.push_back({{"name", s.name},
+                              {"median_ms", s.medianMs},
+                              {"min_ms", s.minMs},
+                              {"max_ms", s.maxMs},
+                              {"frames_ms", frames}});
+            total += s.medianMs;
+        }
+        std::vector<double> host;
+        for (size_t f = summary.warmupFrames; f < log.frames().size(); ++f)
+            host.push_back(log.frames()[f].hostMs);
+        nlohmann::json j = {{"scene", common.scene},
+                            {"device", ctx.properties.deviceName},
+                            {"driver", ctx.driverName},
+                            {"width", common.width},
+                            {"height", common.height},
+                            {"frames", args.frames},
+                            {"warmup_frames", summary.warmupFrames},
+                            {"passes", passes},
+                            {"total_median_ms", total},
+                            {"sum_of_passes_median_ms", summary.passSum.medianMs},
+                            {"host_median_ms", summary.host.medianMs},
+                            {"host_frames_ms", host},
+                            {"worst_coverage", summary.worstCoverage}};
         cli::writeTextAtomically(args.profileJson, j.dump(2) + "\n");
     }
+    if (!args.profileTrace.empty())
+        cli::writeTextAtomically(args.profileTrace, log.traceJson("render", device));
     return cli::validationStatus(ctx.validationMessageCount());
 }
 

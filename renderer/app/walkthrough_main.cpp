@@ -25,7 +25,8 @@ const char* kUsage = R"(usage: walkthrough SCENE [options]
   --still               keep the camera at the path's first key, or the scene's camera when
                         it has no path (a still camera)
   --cache 0|1           the temporal cache off or on (default: the scene's setting)
-  --timings FILE        per-frame, per-pass GPU milliseconds (.csv or .json)
+  --timings FILE        per-frame, per-pass GPU milliseconds and the host clock (.csv or .json)
+  --profile-trace FILE  a Chrome/Perfetto trace (.json) of every frame: GPU passes and host
   --frames-dir DIR      write every frame as DIR/frame_NNNN.png
   --exr                 with --frames-dir, also DIR/frame_NNNN.exr: the linear radiance (or
                         the view's linear quantity), for measuring frame by frame
@@ -37,7 +38,7 @@ struct Args {
     uint32_t frames = 120;
     bool still = false;
     int cache = -1;
-    std::string timings, framesDir, view = "final";
+    std::string timings, framesDir, view = "final", profileTrace;
     bool exr = false;
 };
 
@@ -61,6 +62,10 @@ Args parseArgs(int argc, char** argv) {
             const std::string ext = fs::path(a.timings).extension().string();
             if (ext != ".csv" && ext != ".json")
                 throw InputError("--timings: '" + a.timings + "' must end in .csv or .json");
+        } else if (arg == "--profile-trace") {
+            a.profileTrace = cli::optionValue(argc, argv, i);
+            if (fs::path(a.profileTrace).extension() != ".json")
+                throw InputError("--profile-trace: '" + a.profileTrace + "' must end in .json");
         } else if (arg == "--frames-dir") {
             a.framesDir = cli::optionValue(argc, argv, i);
         } else if (arg == "--exr") {
@@ -90,7 +95,9 @@ int run(int argc, char** argv) {
     const float duration = scene.cameraPath.empty() ? 0.0f : scene.cameraPath.keys.back().time;
     std::vector<std::string> passNames;
     std::map<std::string, std::vector<double>> perPass; // frame by frame
-    std::vector<double> totals;
+    std::vector<double> totals, host;
+    // The first frame compiles pipelines and starts the caches: the summary leaves it out.
+    ProfileLog log(args.frames > 1 ? 1 : 0);
     for (uint32_t f = 0; f < args.frames; ++f) {
         const float t = args.still || args.frames == 1 ? 0.0f : duration * f / (args.frames - 1);
         renderer.setTime(t);
@@ -103,6 +110,8 @@ int run(int argc, char** argv) {
             total += timing.milliseconds;
         }
         totals.push_back(total);
+        log.add(renderer.lastFrameProfile());
+        host.push_back(log.frames().back().hostMs);
         if (!args.framesDir.empty()) {
             char name[32];
             std::snprintf(name, sizeof name, "frame_%04u.png", f);
@@ -119,11 +128,12 @@ int run(int argc, char** argv) {
     if (!args.timings.empty()) {
         if (fs::path(args.timings).extension() == ".csv") {
             std::ostringstream csv;
-            csv << "frame,pass,ms\n";
+            csv << "frame,pass,ms\n"; // "total": the passes added up; "host": the host clock
             for (uint32_t f = 0; f < args.frames; ++f) {
                 for (const auto& name : passNames)
                     csv << f << "," << name << "," << perPass[name][f] << "\n";
                 csv << f << ",total," << totals[f] << "\n";
+                csv << f << ",host," << host[f] << "\n";
             }
             cli::writeTextAtomically(args.timings, csv.str());
         } else {
@@ -135,23 +145,21 @@ int run(int argc, char** argv) {
                                 {"frames", args.frames},
                                 {"cache", scene.setting("cache")},
                                 {"still", args.still},
-                                {"total_ms", totals}};
+                                {"total_ms", totals},
+                                {"host_ms", host}};
             for (const auto& name : passNames)
                 j["passes"][name] = perPass[name];
             cli::writeTextAtomically(args.timings, j.dump(1) + "\n");
         }
     }
 
-    // Medians over the frames after the first (which compiles pipelines and fills the caches).
-    auto afterFirst = [&](const std::vector<double>& v) {
-        return cli::median(std::vector<double>(v.begin() + (v.size() > 1), v.end()));
-    };
-    std::printf("walkthrough of %s: %u frames at %ux%u, cache %s, device %s\n",
-                common.scene.c_str(), args.frames, common.width, common.height,
-                scene.setting("cache") != 0.0 ? "on" : "off", ctx.properties.deviceName);
-    for (const auto& name : passNames)
-        std::printf("%-18s %10.3f ms\n", name.c_str(), afterFirst(perPass[name]));
-    std::printf("%-18s %10.3f ms  (medians after the first frame)\n", "total", afterFirst(totals));
+    const std::string device = std::string(ctx.properties.deviceName) + " (" + ctx.driverName + ")";
+    if (!args.profileTrace.empty())
+        cli::writeTextAtomically(args.profileTrace, log.traceJson("walkthrough", device));
+    std::printf("walkthrough of %s: %u frames at %ux%u, cache %s\n", common.scene.c_str(),
+                args.frames, common.width, common.height,
+                scene.setting("cache") != 0.0 ? "on" : "off");
+    std::printf("%s", log.table(device).c_str());
     return cli::validationStatus(ctx.validationMessageCount());
 }
 

@@ -10,7 +10,15 @@ const vk::Image& PassContext::image(ImageRef ref) const {
     return graph.image(ref);
 }
 
-FrameGraph::FrameGraph(vk::Context& ctx) : ctx_(ctx) {}
+TimestampMode timestampModeFor(VkPhysicalDeviceType deviceType) {
+    return deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? TimestampMode::BarrierAfterEach
+                                                     : TimestampMode::AsRecorded;
+}
+
+FrameGraph::FrameGraph(vk::Context& ctx)
+    : FrameGraph(ctx, timestampModeFor(ctx.properties.deviceType)) {}
+
+FrameGraph::FrameGraph(vk::Context& ctx, TimestampMode mode) : ctx_(ctx), timestampMode_(mode) {}
 
 FrameGraph::~FrameGraph() {
     vkDeviceWaitIdle(ctx_.device);
@@ -83,6 +91,31 @@ void FrameGraph::addPass(const std::string& name, PassKind kind, std::vector<Ima
     passes_.push_back({name, kind, std::move(uses), std::move(record), std::move(enabled)});
 }
 
+// A GPU writes a timestamp once the commands before it have passed the stage, which is what a
+// pass's begin and end stamps mean. Lavapipe (Mesa 22.3, lvp_execute.c) does not: writing a
+// timestamp flushes what came before, then bins the end-query into a new rasterizer scene that
+// runs only at the next flush, while compute dispatches run at once and wait for themselves
+// (llvmpipe_launch_grid). So a compute pass's begin stamp was written after its own dispatch had
+// finished unless something flushed in between, and the pass read ~0 ms while its time fell into
+// the gap before it (issue 16: `ao` 0.063 ms for a pass of about 98 ms). A full barrier right
+// after each stamp flushes it at once, so every stamp is taken where it stands; a barrier before
+// a stamp does not help, since the stamp's own scene is what waits. It costs about 1 ms a frame
+// on lavapipe and changes no image; a GPU records the stamps alone.
+void FrameGraph::writeTimestamp(VkCommandBuffer cmd, uint32_t query, const std::string& pass) {
+    vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queryPool_, query);
+    lastCommands_.push_back({RecordedCommand::Kind::Timestamp, pass});
+    if (timestampMode_ != TimestampMode::BarrierAfterEach) return;
+    VkMemoryBarrier2 all{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    all.srcStageMask = all.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    all.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
+    all.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.memoryBarrierCount = 1;
+    dep.pMemoryBarriers = &all;
+    vkCmdPipelineBarrier2(cmd, &dep);
+    lastCommands_.push_back({RecordedCommand::Kind::TimestampBarrier, pass});
+}
+
 void FrameGraph::record(VkCommandBuffer cmd) {
     const uint32_t queriesNeeded = uint32_t(2 * passes_.size());
     if (queryCapacity_ < queriesNeeded) {
@@ -97,13 +130,17 @@ void FrameGraph::record(VkCommandBuffer cmd) {
 
     std::vector<bool> touched(resources_.size(), false);
     lastBarriers_.clear();
+    lastCommands_.clear();
+    ran_.assign(passes_.size(), false);
     for (uint32_t p = 0; p < passes_.size(); ++p) {
         const Pass& pass = passes_[p];
         if (pass.enabled && !pass.enabled()) {
+            // Both stamps together: the pass spans nothing, where it would have stood.
             vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queryPool_, 2 * p);
             vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queryPool_, 2 * p + 1);
             continue;
         }
+        ran_[p] = true;
         std::vector<VkImageMemoryBarrier2> barriers;
         for (const ImageUse& use : pass.uses) {
             const uint32_t id = resolve(use.image);
@@ -123,15 +160,17 @@ void FrameGraph::record(VkCommandBuffer cmd) {
             dep.imageMemoryBarrierCount = uint32_t(barriers.size());
             dep.pImageMemoryBarriers = barriers.data();
             vkCmdPipelineBarrier2(cmd, &dep);
+            lastCommands_.push_back({RecordedCommand::Kind::Barrier, pass.name});
         }
         if (ctx_.cmdBeginLabel) {
             VkDebugUtilsLabelEXT label{VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT};
             label.pLabelName = pass.name.c_str();
             ctx_.cmdBeginLabel(cmd, &label);
         }
-        vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queryPool_, 2 * p);
+        writeTimestamp(cmd, 2 * p, pass.name);
         pass.record(PassContext{cmd, *this});
-        vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queryPool_, 2 * p + 1);
+        lastCommands_.push_back({RecordedCommand::Kind::Pass, pass.name});
+        writeTimestamp(cmd, 2 * p + 1, pass.name);
         if (ctx_.cmdEndLabel) ctx_.cmdEndLabel(cmd);
     }
 }
@@ -144,9 +183,13 @@ void FrameGraph::endFrame() {
             stamps.data(), sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
     const double period = ctx_.properties.limits.timestampPeriod; // ns per tick
     timings_.clear();
-    for (uint32_t p = 0; p < passes_.size(); ++p)
-        timings_.push_back(
-            {passes_[p].name, double(stamps[2 * p + 1] - stamps[2 * p]) * period * 1e-6});
+    const uint64_t first = stamps.empty() ? 0 : stamps[0];
+    auto ms = [&](uint64_t stamp) { return double(int64_t(stamp - first)) * period * 1e-6; };
+    for (uint32_t p = 0; p < passes_.size(); ++p) {
+        const bool ran = p < ran_.size() && ran_[p];
+        const double start = ms(stamps[2 * p]), end = ms(stamps[2 * p + 1]);
+        timings_.push_back({passes_[p].name, ran ? end - start : 0.0, start, end, ran});
+    }
     for (History& h : histories_) {
         h.currentSlot = 1 - h.currentSlot;
         h.valid = true;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "graph/barriers.h"
+#include "profiling.h"
 #include "vk/resources.h"
 
 #include <functional>
@@ -27,9 +28,22 @@ struct ImageUse {
     Use use;
 };
 
-struct PassTiming {
-    std::string name;
-    double milliseconds = 0.0;
+using ssgi::PassTiming;
+
+// How the graph makes its timestamps tell the truth on a device (see writeTimestamp() in
+// frame_graph.cpp for why a CPU device needs more than the stamps themselves).
+enum class TimestampMode {
+    AsRecorded,       // a GPU writes a stamp when the work before it has passed the stage
+    BarrierAfterEach, // lavapipe: a full barrier after each stamp makes it run when it should
+};
+TimestampMode timestampModeFor(VkPhysicalDeviceType deviceType);
+
+// What record() put into the command buffer, in order, for inspection (tests). A pass turned off
+// this frame records only its two stamps back to back (they span nothing), not listed here.
+struct RecordedCommand {
+    enum class Kind { Barrier, Timestamp, TimestampBarrier, Pass };
+    Kind kind;
+    std::string pass;
 };
 
 // One barrier the graph emitted, for inspection (tests, --profile).
@@ -53,7 +67,9 @@ using RecordFn = std::function<void(const PassContext&)>;
 
 class FrameGraph {
 public:
+    // Timestamps as the device needs them (timestampModeFor its type), or as `mode` says.
     explicit FrameGraph(vk::Context& ctx);
+    FrameGraph(vk::Context& ctx, TimestampMode mode);
     ~FrameGraph();
     FrameGraph(const FrameGraph&) = delete;
     FrameGraph& operator=(const FrameGraph&) = delete;
@@ -83,10 +99,14 @@ public:
     void record(VkCommandBuffer cmd);
     // After the frame's submission has completed: reads the timestamps and swaps histories.
     void endFrame();
+    // Each pass of the last frame, its times from the frame's first stamp.
     const std::vector<PassTiming>& timings() const { return timings_; }
     size_t passCount() const { return passes_.size(); }
+    TimestampMode timestampMode() const { return timestampMode_; }
     // The barriers recorded by the last record() call, in order.
     const std::vector<BarrierRecord>& lastBarriers() const { return lastBarriers_; }
+    // Everything the last record() call recorded, in order.
+    const std::vector<RecordedCommand>& lastCommands() const { return lastCommands_; }
 
     const vk::Image& image(ImageRef ref) const;
     // Copies an image to the host as RGBA float (depth: R = depth), after the last frame.
@@ -117,6 +137,7 @@ private:
         std::function<bool()> enabled;
     };
     uint32_t resolve(ImageRef ref) const;
+    void writeTimestamp(VkCommandBuffer cmd, uint32_t query, const std::string& pass);
     uint32_t addResource(const std::string& name, VkFormat format, VkExtent2D extent,
                          VkImageUsageFlags usage, bool transient);
 
@@ -126,6 +147,9 @@ private:
     std::vector<Pass> passes_;
     std::vector<PassTiming> timings_;
     std::vector<BarrierRecord> lastBarriers_;
+    std::vector<RecordedCommand> lastCommands_;
+    TimestampMode timestampMode_;
+    std::vector<bool> ran_; // per pass, in the last recorded frame
     VkQueryPool queryPool_ = VK_NULL_HANDLE;
     uint32_t queryCapacity_ = 0;
 };

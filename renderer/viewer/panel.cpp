@@ -11,23 +11,31 @@
 
 namespace ssgi::viewer {
 
-void TimingHistory::add(const std::vector<graph::PassTiming>& timings) {
-    float sum = 0.0f;
-    for (const graph::PassTiming& t : timings) {
-        if (!perPass.count(t.name)) order.push_back(t.name);
-        std::deque<float>& h = perPass[t.name];
-        h.push_back(float(t.milliseconds));
+void TimingHistory::add(const FrameProfile& frame) {
+    auto push = [](std::deque<float>& h, double value) {
+        h.push_back(float(value));
         if (h.size() > kFrames) h.pop_front();
-        sum += float(t.milliseconds);
+    };
+    for (const PassTiming& t : frame.passes) {
+        if (!perPass.count(t.name)) order.push_back(t.name);
+        push(perPass[t.name], t.milliseconds);
     }
-    total.push_back(sum);
-    if (total.size() > kFrames) total.pop_front();
+    push(total, frame.passSumMs());
+    push(host, frame.hostMs);
+    ProfileLog next(0);
+    const std::vector<FrameProfile>& kept = recent.frames();
+    for (size_t f = kept.size() >= kFrames ? 1 : 0; f < kept.size(); ++f)
+        next.add(kept[f]);
+    next.add(frame);
+    recent = std::move(next);
 }
 
 void TimingHistory::clear() {
     order.clear();
     perPass.clear();
     total.clear();
+    host.clear();
+    recent = ProfileLog(0);
 }
 
 namespace {
@@ -81,28 +89,39 @@ bool settingWidget(const std::string& key, const SettingSpec& spec, double& valu
 
 void timingsSection(PanelState& s) {
     if (!ImGui::CollapsingHeader("GPU timings", ImGuiTreeNodeFlags_DefaultOpen)) return;
-    if (!s.history.total.empty()) {
-        char label[64];
-        std::snprintf(label, sizeof label, "frame %.1f ms", s.history.total.back());
-        plot("##total", s.history.total, ImVec2(-1.0f, 48.0f));
-        ImGui::TextUnformatted(label);
-    }
-    if (!s.timings) return;
+    if (s.history.total.empty()) return;
+    const ProfileSummary summary = s.history.recent.summary();
+    char label[160];
+    std::snprintf(label, sizeof label, "frame %.1f ms (passes), host clock %.1f ms",
+                  s.history.total.back(), s.history.host.back());
+    plot("##total", s.history.total, ImVec2(-1.0f, 48.0f));
+    ImGui::TextUnformatted(label);
+    std::snprintf(label, sizeof label,
+                  "over %u frames: median %.2f ms, host %.2f ms, covered %.1f%%",
+                  summary.timedFrames, summary.passSum.medianMs, summary.host.medianMs,
+                  100.0 * summary.worstCoverage);
+    ImGui::TextUnformatted(label);
+    if (summary.disagrees)
+        ImGui::TextColored(ImVec4(1.0f, 0.6f, 0.2f, 1.0f),
+                           "passes and host clock differ by > 3%%: stamps not to be trusted");
     const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp;
-    if (!ImGui::BeginTable("passes", 3, flags)) return;
+    if (!ImGui::BeginTable("passes", 4, flags)) return;
     ImGui::TableSetupColumn("pass", ImGuiTableColumnFlags_WidthStretch, 1.4f);
-    ImGui::TableSetupColumn("ms", ImGuiTableColumnFlags_WidthStretch, 0.6f);
+    ImGui::TableSetupColumn("median", ImGuiTableColumnFlags_WidthStretch, 0.6f);
+    ImGui::TableSetupColumn("min-max", ImGuiTableColumnFlags_WidthStretch, 0.9f);
     ImGui::TableSetupColumn("last frames", ImGuiTableColumnFlags_WidthStretch, 1.2f);
     ImGui::TableHeadersRow();
-    for (const graph::PassTiming& t : *s.timings) {
+    for (const PassStatistics& p : summary.passes) {
         ImGui::TableNextRow();
         ImGui::TableNextColumn();
-        ImGui::TextUnformatted(t.name.c_str());
+        ImGui::TextUnformatted(p.name.c_str());
         ImGui::TableNextColumn();
-        ImGui::Text("%8.2f", t.milliseconds);
+        ImGui::Text("%8.2f", p.medianMs);
         ImGui::TableNextColumn();
-        ImGui::PushID(t.name.c_str());
-        plot("##h", s.history.perPass[t.name], ImVec2(-1.0f, 14.0f));
+        ImGui::Text("%.2f-%.2f", p.minMs, p.maxMs);
+        ImGui::TableNextColumn();
+        ImGui::PushID(p.name.c_str());
+        plot("##h", s.history.perPass[p.name], ImVec2(-1.0f, 14.0f));
         ImGui::PopID();
     }
     ImGui::EndTable();

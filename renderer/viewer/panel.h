@@ -14,13 +14,15 @@
 
 namespace ssgi::viewer {
 
-// Milliseconds of the last frames, per pass and in total, for the graphs.
+// The last frames' profiles, for the graphs and for the same statistics `render --profile`
+// prints (median, min, max per pass; the passes added up beside the host clock).
 struct TimingHistory {
     static constexpr size_t kFrames = 120;
     std::vector<std::string> order; // passes in frame order
     std::map<std::string, std::deque<float>> perPass;
-    std::deque<float> total;
-    void add(const std::vector<graph::PassTiming>& timings);
+    std::deque<float> total, host;
+    ProfileLog recent{0}; // the last kFrames frames, none left out
+    void add(const FrameProfile& frame);
     void clear();
 };
 
@@ -30,7 +32,6 @@ struct PanelState {
     VkExtent2D windowSize{}, renderSize{};
     float secondsPerFrame = 0.0f;
     uint32_t frame = 0;
-    const std::vector<graph::PassTiming>* timings = nullptr;
     TimingHistory history;
     std::vector<std::string> cachedEffects;
     bool cacheAvailable = false;

@@ -110,10 +110,9 @@ void Viewer::recordReport(bool rebuilt) {
     const VkRect2D rect = sceneRect();
     f["image_rect"] = {rect.offset.x, rect.offset.y, rect.extent.width, rect.extent.height};
     f["renderer_rebuilt"] = rebuilt;
-    double total = 0.0;
-    for (const auto& t : renderer_->timings())
-        total += t.milliseconds;
-    f["gpu_ms"] = total;
+    const FrameProfile profile = renderer_->lastFrameProfile();
+    f["gpu_ms"] = profile.passSumMs();
+    f["host_ms"] = profile.hostMs;
     const uint32_t rotations = uint32_t(scene_.setting("cache_rotations"));
     for (const std::string& effect : renderer_->cachedEffects()) {
         const CacheSummary s = summariseCache(*renderer_, effect, rotations);

@@ -173,7 +173,6 @@ void Viewer::drawFrame(bool scriptedScreenshot) {
         panel_.windowSize = extent;
         panel_.renderSize = renderSize_;
         panel_.frame = frame_;
-        panel_.timings = &renderer_->timings();
         panel_.recording = recorder_.recording();
         panel_.recordedKeys = recorder_.path().keys.size();
         if (showPanel_) drawPanel(panel_, float(sceneRect().offset.x), float(extent.height));
@@ -236,7 +235,7 @@ int Viewer::run() {
         if (panel_.lightChanged) applyPanelRequests();
         recorder_.update(camera, seconds);
         renderer_->renderFrame(camera);
-        panel_.history.add(renderer_->timings());
+        panel_.history.add(renderer_->lastFrameProfile());
         panel_.secondsPerFrame =
             scripted ? panel_.history.total.back() / 1000.0f : float(glfwGetTime() - now);
         if (!options_.report.empty()) recordReport(rebuiltThisFrame_);

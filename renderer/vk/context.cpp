@@ -1,6 +1,7 @@
 #include "vk/context.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <vector>
@@ -237,7 +238,7 @@ Context::~Context() {
     if (instance) vkDestroyInstance(instance, nullptr);
 }
 
-void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) {
+HostSpan Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) {
     VkCommandBufferAllocateInfo allocInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
     allocInfo.commandPool = commandPool;
     allocInfo.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
@@ -258,10 +259,15 @@ void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) 
     VkSubmitInfo2 submit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
     submit.commandBufferInfoCount = 1;
     submit.pCommandBufferInfos = &cmdInfo;
+    using Clock = std::chrono::steady_clock;
+    const Clock::time_point start = Clock::now();
     VK_CHECK(vkQueueSubmit2(queue, 1, &submit, fence));
     VK_CHECK(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX));
+    const Clock::time_point end = Clock::now();
     vkDestroyFence(device, fence, nullptr);
     vkFreeCommandBuffers(device, commandPool, 1, &cmd);
+    using Us = std::chrono::duration<double, std::micro>;
+    return {Us(start.time_since_epoch()).count(), Us(end - start).count() * 1e-3};
 }
 
 void Context::nameObject(VkObjectType type, uint64_t handle, const std::string& name) const {

@@ -27,6 +27,12 @@ const char* resultName(VkResult result);
                                           " failed: " + ::ssgi::vk::resultName(vkCheckResult_));   \
     } while (0)
 
+// A span of host time around a submission.
+struct HostSpan {
+    double startUs = 0.0;
+    double milliseconds = 0.0;
+};
+
 struct ContextOptions {
     bool validation = false; // Khronos validation layer with synchronization validation
     std::string deviceName;  // substring of the device name to pick; empty = automatic
@@ -60,7 +66,9 @@ public:
     uint32_t validationMessageCount() const { return validationMessages_; }
 
     // Records with `record` into a fresh command buffer, submits and waits.
-    void submitAndWait(const std::function<void(VkCommandBuffer)>& record);
+    // Returns the host's view of the submission: when it was made (microseconds on the steady
+    // clock) and how long until the fence signalled (milliseconds).
+    HostSpan submitAndWait(const std::function<void(VkCommandBuffer)>& record);
 
     // Debug-utils entry points (null when the extension is absent).
     PFN_vkCmdBeginDebugUtilsLabelEXT cmdBeginLabel = nullptr;
