@@ -19,10 +19,8 @@ def frame_order(names):
     return sorted(names, key=lambda n: (FRAME_ORDER.index(n) if n in FRAME_ORDER else 99, n))
 
 
-# A pass timestamp below this is taken as collapsed: llvmpipe writes timestamps from its
-# rasterizer threads when they reach the query, and on a busy machine they can reach the begin
-# query only after the compute work it should precede (the pass then reads ~0.02 ms).
-COLLAPSED_MS = 0.2
+# Every timestamp is taken as it stands: the frame graph makes them true on lavapipe too (a
+# barrier after each stamp; docs/profiling.md), so no pass time is filtered out.
 # Time budgets as fractions of the scene's default configuration (cache off).
 BUDGETS = (0.1, 0.25, 0.5, 1.0)
 # Frames at the end of a still series taken as converged.
@@ -51,17 +49,6 @@ def load(results_dir):
     return sweeps, walks
 
 
-def valid(values):
-    """The timestamps that did not collapse (see COLLAPSED_MS)."""
-    return [v for v in values if v >= COLLAPSED_MS]
-
-
-def robust_median(values):
-    """Median of the valid timestamps; 0 when every one collapsed."""
-    v = valid(values)
-    return statistics.median(v) if v else 0.0
-
-
 def skipped(settings):
     """Passes a configuration records a timestamp for but never runs (the graph writes both
     timestamps of a disabled pass back to back): the half-res gather at full resolution."""
@@ -69,11 +56,10 @@ def skipped(settings):
 
 
 def compose_times(sweep):
-    """Each pass's time is the median of its valid frames pooled over every row that runs it
-    with the same value of its axis (the passes of no axis over every row); a configuration's
-    time is the sum of its passes plus the host's overhead per frame (wall clock less the sum
-    of the passes, over frames where no timestamp collapsed). A pass whose every frame
-    collapsed gets its row's unexplained wall-clock time instead."""
+    """Each pass's time is the median of its frames pooled over every row that runs it with the
+    same value of its axis (the passes of no axis over every row); a configuration's time is the
+    sum of its passes plus the host's overhead per frame (wall clock less the sum of the
+    passes)."""
     warm, rows = sweep["warmup"], sweep["rows"]
     axis_names = [a["name"] for a in sweep["axes"]]
     axis_of = {p: i for i, a in enumerate(sweep["axes"]) for p in a["passes"]}
@@ -85,19 +71,9 @@ def compose_times(sweep):
             frame = {p: v[f] for p, v in row["passes"].items() if p not in skip}
             for p, v in frame.items():
                 pools.setdefault(key(row, p), []).append(v)
-            if all(v >= COLLAPSED_MS for v in frame.values()):
-                overheads.append(row["wall_ms"][f] - sum(frame.values()))
-    medians = {k: robust_median(v) for k, v in pools.items()}
+            overheads.append(row["wall_ms"][f] - sum(frame.values()))
+    medians = {k: statistics.median(v) for k, v in pools.items()}
     overhead = statistics.median(overheads) if overheads else 0.0
-
-    def unexplained(row, target):
-        residuals = []
-        for f in range(warm, len(row["wall_ms"])):
-            known = sum(v[f] if v[f] >= COLLAPSED_MS else medians[key(row, p)]
-                        for p, v in row["passes"].items()
-                        if p != target and p not in skipped(row["settings"]))
-            residuals.append(row["wall_ms"][f] - overhead - known)
-        return max(0.0, statistics.median(residuals))
 
     def passes_of(index):
         out = {}
@@ -106,10 +82,10 @@ def compose_times(sweep):
             row = rows[sweep["row_of"][name][index[a]]]
             for p in row["passes"]:
                 if p in axis_of and axis_of[p] == a and p not in skipped(row["settings"]):
-                    out[p] = medians[key(row, p)] or unexplained(row, p)
+                    out[p] = medians[key(row, p)]
         for p in default_row["passes"]:
             if p not in axis_of:
-                out[p] = medians[key(default_row, p)] or unexplained(default_row, p)
+                out[p] = medians[key(default_row, p)]
         return out
 
     for c in sweep["configs"]:
@@ -119,7 +95,6 @@ def compose_times(sweep):
     sweep["timing"] = {"overhead_ms": overhead, "check_label": check["label"],
                        "check_measured_ms": statistics.median(check["wall_ms"][warm:]),
                        "check_composed_ms": sum(passes_of(check["index"]).values()) + overhead,
-                       "collapsed": sum(1 for v in pools.values() for x in v if x < COLLAPSED_MS),
                        "timestamps": sum(len(v) for v in pools.values())}
 
 
@@ -163,22 +138,21 @@ def best_at_budgets(sweep, errors_from=None):
 def still_camera(sweep, label=None):
     """The still camera under a cache method (the first measured, the thesis rule, unless
     `label` names another): converged frame time against its floor, both sums of per-pass
-    medians of the last frames (collapsed timestamps left out)."""
+    medians of the last frames."""
     series = next((s for s in sweep.get("series", [])
                    if "total_ms" in s and label in (None, s["label"])), None)
     if not series:
         return None
     n = len(series["wall_ms"])
     tail = slice(n - CONVERGED_FRAMES, n)
-    # Per frame: every pass's timestamps over the floor passes' in the same frame (a collapsed
-    # timestamp moves time to the pass before it, so the sum of all passes keeps it; frames
-    # where a floor pass collapsed are left out); the median of those ratios.
+    # Per frame: every pass's timestamps over the floor passes' in the same frame; the median of
+    # those ratios.
     ratios = []
     for f in range(n - CONVERGED_FRAMES, n):
         frame = {p: v[f] for p, v in series["passes"].items()}
-        floor_f = [frame.get(p, 0.0) for p in FLOOR_PASSES]
-        if min(floor_f) >= COLLAPSED_MS:
-            ratios.append(sum(frame.values()) / sum(floor_f))
+        floor_f = sum(frame.get(p, 0.0) for p in FLOOR_PASSES)
+        if floor_f > 0.0:
+            ratios.append(sum(frame.values()) / floor_f)
     passes = {p: statistics.median(v[tail]) for p, v in series["passes"].items()}
     converged = sum(passes.values())
     floor = sum(passes.get(p, 0.0) for p in FLOOR_PASSES)
@@ -262,8 +236,8 @@ def table_4_1(walk):
     runs = {r["label"]: r for r in walk["walkthrough"]["runs"]}
     off, on = runs["cache off"], runs["cache: thesis rule"]
     names = frame_order(set(off["passes"]) | set(on["passes"]))
-    def mean(values):  # over the frames after the first, collapsed timestamps left out
-        v = valid(values[1:]) if len(values) > 1 else valid(values)
+    def mean(values):  # over the frames after the first
+        v = values[1:] if len(values) > 1 else values
         return statistics.mean(v) if v else 0.0
     rows = []
     for name in names:
