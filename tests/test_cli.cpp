@@ -158,6 +158,38 @@ TEST_F(Cli, WalkthroughWritesATraceAndTheHostClockBesideThePasses) {
         EXPECT_GE(j["host_ms"][f].get<double>(), 0.0);
 }
 
+// `cmake --install` gives programs that run from anywhere: their shaders are inside them and
+// their scenes beside them in PREFIX/share/ssgi (issue 22).
+TEST_F(Cli, InstalledRenderRunsFromAnyDirectory) {
+    const fs::path prefix = dir / "prefix";
+    Result install = ssgi::test::runCommand("cmake --install " + std::string(SSGI_BUILD_DIR) +
+                                            " --prefix " + prefix.string());
+    ASSERT_EQ(install.status, 0) << install.output;
+    for (const char* program : {"render", "walkthrough", "reference", "compare"})
+        EXPECT_TRUE(fs::exists(prefix / "bin" / program)) << program;
+    EXPECT_TRUE(fs::exists(prefix / "share/ssgi/scenes/models/bunny.glb"));
+    const fs::path png = dir / "installed.png";
+    Result r = ssgi::test::runCommand("cd / && " + (prefix / "bin/render").string() +
+                                      " --size 48x48 --output " + png.string());
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find((prefix / "share/ssgi/scenes/cornell-box.json").string()),
+              std::string::npos)
+        << "the default scene comes from the installed share/ssgi\n"
+        << r.output;
+    uint32_t w = 0, h = 0;
+    const std::vector<float> rgba = ssgi::readImage(png.string(), w, h);
+    ASSERT_EQ(w, 48u);
+    double sum = 0.0;
+    for (size_t i = 0; i < rgba.size(); i += 4)
+        sum += rgba[i] + rgba[i + 1] + rgba[i + 2];
+    EXPECT_GT(sum / (w * h * 3), 0.02) << "rendered (nearly) black";
+    // A scene given by path renders too.
+    r = ssgi::test::runCommand("cd / && " + (prefix / "bin/render").string() + " " +
+                               (prefix / "share/ssgi/scenes/bunny.json").string() +
+                               " --size 32x32 --output " + (dir / "bunny.png").string());
+    EXPECT_EQ(r.status, 0) << r.output;
+}
+
 struct BadInput {
     std::string arguments, environment, expected;
 };

@@ -72,12 +72,23 @@ bool parseCommonArg(int argc, char** argv, int& i, CommonArgs& a) {
     return true;
 }
 
-void finishCommonArgs(CommonArgs& a) {
-    if (a.scene.empty()) {
-        a.scene = "scenes/cornell-box.json";
-        if (!fs::exists(a.scene))
-            a.scene = std::string(SSGI_SOURCE_DIR) + "/scenes/cornell-box.json";
+std::string dataDirectory() {
+    std::error_code ec;
+    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    if (!ec) {
+        const fs::path installed = exe.parent_path().parent_path() / "share" / "ssgi";
+        if (fs::is_directory(installed / "scenes", ec)) return installed.string();
     }
+    return SSGI_SOURCE_DIR;
+}
+
+std::string defaultScene() {
+    const std::string local = "scenes/cornell-box.json";
+    return fs::exists(local) ? local : dataDirectory() + "/" + local;
+}
+
+void finishCommonArgs(CommonArgs& a) {
+    if (a.scene.empty()) a.scene = defaultScene();
     if (const char* env = std::getenv("SSGI_DEVICE"); env && a.device.empty()) a.device = env;
 #ifndef NDEBUG
     a.validation = true; // debug builds always validate

@@ -24,6 +24,11 @@ extern const char* kCommonUsage;
 // Takes argv[i] (and its value, advancing i) when it is a common option or the scene; returns
 // false for anything else. Throws InputError for a malformed value.
 bool parseCommonArg(int argc, char** argv, int& i, CommonArgs& args);
+// Where the files a program ships with are (scenes/, docs/stability_plot.py): PREFIX/share/ssgi
+// beside an installed program's PREFIX/bin, else the source tree it was built from.
+std::string dataDirectory();
+// scenes/cornell-box.json from the working directory when it is there, else from dataDirectory().
+std::string defaultScene();
 // Fills what was not given (default scene, SSGI_DEVICE, SSGI_VALIDATION, debug builds).
 void finishCommonArgs(CommonArgs& args);
 // The scene with the --set overrides applied and checked.

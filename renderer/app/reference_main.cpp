@@ -123,11 +123,7 @@ Args parseArgs(int argc, char** argv) {
     if (a.options.jitter && a.options.mode != Mode::Full && a.options.mode != Mode::Multi)
         throw InputError("--jitter: only for --mode full or multi; the per-effect modes sample "
                          "pixel centres so that their edges match the real-time image");
-    if (a.scene.empty()) {
-        a.scene = "scenes/cornell-box.json";
-        if (!fs::exists(a.scene))
-            a.scene = std::string(SSGI_SOURCE_DIR) + "/scenes/cornell-box.json";
-    }
+    if (a.scene.empty()) a.scene = cli::defaultScene();
     if (a.output.empty())
         a.output = "out/" + fs::path(a.scene).stem().string() + "-" + modeName(a.options.mode) +
                    "-ref.exr";

@@ -83,6 +83,7 @@ Args parseArgs(int argc, char** argv) {
         throw InputError("--size: at least 16x16 (the regions need a few pixels)");
     for (const auto& [key, value] : a.common.settings)
         a.run.settings.push_back({key, checkSetting("--set", key, value)});
+    a.run.repository = cli::dataDirectory(); // where scenes/stability/ is, installed or not
     return a;
 }
 
@@ -221,7 +222,7 @@ int run(int argc, char** argv) {
     if (args.plot) {
         // python3 first; Debian's own where python3 on the PATH is another one (pyenv, venv)
         // without python3-matplotlib.
-        const std::string script = std::string(SSGI_SOURCE_DIR) + "/docs/stability_plot.py";
+        const std::string script = cli::dataDirectory() + "/docs/stability_plot.py";
         bool plotted = false;
         for (const char* python : {"python3", "/usr/bin/python3"}) {
             const std::string command =

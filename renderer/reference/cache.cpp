@@ -135,7 +135,16 @@ void writeCached(const fs::path& file, const ReferenceImage& image) {
 
 std::string defaultCacheDir() {
     if (const char* env = std::getenv("SSGI_REFERENCE_CACHE"); env && *env) return env;
-    return SSGI_REFERENCE_CACHE_DIR;
+    // The build tree's cache while the build tree is there; an installed program, whose build
+    // tree may be gone, uses the user's cache folder.
+    const fs::path build = fs::path(SSGI_REFERENCE_CACHE_DIR).parent_path();
+    std::error_code ec;
+    if (fs::is_directory(build, ec)) return SSGI_REFERENCE_CACHE_DIR;
+    if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
+        return (fs::path(xdg) / "ssgi" / "reference").string();
+    if (const char* home = std::getenv("HOME"); home && *home)
+        return (fs::path(home) / ".cache" / "ssgi" / "reference").string();
+    return (fs::temp_directory_path() / "ssgi-reference-cache").string();
 }
 
 std::string referenceKey(const Scene& scene, const Camera& camera,

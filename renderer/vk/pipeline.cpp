@@ -1,22 +1,22 @@
 #include "vk/pipeline.h"
 
 #include "scene/scene.h"
+#include "vk/embedded_shaders.h"
 
+#include <algorithm>
 #include <cstddef>
-#include <fstream>
-#include <iterator>
 
 namespace ssgi::vk {
 
 static VkShaderModule loadShader(const Context& ctx, const std::string& name) {
-    const std::string path = std::string(SSGI_SHADER_DIR) + "/" + name + ".spv";
-    std::ifstream file(path, std::ios::binary);
-    if (!file) throw VulkanError("cannot open shader " + path + " (was the project built?)");
-    std::vector<char> code((std::istreambuf_iterator<char>(file)), {});
-    if (code.empty() || code.size() % 4 != 0) throw VulkanError("malformed SPIR-V file " + path);
+    const auto& shaders = embeddedShaders();
+    const auto found = std::find_if(shaders.begin(), shaders.end(),
+                                    [&](const EmbeddedShader& s) { return name == s.name; });
+    if (found == shaders.end())
+        throw VulkanError("no shader " + name + " in this program (not in shaders/glsl/?)");
     VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-    info.codeSize = code.size();
-    info.pCode = reinterpret_cast<const uint32_t*>(code.data());
+    info.codeSize = found->bytes;
+    info.pCode = found->code;
     VkShaderModule module;
     VK_CHECK(vkCreateShaderModule(ctx.device, &info, nullptr, &module));
     return module;
