@@ -14,7 +14,7 @@ namespace ssgi::cli {
 const char* kCommonUsage =
     R"(  SCENE                 scene file (.json) or glTF (.gltf/.glb); default scenes/cornell-box.json
   --size WxH            image size (default 512x512)
-  --set KEY=VALUE       override a method setting (repeatable; see the README's settings)
+  --set KEY=VALUE       override a method setting (repeatable; see docs/settings.md)
   --device NAME         use the Vulkan device whose name contains NAME (or SSGI_DEVICE)
   --validation          enable the Khronos validation layer with synchronization validation
                         (or SSGI_VALIDATION=1); any message makes the exit status non-zero
