@@ -180,8 +180,8 @@ def series_charts(sweeps, size, images_dir):
     save(fig, images_dir, "bench-convergence")
 
 
-def walkthrough_chart(walks, images_dir):
-    scenes = sorted(walks)
+def walkthrough_chart(walks, images_dir, name="bench-walkthrough", scenes=None):
+    scenes = scenes or sorted(walks)
     if not scenes:
         return
     fig, axes = plt.subplots(1, len(scenes), figsize=(max(8, 5 * len(scenes)), 4),
@@ -202,7 +202,7 @@ def walkthrough_chart(walks, images_dir):
     fig.suptitle("The camera path with the cache off and on (frames alternated)\n%s"
                  % device_of(walks[scenes[0]]), fontsize=10)
     fig.tight_layout()
-    save(fig, images_dir, "bench-walkthrough")
+    save(fig, images_dir, name)
 
 
 def draw_all(sweeps, walks, size, images_dir):

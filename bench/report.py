@@ -104,6 +104,39 @@ def targets(sweeps, walks, size):
     return table(["scene", "target", "wanted", "measured", "met"], rows)
 
 
+def walkthrough_tables(scene, w, title):
+    """One walkthrough's tables: per pass, cache off and on (the thesis's Tables 4.1-4.4), the
+    error along the path, and every run against the uncached one."""
+    md = []
+    pass_rows, off, on, wall, errors = analysis.table_4_1(w)
+    md.append("\n### %s on %s: the camera path (%d frames, %dx%d) with and without "
+              "the cache\n\n" % (title, scene, w["walkthrough"]["frames"], w["width"], w["height"]))
+    fmt = lambda v: "—" if v is None else "%.1f" % v
+    ratio = lambda a, b: "—" if a is None or b is None else (
+        "%.2f" % (a / b) if b >= 0.05 else "skipped when on")
+    rows = [[n, fmt(a), fmt(b), ratio(a, b)] for n, a, b in pass_rows]
+    rows.append(["**sum of passes**", fmt(off), fmt(on), "**%.2f**" % (off / on)])
+    rows.append([wall[0], fmt(wall[1]), fmt(wall[2]), "%.2f" % (wall[1] / wall[2])])
+    md.append("Means over the frames after the first; passes by GPU timestamps, the total "
+              "by their sum, and the host's wall clock around each frame.\n\n")
+    md.append(table(["pass", "off, ms", "on, ms", "off / on"], rows))
+    if errors:
+        md.append("\nError (relMSE against the reference at %dx%d) along the path:\n\n" %
+                  (w["error_width"], w["error_height"]) + table(
+                      ["frame", "cache off", "cache on"],
+                      [[f + 1, "%.4f" % a, "%.4f" % b] for f, a, b in errors]))
+    # Any other cached run of the same walkthrough (the thesis's cheap frames), against
+    # the uncached one: frame time ratio and mean error.
+    runs = analysis.walk_runs(w)
+    if any(label not in ("cache off", "cache: thesis rule") for label, *_ in runs):
+        rows = [[label, "%.1f" % ms, "%.2f" % speed, "%.4f" % err]
+                for label, ms, speed, err in runs]
+        md.append("\nEvery run of the walkthrough (wall clock, mean over the frames after the "
+                  "first; mean relMSE over the error frames):\n\n" + table(
+                      ["run", "frame, ms", "cache off / run", "mean relMSE"], rows))
+    return "".join(md)
+
+
 def tables(sweeps, walks, size, note):
     md = []
     first = next(iter(sweeps.values()))[size]
@@ -164,32 +197,7 @@ def tables(sweeps, walks, size, note):
                      "frames"], rows))
 
     for scene, w in walks.items():
-        pass_rows, off, on, wall, errors = analysis.table_4_1(w)
-        md.append("\n### Table 4.1 on %s: the camera path (%d frames, %dx%d) with and without "
-                  "the cache\n\n" % (scene, w["walkthrough"]["frames"], w["width"], w["height"]))
-        fmt = lambda v: "—" if v is None else "%.1f" % v
-        ratio = lambda a, b: "—" if a is None or b is None else (
-            "%.2f" % (a / b) if b >= 0.05 else "skipped when on")
-        rows = [[n, fmt(a), fmt(b), ratio(a, b)] for n, a, b in pass_rows]
-        rows.append(["**sum of passes**", fmt(off), fmt(on), "**%.2f**" % (off / on)])
-        rows.append([wall[0], fmt(wall[1]), fmt(wall[2]), "%.2f" % (wall[1] / wall[2])])
-        md.append("Means over the frames after the first; passes by GPU timestamps, the total "
-                  "by their sum, and the host's wall clock around each frame.\n\n")
-        md.append(table(["pass", "off, ms", "on, ms", "off / on"], rows))
-        if errors:
-            md.append("\nError (relMSE against the reference at %dx%d) along the path:\n\n" %
-                      (w["error_width"], w["error_height"]) + table(
-                          ["frame", "cache off", "cache on"],
-                          [[f + 1, "%.4f" % a, "%.4f" % b] for f, a, b in errors]))
-        # Any other cached run of the same walkthrough (the thesis's cheap frames), against
-        # the uncached one: frame time ratio and mean error.
-        runs = analysis.walk_runs(w)
-        if any(label not in ("cache off", "cache: thesis rule") for label, *_ in runs):
-            rows = [[label, "%.1f" % ms, "%.2f" % speed, "%.4f" % err]
-                    for label, ms, speed, err in runs]
-            md.append("\nEvery run of the walkthrough (wall clock, mean over the frames after the "
-                      "first; mean relMSE over the error frames):\n\n" + table(
-                          ["run", "frame, ms", "cache off / run", "mean relMSE"], rows))
+        md.append(walkthrough_tables(scene, w, "Table 4.1"))
 
     md.append("\n### GPU memory of the frame graph's images (cache on), MiB\n\n")
     sizes_seen = sorted(next(iter(sweeps.values()))[size]["memory"],

@@ -5,6 +5,9 @@
 #                          Sponza), into docs/ (about 55 min on 2 cores)
 #   bench/run.sh --quick   quick: the same scenes at 256x256, into out/bench/quick/ (4 min)
 #   bench/run.sh --all     every scene (+ Sibenik, Conference Room, Mori knob; about 2 h)
+#   bench/run.sh --walkthroughs   the thesis's Tables 4.1-4.4 only: the camera paths of the bunny,
+#                          Sponza, Sibenik and the conference room at 512x512, cache off and on,
+#                          into docs/bench-walkthroughs.md (about 1 h)
 # Options: --scenes "a b"  only these scenes (names of scenes/*.json)
 #          --report-only   redraw charts and tables from the last run's JSON
 set -euo pipefail
@@ -15,9 +18,10 @@ while [ $# -gt 0 ]; do
   case "$1" in
     --quick) mode=quick ;;
     --all) mode=all ;;
+    --walkthroughs) mode=walkthroughs ;;
     --scenes) scenes="$2"; shift ;;
     --report-only) report_only=1 ;;
-    -h|--help) sed -n '2,11p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,14p' "$0"; exit 0 ;;
     *) echo "error: unknown option $1 (see bench/run.sh --help)" >&2; exit 2 ;;
   esac
   shift
@@ -30,6 +34,10 @@ if [ "$mode" = quick ]; then
   size=256x256 error=128 frames=2 series=44 series_methods=1 other_sizes=""
   walk_scenes="bunny" path_frames=48 error_frames=2
   images=$out/images doc=""
+elif [ "$mode" = walkthroughs ]; then
+  scenes=${scenes:-"sponza sibenik conference bunny"}
+  size=512x512 error=256 frames=3 walk_scenes=$scenes path_frames=96 error_frames=3
+  images=docs/images doc=docs/bench-walkthroughs.md out=out/bench/walk
 else
   all="cornell-box bunny sponza sibenik conference mori-knob"
   [ "$mode" = all ] || all="cornell-box bunny sponza"
@@ -62,6 +70,7 @@ if [ "$report_only" = 0 ]; then
   # The steps: a sweep per scene and size, a walkthrough per walkthrough scene.
   steps=()
   for s in $scenes; do
+    [ "$mode" = walkthroughs ] && continue
     steps+=("sweep $s $size --error-size $error --series-frames $series --series-methods $series_methods")
     case " ${other_scenes:-} " in *" $s "*)
       for z in $other_sizes; do
@@ -93,6 +102,11 @@ if [ "$report_only" = 0 ]; then
     "$(nproc) cores ($(date -u +%Y-%m-%d))." >"$out/run.txt"
 fi
 note=$(cat "$out/run.txt" 2>/dev/null || echo "Mode: $mode.")
+if [ "$mode" = walkthroughs ]; then
+  "$py" bench/walkthroughs.py --results "$out" --images "$images" --doc "$doc"
+  echo "done in $((seconds / 60)) min $((seconds % 60)) s: results in $out/, charts in $images/"
+  exit 0
+fi
 "$py" bench/report.py --results "$out" --images "$images" --size "$size" \
   ${doc:+--doc "$doc"} --note "$note"
 echo "done in $((seconds / 60)) min $((seconds % 60)) s: results in $out/, charts in $images/"
