@@ -20,6 +20,22 @@ vec3 skyRadiance(vec3 direction, vec3 zenith, vec3 horizon, vec3 ground) {
     return direction.y >= 0.0 ? mix(horizon, zenith, direction.y) : ground;
 }
 
+// Irradiance / pi from the whole unoccluded sky on a surface with normal n: (1/pi) times the
+// integral of skyRadiance(w) max(n.w, 0) over the sphere, in closed form in c = n.y. The sky is
+// ground below the horizon, horizon + (zenith - horizon) w.y above it, so three integrals:
+// - the cosine lobe's share above the horizon, (1 + c) / 2, and below it, (1 - c) / 2 (the
+//   view factors of the two half-spaces from a tilted plane);
+// - (1/pi) * integral of w.y max(n.w, 0) over the upper hemisphere: the integral of two clamped
+//   cosines whose axes are g = acos(c) apart, (2/3)((pi - g) cos g + sin g), over pi.
+// c = 1 gives horizon/3 + 2 zenith/3; c = -1 gives ground. Evaluating skyRadiance along n instead
+// is exact only for a constant sky (and turns a flat-shaded model's n.y = 0 edges into steps).
+vec3 skyIrradianceOverPi(vec3 n, vec3 zenith, vec3 horizon, vec3 ground) {
+    float c = clamp(n.y, -1.0, 1.0);
+    float g = acos(c);
+    float gradient = (2.0 / (3.0 * PI)) * ((PI - g) * c + sqrt(max(1.0 - c * c, 0.0)));
+    return ground * (0.5 - 0.5 * c) + horizon * (0.5 + 0.5 * c) + (zenith - horizon) * gradient;
+}
+
 // Per-pixel rotation of a sampling pattern (interleaved gradient noise, Jimenez 2014): plays
 // the role of the thesis's random-vector texture, decorrelating neighbouring pixels.
 float pixelRotation(ivec2 pixel) {

@@ -37,10 +37,10 @@ vec3 encodeSrgb(vec3 linear) {
                step(vec3(0.0031308), linear));
 }
 
-// Irradiance/pi from an unoccluded sky on a surface with normal n: the gradient evaluated along
-// the normal is exact for a constant sky and a fair estimate for a smooth gradient.
+// Irradiance/pi from an unoccluded sky on a surface with normal n (closed form, common.glsl);
+// the AO then stands for the sky's visibility.
 vec3 skyLight(vec3 n) {
-    return skyRadiance(n, frame.skyZenith.rgb, frame.skyHorizon.rgb, frame.skyGround.rgb);
+    return skyIrradianceOverPi(n, frame.skyZenith.rgb, frame.skyHorizon.rgb, frame.skyGround.rgb);
 }
 
 void main() {
