@@ -203,7 +203,7 @@ Scene buildScene(const std::string& path, const SceneDescription& description, b
     if (scene.bounds.empty()) fail(path, "the scene has no triangles");
     if (glm::length(scene.bounds.size()) == 0.0f) fail(path, "all of the scene is at one point");
 
-    // Camera, light and ground frame what the files hold, not the ground itself.
+    // The camera, light and ground plane fit the model (what the files hold), not the plane.
     const Aabb model = scene.bounds;
     if (wantsGround(scene.settings, bare) && !hasGround(scene, model)) {
         addGroundPlane(scene, model);
