@@ -68,6 +68,27 @@ TEST_F(Cli, EverySceneRenders) {
     expectNoTemporaries();
 }
 
+// Every model of scenes/models/ given bare (no scene file) comes out framed and lit: its
+// default camera, light, sky and ground give a mean brightness of at least 40/255 (before
+// they did, all eight stayed below 13/255).
+TEST_F(Cli, BareModelsComeOutLit) {
+    size_t models = 0;
+    for (const auto& entry : fs::directory_iterator(ssgi::test::sourcePath("scenes/models"))) {
+        if (entry.path().extension() != ".glb") continue;
+        ++models;
+        const std::string png = (dir / (entry.path().stem().string() + ".png")).string();
+        Result r = run(entry.path().string() + " --size 64x64 --validation --output " + png);
+        ASSERT_EQ(r.status, 0) << entry.path() << "\n" << r.output;
+        uint32_t w, h;
+        const std::vector<float> pixels = ssgi::readImage(png, w, h);
+        double sum = 0.0;
+        for (size_t i = 0; i < pixels.size(); i += 4)
+            sum += pixels[i] + pixels[i + 1] + pixels[i + 2];
+        EXPECT_GE(255.0 * sum / (w * h * 3), 40.0) << entry.path() << " came out too dark";
+    }
+    EXPECT_GE(models, 8u);
+}
+
 TEST_F(Cli, ProfilePrintsEveryPassAndWritesJson) {
     const std::string json = (dir / "profile.json").string();
     Result r = run("--size 64x64 --frames 3 --profile --profile-json " + json + " --output " +

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
@@ -98,10 +99,10 @@ void finishCommonArgs(CommonArgs& a) {
 }
 
 Scene loadSceneWithSettings(const CommonArgs& args) {
-    Scene scene = loadScene(args.scene);
+    std::map<std::string, double> settings;
     for (const auto& [key, value] : args.settings)
-        scene.settings[key] = checkSetting("--set", key, value);
-    return scene;
+        settings[key] = checkSetting("--set", key, value);
+    return loadScene(args.scene, settings);
 }
 
 int guardedMain(int argc, char** argv, int (*run)(int, char**)) {

@@ -15,7 +15,7 @@ struct CommonArgs {
     uint32_t width = 512, height = 512;
     std::string device;
     bool validation = false;
-    std::vector<std::pair<std::string, double>> settings; // --set, checked after loading
+    std::vector<std::pair<std::string, double>> settings; // --set, checked before loading
 };
 
 // Usage lines of the common options.

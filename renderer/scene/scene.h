@@ -146,9 +146,11 @@ struct Scene {
     double setting(const std::string& key) const;
 };
 
-// Loads a scene description file (.json) or a bare glTF (.gltf/.glb, with a default light and
-// camera derived from its bounds). Throws InputError naming the file and the problem.
-Scene loadScene(const std::string& path);
+// Loads a scene description file (.json) or a bare glTF (.gltf/.glb, staged with a camera,
+// light, daylight sky and ground plane derived from its bounds: bare_model.h). `settings`
+// (already checked, e.g. `render --set`) override the file's and are seen while loading, as
+// "ground_plane" must be. Throws InputError naming the file and the problem.
+Scene loadScene(const std::string& path, const std::map<std::string, double>& settings = {});
 
 // The ambient-occlusion radius in scene units: the "ao_radius" setting when > 0, else 5% of the
 // scene's bounding-box diagonal. The real-time AO and the reference's AO use the same value.

@@ -1,6 +1,8 @@
 // loadScene(): a scene description file, or a bare glTF, into the scene model. What the files
-// leave out (light, camera, clip planes) is derived from the scene's bounds.
+// leave out (light, camera, clip planes) is derived from the scene's bounds; a bare glTF is also
+// staged (bare_model.h): its own camera and light, a daylight sky and a ground plane.
 #include "scene/animation.h"
+#include "scene/bare_model.h"
 #include "scene/gltf_internal.h"
 #include "scene/primitives.h"
 #include "scene/scene_json.h"
@@ -41,8 +43,9 @@ Aabb worldBounds(const Scene& scene, const std::string& file) {
     return bounds;
 }
 
-// Straight down from just below the top of the bounds (so a closed room's ceiling does not hide
-// it), bright enough for an irradiance of about 1 on the floor beneath it.
+// A scene file's light when it names none: straight down from just below the top of the bounds (so
+// a closed room's ceiling does not hide it), bright enough for an irradiance of about 1 on the
+// floor beneath it.
 SpotLight defaultLight(const Aabb& bounds) {
     const glm::vec3 size = bounds.size();
     SpotLight light;
@@ -56,8 +59,8 @@ SpotLight defaultLight(const Aabb& bounds) {
     return light;
 }
 
-// From +Z towards the centre, far enough that the bounding sphere fits a 45 degree view.
-// Clip planes are left at 0 for fillClipPlanes().
+// A scene file's camera when it names none: from +Z towards the centre, far enough that the
+// bounding sphere fits a 45 degree view. Clip planes are left at 0 for fillClipPlanes().
 Camera defaultCamera(const Aabb& bounds) {
     Camera camera;
     camera.yfov = glm::radians(45.0f);
@@ -161,9 +164,21 @@ void addObjects(const SceneDescription& description, const std::string& file, Sc
     }
 }
 
-Scene buildScene(const std::string& path, const SceneDescription& description) {
+// The ground plane is asked for by the "ground_plane" setting (the command line's, else the
+// scene file's); a bare glTF gets one unless told otherwise, a scene file only when it says so,
+// so scene files written before the setting render as they did.
+bool wantsGround(const std::map<std::string, double>& settings, bool bare) {
+    auto it = settings.find("ground_plane");
+    return it != settings.end() ? it->second != 0.0 : bare;
+}
+
+Scene buildScene(const std::string& path, const SceneDescription& description, bool bare,
+                 const std::map<std::string, double>& settings) {
     Scene scene;
     scene.sourcePath = path;
+    scene.settings = description.settings;
+    for (const auto& [key, value] : settings)
+        scene.settings[key] = value;
     GltfViewpoint viewpoint;
     for (const std::string& gltfPath : description.gltfPaths) {
         GltfViewpoint found;
@@ -188,39 +203,53 @@ Scene buildScene(const std::string& path, const SceneDescription& description) {
     if (scene.bounds.empty()) fail(path, "the scene has no triangles");
     if (glm::length(scene.bounds.size()) == 0.0f) fail(path, "all of the scene is at one point");
 
-    scene.light = viewpoint.light.value_or(defaultLight(scene.bounds));
-    if (description.light) scene.light = applyLightSpec(*description.light, scene.light, path);
-    scene.sky = description.sky;
+    // The camera, light and ground plane fit the model (what the files hold), not the plane.
+    const Aabb model = scene.bounds;
+    if (wantsGround(scene.settings, bare) && !hasGround(scene, model)) {
+        addGroundPlane(scene, model);
+        for (const Vertex& vertex : scene.meshes.back().vertices)
+            scene.bounds.extend(vertex.position);
+        // The AO radius stays the model's, not 5% of the far larger ground's diagonal.
+        scene.settings.try_emplace("ao_radius", 0.05 * glm::length(model.size()));
+    }
 
     // Path keys refine the scene camera as written, before its clip planes are derived, so a
     // key that moves the camera gets clip planes fitted to where it is.
-    Camera camera = viewpoint.camera.value_or(defaultCamera(scene.bounds));
+    Camera camera = viewpoint.camera.value_or(bare ? bareModelCamera(model) : defaultCamera(model));
     if (description.camera) camera = applyCameraSpec(*description.camera, camera, path);
     for (const auto& [time, spec] : description.cameraPath) {
         CameraKey key{time, applyCameraSpec(spec, camera, path)};
         fillClipPlanes(key.camera, scene.bounds);
         scene.cameraPath.keys.push_back(key);
     }
+
+    scene.light =
+        viewpoint.light.value_or(bare ? bareModelLight(model, camera) : defaultLight(model));
+    if (description.light) scene.light = applyLightSpec(*description.light, scene.light, path);
+    scene.sky = description.sky;
+
     fillClipPlanes(camera, scene.bounds);
     scene.camera = camera;
-    scene.settings = description.settings;
     return scene;
 }
 
 } // namespace
 
-Scene loadScene(const std::string& path) {
+Scene loadScene(const std::string& path, const std::map<std::string, double>& settings) {
     std::string extension = std::filesystem::path(path).extension().string();
     std::transform(extension.begin(), extension.end(), extension.begin(),
                    [](unsigned char c) { return char(std::tolower(c)); });
     SceneDescription description;
-    if (extension == ".gltf" || extension == ".glb")
+    const bool bare = extension == ".gltf" || extension == ".glb";
+    if (bare) {
         description.gltfPaths = {path};
-    else if (extension == ".json")
+        description.sky = daylightSky();
+    } else if (extension == ".json") {
         description = readSceneDescription(path);
-    else
+    } else {
         fail(path, "unsupported file type '" + extension + "' (expected .json, .gltf or .glb)");
-    return buildScene(path, description);
+    }
+    return buildScene(path, description, bare, settings);
 }
 
 } // namespace ssgi

@@ -12,6 +12,9 @@ const std::map<std::string, SettingSpec>& settingSpecs() {
     static const std::map<std::string, SettingSpec> specs = {
         {"shadow_map_size", {1024, 16, 8192, true, "RSM resolution, texels per side"}},
         {"exposure", {1.0, 1e-6, 1e6, false, "multiplies radiance before tonemapping"}},
+        // Read while loading (docs/bare-models.md): a scene file's default is no ground.
+        {"ground_plane",
+         {1, 0, 1, true, "a ground under a bare glTF without a floor; scene files: when set"}},
         {"shadow_bias", {1.5, 0, 100, false, "normal offset of the shadow lookup, in texels"}},
         {"shadow_taps", {49, 1, 64, true, "PCF taps (1 = hard shadow; thesis: 49, or 9 + cache)"}},
         {"ao", {1, 0, 1, true, "ambient occlusion on (1) or off (0)"}},
