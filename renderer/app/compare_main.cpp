@@ -49,7 +49,8 @@ Thresholds: each one exceeded prints a FAIL line and makes the exit status 1; 0 
 (2 for bad input). NaN never passes.
   --max-relmse X        relMSE over the whole image (masks and the edge band are reported only)
   --max-diff D          golden-image test on the display images: a pixel differs when any of
-                        R, G, B differs by more than D in 0-255 units (a .png's stored values)
+                        R, G, B differs by more than D in 0-255 units of the 8-bit display
+                        image (a .png's stored values; a .exr's tonemapped ones)
   --max-fraction F      at most this fraction (0..1) of the pixels may differ (default 0;
                         needs --max-diff); e.g. --max-diff 5 --max-fraction 0.001
   --max-flip X          mean FLIP (0..1)
