@@ -1,6 +1,7 @@
 #include "app/cli.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -47,6 +48,20 @@ uint32_t parsePositiveCount(const std::string& option, const std::string& text) 
     const uint32_t n = parseCount(option, text);
     if (n == 0) throw InputError(option + ": must be at least 1");
     return n;
+}
+
+double parseNumber(const std::string& option, const std::string& text, double lo, double hi) {
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0' || !std::isfinite(v) || !(v >= lo && v <= hi)) {
+        char range[96];
+        if (std::isinf(hi))
+            std::snprintf(range, sizeof range, "a number >= %g", lo);
+        else
+            std::snprintf(range, sizeof range, "a number in [%g, %g]", lo, hi);
+        throw InputError(option + ": '" + text + "' is not " + range);
+    }
+    return v;
 }
 
 bool parseCommonArg(int argc, char** argv, int& i, CommonArgs& a) {

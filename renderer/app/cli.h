@@ -41,6 +41,9 @@ uint32_t parseCount(const std::string& option, const std::string& text);
 std::pair<std::string, double> parseSetting(const std::string& option, const std::string& text);
 // parseCount, at least 1 (a number of frames, steps, ...).
 uint32_t parsePositiveCount(const std::string& option, const std::string& text);
+// A finite decimal number in [lo, hi] (hi may be infinity); InputError naming the option and
+// the range otherwise, so a threshold of "-1", "0.1x" or "nan" is bad input, never a result.
+double parseNumber(const std::string& option, const std::string& text, double lo, double hi);
 
 // Runs `run` and turns what it throws into the exit status, with `error: ...` on stderr: 2 for
 // bad input (InputError), 1 for anything else. Every program's main() is this.

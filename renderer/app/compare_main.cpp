@@ -1,9 +1,12 @@
 // compare: error figures of an image against a reference (relMSE, RMSE, mean absolute error,
-// SSIM) over the whole image, inside masks and inside a screen-edge band; a table on stdout,
-// every figure as JSON, and a false-colour error map.
+// SSIM) over the whole image, inside masks and inside a screen-edge band, and LDR-FLIP of the
+// display images; a table on stdout, every figure as JSON, false-colour maps, and thresholds
+// that set the exit status so that CI can fail a render against a stored golden image.
 #include "app/cli.h"
 #include "image_io.h"
 #include "metrics/error_map.h"
+#include "metrics/flip.h"
+#include "metrics/golden.h"
 #include "scene/scene.h"
 
 #include <nlohmann/json.hpp>
@@ -14,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
@@ -30,12 +34,45 @@ const char* kUsage = R"(usage: compare A B [options]
   --json FILE           write every figure as JSON
   --error-map FILE.png  write a false-colour map of per-pixel relative error (log scale,
                         black 0.1% .. pale yellow 100%; cyan where A is NaN or infinite)
+  --flip-map FILE.png   write the per-pixel FLIP of the display images (same colours, linear:
+                        black 0 .. pale yellow 1; cyan where it is NaN)
+  --ppd P               FLIP's pixels per degree of visual angle (default 67: a 0.7 m wide
+                        3840-pixel monitor seen from 0.7 m, as in the FLIP paper)
+  --exposure E          exposure of a linear .exr's display image (default 1; give the scene's)
+
+Display images (what --max-diff, FLIP and --flip-map look at): a .png as stored, its 8-bit
+sRGB-encoded values; a .exr holds linear radiance and is tonemapped as the composite pass does
+it (times --exposure, ACES fit, sRGB encoding), then rounded to 8 bits. relMSE, RMSE, MAE and
+SSIM use the values as read (linear for .exr). FLIP is LDR-FLIP (Andersson et al. 2020).
+
+Thresholds: each one exceeded prints a FAIL line and makes the exit status 1; 0 when all pass
+(2 for bad input). NaN never passes.
+  --max-relmse X        relMSE over the whole image (masks and the edge band are reported only)
+  --max-diff D          golden-image test on the display images: a pixel differs when any of
+                        R, G, B differs by more than D in 0-255 units of the 8-bit display
+                        image (a .png's stored values; a .exr's tonemapped ones)
+  --max-fraction F      at most this fraction (0..1) of the pixels may differ (default 0;
+                        needs --max-diff); e.g. --max-diff 5 --max-fraction 0.001
+  --max-flip X          mean FLIP (0..1)
 )";
 
 struct Args {
-    std::string test, reference, json, errorMap;
+    std::string test, reference, json, errorMap, flipMap;
     std::vector<std::string> masks;
     uint32_t edgeBand = 0;
+    double ppd = metrics::flip::kDefaultPpd, exposure = 1.0;
+    // Thresholds; negative = not given.
+    double maxRelMse = -1.0, maxDiff = -1.0, maxFraction = -1.0, maxFlip = -1.0;
+};
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// FAIL or PASS lines on stdout: a threshold exceeded is a result of the comparison, not an error
+// of the command; the exit status carries it.
+struct Check {
+    std::string name;
+    double value, limit;
+    bool pass() const { return value <= limit; } // false for NaN
 };
 
 Args parseArgs(int argc, char** argv) {
@@ -65,12 +102,31 @@ Args parseArgs(int argc, char** argv) {
             a.errorMap = value(i);
             if (fs::path(a.errorMap).extension() != ".png")
                 throw InputError("--error-map: '" + a.errorMap + "' must end in .png");
+        } else if (arg == "--flip-map") {
+            a.flipMap = value(i);
+            if (fs::path(a.flipMap).extension() != ".png")
+                throw InputError("--flip-map: '" + a.flipMap + "' must end in .png");
+        } else if (arg == "--ppd") {
+            a.ppd = cli::parseNumber(arg, value(i), 1e-3, 1e4);
+        } else if (arg == "--exposure") {
+            a.exposure = cli::parseNumber(arg, value(i), 1e-6, 1e6);
+        } else if (arg == "--max-relmse") {
+            a.maxRelMse = cli::parseNumber(arg, value(i), 0.0, kInf);
+        } else if (arg == "--max-diff") {
+            a.maxDiff = cli::parseNumber(arg, value(i), 0.0, 255.0);
+        } else if (arg == "--max-fraction") {
+            a.maxFraction = cli::parseNumber(arg, value(i), 0.0, 1.0);
+        } else if (arg == "--max-flip") {
+            a.maxFlip = cli::parseNumber(arg, value(i), 0.0, 1.0);
         } else if (arg.rfind("--", 0) == 0) {
             throw InputError("unknown option " + arg + " (see compare --help)");
         } else {
             images.push_back(arg);
         }
     }
+    if (a.maxFraction >= 0.0 && a.maxDiff < 0.0)
+        throw InputError("--max-fraction needs --max-diff (the difference that counts)");
+    if (a.maxDiff >= 0.0 && a.maxFraction < 0.0) a.maxFraction = 0.0;
     if (images.size() != 2)
         throw InputError("expected two images, the one to judge and the reference, got " +
                          std::to_string(images.size()) + " (see compare --help)");
@@ -98,11 +154,16 @@ nlohmann::json number(double v) {
     return std::isfinite(v) ? nlohmann::json(v) : nullptr;
 }
 
+Image display(const Image& image, const std::string& path, double exposure) {
+    return displayImage(image, fs::path(path).extension() == ".exr", exposure);
+}
+
 int run(int argc, char** argv) {
     const Args args = parseArgs(argc, argv);
     const Image test = load(args.test), reference = load(args.reference);
     requireSize(reference, args.reference, test, args.test);
 
+    std::vector<Check> checks;
     std::vector<std::pair<std::string, Mask>> regions = {{"image", Mask()}};
     if (args.edgeBand > 0)
         regions.emplace_back("edge band " + std::to_string(args.edgeBand) + " px",
@@ -125,6 +186,8 @@ int run(int argc, char** argv) {
                 "SSIM");
     for (const auto& [name, mask] : regions) {
         const Figures f = errorFigures(test, reference, mask, ssim);
+        if (name == "image" && args.maxRelMse >= 0.0)
+            checks.push_back({"relMSE", f.relMse, args.maxRelMse});
         std::printf("%-28s %8zu %11.4e %11.4e %11.4e %8.4f\n", name.c_str(), f.pixels, f.relMse,
                     f.rmse, f.mae, f.ssim);
         jsonRegions.push_back({{"name", name},
@@ -137,9 +200,40 @@ int run(int argc, char** argv) {
     if (nonFinite > 0)
         std::printf("%zu pixels of %s are NaN or infinite\n", nonFinite, args.test.c_str());
 
+    // FLIP and the golden-image test judge what a user sees, so both read the display images.
+    const Image testDisplay = display(test, args.test, args.exposure);
+    const Image referenceDisplay = display(reference, args.reference, args.exposure);
+    const flip::Result flipResult = flip::flip(testDisplay, referenceDisplay, args.ppd);
+    std::printf("mean FLIP %.4f (display images, %g pixels per degree)\n", flipResult.mean,
+                args.ppd);
+    if (args.maxFlip >= 0.0) checks.push_back({"mean FLIP", flipResult.mean, args.maxFlip});
+    double fraction = std::numeric_limits<double>::quiet_NaN();
+    if (args.maxDiff >= 0.0) {
+        fraction = fractionDiffering(testDisplay, referenceDisplay, args.maxDiff);
+        std::printf("%.4g of the pixels differ by more than %g/255 in a channel\n", fraction,
+                    args.maxDiff);
+        char name[64];
+        std::snprintf(name, sizeof name, "fraction of pixels off by more than %g/255",
+                      args.maxDiff);
+        checks.push_back({name, fraction, args.maxFraction});
+    }
+
+    if (!args.flipMap.empty()) {
+        writeImage(args.flipMap, test.width, test.height, flip::flipErrorMap(flipResult.map));
+        std::printf("wrote %s\n", args.flipMap.c_str());
+    }
     if (!args.errorMap.empty()) {
         writeImage(args.errorMap, test.width, test.height, errorMap(test, reference));
         std::printf("wrote %s\n", args.errorMap.c_str());
+    }
+    size_t failed = 0;
+    nlohmann::json jsonChecks = nlohmann::json::array();
+    for (const Check& c : checks) {
+        std::printf("%s: %s %.4g %s %g\n", c.pass() ? "PASS" : "FAIL", c.name.c_str(), c.value,
+                    c.pass() ? "<=" : ">", c.limit);
+        failed += !c.pass();
+        jsonChecks.push_back(
+            {{"name", c.name}, {"value", number(c.value)}, {"limit", c.limit}, {"pass", c.pass()}});
     }
     if (!args.json.empty()) {
         const nlohmann::json j = {{"test", args.test},
@@ -148,12 +242,19 @@ int run(int argc, char** argv) {
                                   {"height", test.height},
                                   {"non_finite_pixels", nonFinite},
                                   {"regions", jsonRegions},
+                                  {"flip", number(flipResult.mean)},
+                                  {"ppd", args.ppd},
+                                  {"flip_map", args.flipMap.empty() ? nlohmann::json(nullptr)
+                                                                    : nlohmann::json(args.flipMap)},
+                                  {"diff_fraction", number(fraction)},
+                                  {"checks", jsonChecks},
+                                  {"pass", failed == 0},
                                   {"error_map", args.errorMap.empty()
                                                     ? nlohmann::json(nullptr)
                                                     : nlohmann::json(args.errorMap)}};
         cli::writeTextAtomically(args.json, j.dump(2) + "\n");
     }
-    return 0;
+    return failed == 0 ? 0 : 1;
 }
 
 } // namespace
