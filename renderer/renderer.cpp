@@ -15,7 +15,7 @@ const std::vector<std::string>& viewNames() {
     // Order matches the VIEW_* values in shared.h.
     static const std::vector<std::string> names = {
         "final",  "albedo", "normal",   "depth", "direct",  "rsm-flux", "rsm-normal",
-        "shadow", "ao",     "indirect", "ssdo",  "contact", "peel"};
+        "shadow", "ao",     "indirect", "ssdo",  "contact", "peel",     "sky-visibility"};
     return names;
 }
 
@@ -99,6 +99,9 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
         terms.indirect =
             addTemporalPass(*setup_, cache, addIndirectPasses(*setup_, scenes, cache), scenes);
     }
+    // The sky's visibility beyond the screen, for the sky term beside the AO.
+    if (scene.setting("sky_visibility") != 0.0 && !ssdo)
+        terms.skyVisibility = addSkyVisibilityPasses(*setup_, scenes);
     setup_->view = view;
     addCompositePass(*setup_, scenes, terms);
 }
@@ -108,6 +111,8 @@ Renderer::~Renderer() {
     graph_.reset();
     for (vk::Pipeline& p : setup_->pipelines)
         vk::destroyPipeline(ctx_, p);
+    for (vk::Buffer& b : setup_->buffers)
+        vk::destroyBuffer(ctx_, b);
     vk::destroyBuffer(ctx_, setup_->frameUniforms);
     vkDestroySampler(ctx_.device, setup_->nearestSampler, nullptr);
     vkDestroySampler(ctx_.device, setup_->linearSampler, nullptr);
@@ -127,6 +132,7 @@ void Renderer::updateUniforms(const Camera& camera) {
                        ? stillFrames_ + 1
                        : 0;
     setup_->settled = stillFrames_ >= uint32_t(scene_.setting("cache_rotations"));
+    setup_->cameraStill = stillFrames_ > 0;
     u.lightViewProjection = light.viewProjection;
     u.inverseLightViewProjection = glm::inverse(light.viewProjection);
     u.cameraPosition = glm::vec4(camera.position, 1.0f);
@@ -169,6 +175,7 @@ void Renderer::renderFrame(const Camera& camera) {
     lastSubmission_ = ctx_.submitAndWait([&](VkCommandBuffer cmd) { graph_->record(cmd); });
     graph_->endFrame();
     setup_->rsmStale = false;
+    setup_->skyMapsStale = false;
     moved_.clear();
     ++frameIndex_;
 }
@@ -204,6 +211,7 @@ void Renderer::setTime(float seconds) {
     transforms_ = next;
     sceneGpu_->setTransforms(transforms_);
     setup_->rsmStale = true;
+    setup_->skyMapsStale = true;
     for (EffectCache& cache : setup_->caches)
         if (cache.motionTest == 0) {
             graph_->resetHistory(cache.value);

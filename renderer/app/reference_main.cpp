@@ -23,7 +23,7 @@ namespace {
 
 const char* kUsage = R"(usage: reference [SCENE] [options]
   SCENE                 scene file (.json) or glTF (.gltf/.glb); default scenes/cornell-box.json
-  --mode M              direct, ao, indirect, full or multi (default full)
+  --mode M              direct, ao, indirect, full, multi or sky (default full)
   --size WxH            image size (default 256x256)
   --spp N               samples per pixel, at most (default 256)
   --noise T             stop sooner once the estimated relative error is at most T (e.g. 0.01)

@@ -14,14 +14,23 @@ CompositeOutputs addCompositePass(PassSetup& s, const GBufferAndRsm& in,
     out.ldr = s.graph.createImage("ldr", VK_FORMAT_R8G8B8A8_UNORM, s.size, storage);
     // Which terms exist is structural: the shader never reads the image bound in place of an
     // effect that is off (the direct term, so that every binding holds a valid image).
-    const vk::Pipeline pipeline = s.computePipeline(
-        "composite.comp", 11, 2, sizeof(shader::CompositeConstants),
-        {{terms.ao.valid() ? 1 : 0, terms.indirect.valid() ? 1 : 0, terms.ssdo.valid() ? 1 : 0}});
+    const vk::Pipeline pipeline =
+        s.computePipeline("composite.comp", 12, 2, sizeof(shader::CompositeConstants),
+                          {{terms.ao.valid() ? 1 : 0, terms.indirect.valid() ? 1 : 0,
+                            terms.ssdo.valid() ? 1 : 0, terms.skyVisibility.valid() ? 1 : 0}});
     auto orDirect = [&](graph::ImageRef ref) { return ref.valid() ? ref : terms.direct; };
-    const graph::ImageRef inputs[11] = {
-        in.gbuffer.position, in.gbuffer.normal,  in.gbuffer.third,           terms.direct,
-        terms.shadow,        orDirect(terms.ao), orDirect(terms.indirect),   orDirect(terms.ssdo),
-        in.rsm.third,        in.rsm.normal,      orDirect(terms.secondLayer)};
+    const graph::ImageRef inputs[12] = {in.gbuffer.position,
+                                        in.gbuffer.normal,
+                                        in.gbuffer.third,
+                                        terms.direct,
+                                        terms.shadow,
+                                        orDirect(terms.ao),
+                                        orDirect(terms.indirect),
+                                        orDirect(terms.ssdo),
+                                        in.rsm.third,
+                                        in.rsm.normal,
+                                        orDirect(terms.secondLayer),
+                                        orDirect(terms.skyVisibility)};
 
     std::vector<graph::ImageUse> uses;
     for (const graph::ImageRef& ref : inputs)
@@ -36,8 +45,8 @@ CompositeOutputs addCompositePass(PassSetup& s, const GBufferAndRsm& in,
                         for (uint32_t i = 0; i < sampled.size(); ++i)
                             d.sampledImage(1 + i, pc.image(sampled[i]).view,
                                            i == 8 || i == 9 ? s.linearSampler : s.nearestSampler);
-                        d.storageImage(12, pc.image(out.hdr).view)
-                            .storageImage(13, pc.image(out.ldr).view)
+                        d.storageImage(13, pc.image(out.hdr).view)
+                            .storageImage(14, pc.image(out.ldr).view)
                             .push(s.ctx, pc.cmd, pipeline);
                         shader::CompositeConstants constants{};
                         constants.mode.x = s.view;

@@ -42,6 +42,7 @@ struct PassSetup {
     VkExtent2D size{};                   // the output image
     VkExtent2D rsmSize{};                // the reflective shadow map
     std::vector<vk::Pipeline> pipelines; // destroyed with the renderer
+    std::vector<vk::Buffer> buffers;     // likewise (the sky maps' views)
     // This frame's turn and scale of every sampling pattern (GUIDE 2.2); set by the renderer.
     float patternRotation = 0.0f;
     float patternScale = 1.0f;
@@ -52,6 +53,10 @@ struct PassSetup {
     std::deque<EffectCache> caches; // empty when caching is off
     // With the cache on, the RSM is drawn again only when the light changes.
     bool rsmStale = true;
+    // The sky visibility maps are drawn again only when an object moved.
+    bool skyMapsStale = true;
+    // The camera is where it was last frame, and nothing moved.
+    bool cameraStill = false;
     // Camera and light unchanged for as many frames as a pixel needs rotations: every pixel is
     // converged, and the cached effects run over their refresh tiles alone.
     bool settled = false;
@@ -136,8 +141,13 @@ graph::ImageRef addSsdoPass(PassSetup& setup, const GBufferAndRsm& inputs, graph
 // The screen-space terms the composite adds up; an invalid ref is an effect turned off.
 struct LightingTerms {
     graph::ImageRef direct, shadow, ao, indirect, ssdo;
-    graph::ImageRef secondLayer; // depth peeling's, for its debug view
+    graph::ImageRef skyVisibility; // the sky's visibility beyond the screen
+    graph::ImageRef secondLayer;   // depth peeling's, for its debug view
 };
+
+// sky.maps + sky_visibility: the fraction of the sky's light reaching each pixel past the
+// occluders beyond the AO's radius, from depth maps of the scene over the sky's directions.
+graph::ImageRef addSkyVisibilityPasses(PassSetup& setup, const GBufferAndRsm& inputs);
 
 struct CompositeOutputs {
     graph::ImageRef hdr, ldr;

@@ -19,7 +19,7 @@ constexpr int kRouletteFrom = 3;
 } // namespace
 
 const std::vector<std::string>& modeNames() {
-    static const std::vector<std::string> names = {"direct", "ao", "indirect", "full", "multi"};
+    static const std::vector<std::string> names = {"direct", "ao", "indirect", "full", "multi", "sky"};
     return names;
 }
 
@@ -28,7 +28,7 @@ Mode parseMode(const std::string& name, const std::string& option) {
     const auto it = std::find(names.begin(), names.end(), name);
     if (it == names.end())
         throw InputError(option + ": '" + name +
-                         "' is not a mode (direct, ao, indirect, full, multi)");
+                         "' is not a mode (direct, ao, indirect, full, multi, sky)");
     return Mode(it - names.begin());
 }
 
@@ -53,6 +53,9 @@ Integrator::Integrator(const Scene& scene, const RayScene& rays, Mode mode)
         break;
     case Mode::Ao:
         terms_ = {1, 0, 1, 0, 0, false};
+        break;
+    case Mode::Sky: // no spot light; the camera ray's sky and the sky seen from the surface
+        terms_ = {1, 0, -1, 0, 1, false};
         break;
     }
 }

@@ -10,6 +10,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(constant_id = 0) const int HAS_AO = 0;
 layout(constant_id = 1) const int HAS_INDIRECT = 0;
 layout(constant_id = 2) const int HAS_SSDO = 0;
+layout(constant_id = 3) const int HAS_SKY_VISIBILITY = 0;
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
 layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
@@ -23,8 +24,9 @@ layout(set = 0, binding = 8) uniform sampler2D ssdoImage;     // radiance
 layout(set = 0, binding = 9) uniform sampler2D rsmFlux;
 layout(set = 0, binding = 10) uniform sampler2D rsmNormal;
 layout(set = 0, binding = 11) uniform sampler2D secondLayer; // depth peeling's position
-layout(set = 0, binding = 12, rgba32f) uniform writeonly image2D hdrImage;
-layout(set = 0, binding = 13, rgba8) uniform writeonly image2D ldrImage;
+layout(set = 0, binding = 12) uniform sampler2D skyVisibilityImage; // beyond the AO's radius
+layout(set = 0, binding = 13, rgba32f) uniform writeonly image2D hdrImage;
+layout(set = 0, binding = 14, rgba8) uniform writeonly image2D ldrImage;
 layout(push_constant) uniform CompositeBlock { CompositeConstants constants; };
 
 // Narkowicz's fit of the ACES filmic curve.
@@ -54,6 +56,8 @@ void main() {
     float ao = HAS_AO != 0 ? texelFetch(aoImage, pixel, 0).r : 1.0;
     vec3 indirect = HAS_INDIRECT != 0 ? albedo * texelFetch(indirectImage, pixel, 0).rgb : vec3(0);
     vec3 ssdo = HAS_SSDO != 0 ? texelFetch(ssdoImage, pixel, 0).rgb : vec3(0.0);
+    vec3 skyVisibility =
+        HAS_SKY_VISIBILITY != 0 ? texelFetch(skyVisibilityImage, pixel, 0).rgb : vec3(1.0);
 
     vec3 hdr;
     if (position.w == 0.0) {
@@ -61,7 +65,7 @@ void main() {
         vec3 dir = normalize(far.xyz / far.w - frame.cameraPosition.xyz);
         hdr = skyRadiance(dir, frame.skyZenith.rgb, frame.skyHorizon.rgb, frame.skyGround.rgb);
     } else {
-        vec3 sky = HAS_SSDO != 0 ? ssdo : albedo * skyLight(n) * ao;
+        vec3 sky = HAS_SSDO != 0 ? ssdo : albedo * skyLight(n) * ao * skyVisibility;
         hdr = direct + sky + indirect;
     }
 
@@ -83,6 +87,7 @@ void main() {
     if (view == VIEW_AO) value = vec3(ao);
     if (view == VIEW_INDIRECT) value = indirect;
     if (view == VIEW_SSDO) value = ssdo;
+    if (view == VIEW_SKY_VISIBILITY) value = skyVisibility;
     // The contact pass keeps the shadow map's term in g: what contact shadows took away.
     if (view == VIEW_CONTACT) value = vec3(shadow.r, max(shadow.g - shadow.r, 0.0), 0.0);
     if (view == VIEW_PEEL) {
@@ -96,13 +101,13 @@ void main() {
     if (view == VIEW_DEPTH || view == VIEW_PEEL)
         shown = vec3(value.x == 0.0 ? 0.0 : max(1.0 - value.x / frame.params.w, 0.0));
     if (view == VIEW_RSM_FLUX) shown = tonemap(value * exposure * 0.3);
-    if (view == VIEW_SHADOW || view == VIEW_AO) shown = value;
+    if (view == VIEW_SHADOW || view == VIEW_AO || view == VIEW_SKY_VISIBILITY) shown = value;
     // Lit white, shadowed black, and in red what contact shadows darkened.
     if (view == VIEW_CONTACT) shown = mix(vec3(value.x), vec3(1.0, 0.0, 0.0), value.y);
     // Colours are encoded for display; normals, depth and visibilities are data, shown as is.
     bool isData = view == VIEW_NORMAL || view == VIEW_RSM_NORMAL || view == VIEW_DEPTH ||
                   view == VIEW_SHADOW || view == VIEW_AO || view == VIEW_PEEL ||
-                  view == VIEW_CONTACT;
+                  view == VIEW_CONTACT || view == VIEW_SKY_VISIBILITY;
     imageStore(hdrImage, pixel, vec4(view == VIEW_FINAL ? hdr : value, 1.0));
     imageStore(ldrImage, pixel, vec4(isData ? shown : encodeSrgb(shown), 1.0));
 }

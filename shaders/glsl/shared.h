@@ -107,6 +107,25 @@ struct TemporalConstants {
 };
 SSGI_CHECK_SIZE(TemporalConstants, 48);
 
+// Sky visibility maps (sky_maps.glsl): orthographic depth maps of the scene from `tile.y`
+// directions over the sphere, tiled `tile.z` to a row of an atlas, `tile.w` texels a side each,
+// around the scene's bounding sphere (`sphere`: centre, radius). The raster pass draws map
+// `tile.x` (one uniform buffer per map); the lookup reads them all.
+struct SkyMapView {
+    vec4 sphere;
+    ivec4 tile;
+};
+SSGI_CHECK_SIZE(SkyMapView, 32);
+
+// The sky visibility lookup (push constants): the maps as above, and `params`: x = the distance
+// below which an occluder is left to the screen-space AO (its radius; 0 without AO), y = the
+// receiver's offset along its normal, in scene units.
+struct SkyVisibilityConstants {
+    SkyMapView maps;
+    vec4 params;
+};
+SSGI_CHECK_SIZE(SkyVisibilityConstants, 48);
+
 // Composite's choice of output (push constants): x = view (see VIEW_*).
 struct CompositeConstants {
     ivec4 mode;
@@ -126,6 +145,7 @@ SSGI_CHECK_SIZE(CompositeConstants, 16);
 #define VIEW_SSDO 10
 #define VIEW_CONTACT 11
 #define VIEW_PEEL 12
+#define VIEW_SKY_VISIBILITY 13
 
 #ifdef __cplusplus
 } // namespace ssgi::shader

@@ -1,0 +1,117 @@
+// sky.maps and sky_visibility: the sky's visibility beyond the screen. sky.maps draws the
+// scene's depth from directions spread over the whole sphere (orthographic, around the scene's
+// bounding sphere) into the tiles of one depth atlas; sky_visibility looks every pixel up in
+// each map and writes the fraction of the sky's light that arrives past the occluders farther
+// than the AO's radius (sky_visibility.comp). A static scene's maps are drawn once and again
+// only after an object moved; the lookup runs again only when the camera or the maps changed.
+#include "passes/pass_setup.h"
+
+#include "shared.h"
+
+#include <cmath>
+#include <cstring>
+
+namespace ssgi {
+
+graph::ImageRef addSkyVisibilityPasses(PassSetup& s, const GBufferAndRsm& in) {
+    const Scene& m = s.model;
+    const int count = int(m.setting("sky_visibility_directions"));
+    const int tileSize = int(m.setting("sky_visibility_map_size"));
+    const int perRow = int(std::ceil(std::sqrt(double(count))));
+    const VkExtent2D atlas{uint32_t(perRow * tileSize),
+                           uint32_t(((count + perRow - 1) / perRow) * tileSize)};
+    const uint32_t limit = s.ctx.properties.limits.maxImageDimension2D;
+    if (atlas.width > limit || atlas.height > limit)
+        throw InputError("sky_visibility_map_size " + std::to_string(tileSize) + " with " +
+                         std::to_string(count) + " directions needs a " +
+                         std::to_string(atlas.width) + "x" + std::to_string(atlas.height) +
+                         " atlas, beyond this device's largest 2D image (" + std::to_string(limit) +
+                         ")");
+    const glm::vec3 centre = m.bounds.center();
+    const float radius = std::max(0.5f * glm::length(m.bounds.size()) * 1.02f, 1e-6f);
+    shader::SkyMapView view{glm::vec4(centre, radius), glm::ivec4(0, count, perRow, tileSize)};
+
+    const graph::ImageRef maps = s.graph.createImage(
+        "sky.maps", VK_FORMAT_D32_SFLOAT, atlas,
+        VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, true);
+    // One uniform buffer per map: the draw binds the map's view where the camera's would be.
+    std::vector<VkBuffer> views;
+    for (int k = 0; k < count; ++k) {
+        s.buffers.push_back(vk::createBuffer(s.ctx, sizeof(shader::SkyMapView),
+                                             VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true));
+        view.tile.x = k;
+        std::memcpy(s.buffers.back().mapped, &view, sizeof(view));
+        views.push_back(s.buffers.back().buffer);
+    }
+    vk::GraphicsPipelineDesc desc;
+    desc.vertexShader = "sky_depth.vert";
+    desc.fragmentShader = "sky_depth.frag";
+    desc.depthFormat = VK_FORMAT_D32_SFLOAT;
+    desc.bindings = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
+    desc.pushConstantSize = sizeof(shader::DrawConstants);
+    s.pipelines.push_back(vk::createGraphicsPipeline(s.ctx, desc));
+    const vk::Pipeline draw = s.pipelines.back();
+
+    using graph::Use;
+    s.graph.addPass(
+        "sky.maps", graph::PassKind::Graphics, {{maps, Use::DepthAttachment}},
+        [&s, maps, atlas, views, perRow, tileSize, draw](const graph::PassContext& pc) {
+            VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+            depth.imageView = pc.image(maps).view;
+            depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+            depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR; // 1: nothing toward the far side
+            depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+            depth.clearValue.depthStencil = {1.0f, 0};
+            VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+            info.renderArea = {{0, 0}, atlas};
+            info.layerCount = 1;
+            info.pDepthAttachment = &depth;
+            vkCmdBeginRendering(pc.cmd, &info);
+            for (size_t k = 0; k < views.size(); ++k) {
+                const float x = float(int(k) % perRow * tileSize);
+                const float y = float(int(k) / perRow * tileSize);
+                VkViewport viewport{x, y, float(tileSize), float(tileSize), 0, 1};
+                VkRect2D scissor{{int32_t(x), int32_t(y)},
+                                 {uint32_t(tileSize), uint32_t(tileSize)}};
+                vkCmdSetViewport(pc.cmd, 0, 1, &viewport);
+                vkCmdSetScissor(pc.cmd, 0, 1, &scissor);
+                s.scene.draw(pc.cmd, draw, views[k], sizeof(shader::SkyMapView));
+            }
+            vkCmdEndRendering(pc.cmd);
+        },
+        [&s] { return s.skyMapsStale; });
+
+    const graph::ImageRef visibility =
+        s.graph.createImage("sky_visibility", VK_FORMAT_R16G16B16A16_SFLOAT, s.size,
+                            VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, true);
+    const vk::Pipeline lookup =
+        s.computePipeline("sky_visibility.comp", 3, 1, sizeof(shader::SkyVisibilityConstants));
+    // Occluders nearer than the AO's radius are the AO's; with no AO, only a few texels' worth
+    // of nearness is left out (the map's own resolution).
+    const float texel = 2.0f * radius / float(tileSize);
+    shader::SkyVisibilityConstants constants{view, {}};
+    constants.maps.tile.x = 0;
+    const float nearest = m.setting("ao") != 0.0 && m.setting("ssdo") == 0.0 ? aoRadius(m) : 0.0f;
+    constants.params = glm::vec4(std::max(nearest, 3.0f * texel), 1.5f * texel, 0.0f, 0.0f);
+    s.graph.addPass(
+        "sky_visibility", graph::PassKind::Compute,
+        {{in.gbuffer.position, Use::Sampled},
+         {in.gbuffer.normal, Use::Sampled},
+         {maps, Use::Sampled},
+         {visibility, Use::StorageWrite}},
+        [&s, in, maps, visibility, lookup, constants](const graph::PassContext& pc) {
+            vk::Descriptors()
+                .uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size)
+                .sampledImage(1, pc.image(in.gbuffer.position).view, s.nearestSampler)
+                .sampledImage(2, pc.image(in.gbuffer.normal).view, s.nearestSampler)
+                .sampledImage(3, pc.image(maps).view, s.nearestSampler)
+                .storageImage(4, pc.image(visibility).view)
+                .push(s.ctx, pc.cmd, lookup);
+            vk::dispatch(pc.cmd, lookup, s.size.width, s.size.height, constants);
+        },
+        // The same camera over the same maps looks up the same values.
+        [&s] { return !s.cameraStill || s.skyMapsStale; });
+    return visibility;
+}
+
+} // namespace ssgi

@@ -1,0 +1,54 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Sky visibility beyond the screen: how much of the sky's light reaches each pixel past the
+// occluders screen-space AO cannot see (roofs, arcades, anything off screen), from the sky
+// visibility maps (sky_maps.glsl). Per map direction w_k, the pixel's point is looked up in
+// that map; an occluder counts only beyond `params.x` (the AO radius: nearer ones are the
+// AO's, so none is counted twice). The result is a ratio per colour channel,
+//   sum_k L(w_k) V_k max(n.w_k, 0) / sum_k L(w_k) max(n.w_k, 0),
+// the fraction of the unoccluded sky's irradiance that arrives, which the composite multiplies
+// into the closed-form sky term (common.glsl): 1 where nothing far blocks the sky.
+#include "shared.h"
+#include "common.glsl"
+#include "sky_maps.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
+layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
+layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
+layout(set = 0, binding = 3) uniform sampler2D skyMaps; // depth atlas
+layout(set = 0, binding = 4, rgba16f) uniform writeonly image2D visibilityImage;
+layout(push_constant) uniform VisibilityBlock { SkyVisibilityConstants constants; };
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
+    vec4 position = texelFetch(gbufferPosition, pixel, 0);
+    if (position.w == 0.0) {
+        imageStore(visibilityImage, pixel, vec4(1.0));
+        return;
+    }
+    vec3 n = normalize(texelFetch(gbufferNormal, pixel, 0).xyz);
+    SkyMapView maps = constants.maps;
+    float diameter = 2.0 * maps.sphere.w;
+    // Off the surface along its normal, so that it does not shadow itself within a texel.
+    vec3 p = position.xyz + n * constants.params.y;
+    vec3 open = vec3(0.0), arriving = vec3(0.0);
+    for (int k = 0; k < maps.tile.y; ++k) {
+        vec3 w = skyMapDirection(k, maps.tile.y);
+        float cosine = dot(n, w);
+        if (cosine <= 0.0) continue;
+        vec3 weight = skyRadiance(w, frame.skyZenith.rgb, frame.skyHorizon.rgb,
+                                  frame.skyGround.rgb) * cosine;
+        vec3 q = skyMapProject(p, w, maps.sphere);
+        float occluder = texelFetch(skyMaps, skyMapTexel(q.xy, k, maps.tile.z, maps.tile.w), 0).r;
+        // How far toward the sky the nearest surface in this direction lies.
+        float distanceToOccluder = (q.z - occluder) * diameter;
+        bool blocked = distanceToOccluder > constants.params.x;
+        open += weight;
+        arriving += blocked ? vec3(0.0) : weight;
+    }
+    vec3 visibility = mix(vec3(1.0), arriving / max(open, vec3(1e-20)), greaterThan(open, vec3(0.0)));
+    imageStore(visibilityImage, pixel, vec4(visibility, 1.0));
+}
