@@ -126,10 +126,10 @@ TEST_F(RenderTest, FrameReportsEveryPassInOrderWithTimings) {
         names.push_back(t.name);
         EXPECT_GE(t.milliseconds, 0.0);
     }
-    EXPECT_EQ(names, (std::vector<std::string>{"gbuffer", "rsm", "shadow.keep", "shadow",
-                                               "shadow.temporal", "direct", "ao.keep", "ao",
-                                               "ao.temporal", "indirect.keep", "indirect",
-                                               "upsample", "indirect.temporal", "composite"}));
+    EXPECT_EQ(names, (std::vector<std::string>{
+                         "gbuffer", "rsm", "shadow.keep", "shadow", "shadow.temporal", "direct",
+                         "ao.keep", "ao", "ao.temporal", "indirect.keep", "indirect", "upsample",
+                         "indirect.temporal", "sky.maps", "sky_visibility", "composite"}));
     // The second frame's barriers: each G-buffer target goes from being sampled by last frame's
     // compute passes back to an attachment, contents discarded.
     size_t found = 0;
