@@ -6,6 +6,7 @@
 #include "scene/scene.h"
 #include "scene_gpu.h"
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -37,6 +38,12 @@ public:
     // pixel; the indirect light and SSDO (whose bounce any moved shadow changes) whole; the RSM
     // is drawn again. Before the first call the objects stand at their paths' first keys.
     void setTime(float seconds);
+    // A camera cut: the next frame starts every cached history afresh. Also done by itself for a
+    // camera that turns or jumps beyond the cache_cut_* settings between two frames, and by
+    // setTime() when the camera path's keys marked "cut" are crossed.
+    void cut() { cutRequested_ = true; }
+    // Cuts so far, requested or automatic (for tests and the programs' reports).
+    uint32_t cuts() const { return cuts_; }
     // Shows another view (see viewNames()) from the next frame on; the caches are untouched.
     void setView(const std::string& view);
     const SpotLight& light() const { return light_; }
@@ -61,6 +68,7 @@ public:
 
 private:
     void updateUniforms(const Camera& camera);
+    bool startsAfresh(const Camera& camera) const;
 
     vk::Context& ctx_;
     const Scene& scene_;
@@ -74,6 +82,10 @@ private:
     std::vector<glm::mat4> transforms_; // where the instances stand
     std::vector<Aabb> moved_;           // boxes of the objects moved since the last frame
     glm::mat4 previousViewProjection_{1.0f};
+    Camera previousCamera_;
+    bool cutRequested_ = false;
+    uint32_t cuts_ = 0;
+    float time_ = std::numeric_limits<float>::lowest(); // the last setTime()
 };
 
 } // namespace ssgi

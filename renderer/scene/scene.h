@@ -115,6 +115,9 @@ struct Camera {
 struct CameraKey {
     float time = 0.0f; // seconds
     Camera camera;
+    // A camera cut: the path jumps here, and the frame that reaches this key starts every cached
+    // history afresh (as a reset on a cut does in temporal upscalers and denoisers).
+    bool cut = false;
 };
 
 // Keyframes sorted by time; interpolated (position linear, orientation slerp, fov linear).

@@ -218,7 +218,7 @@ Scene buildScene(const std::string& path, const SceneDescription& description, b
     Camera camera = viewpoint.camera.value_or(bare ? bareModelCamera(model) : defaultCamera(model));
     if (description.camera) camera = applyCameraSpec(*description.camera, camera, path);
     for (const auto& [time, spec] : description.cameraPath) {
-        CameraKey key{time, applyCameraSpec(spec, camera, path)};
+        CameraKey key{time, applyCameraSpec(spec, camera, path), spec.cut};
         fillClipPlanes(key.camera, scene.bounds);
         scene.cameraPath.keys.push_back(key);
     }

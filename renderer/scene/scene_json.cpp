@@ -90,6 +90,10 @@ public:
         if (!has(key)) return std::nullopt;
         return vec3(key, range);
     }
+    bool boolean(const char* key) const {
+        if (!value_.at(key).is_boolean()) fail(key, "must be true or false");
+        return value_.at(key).get<bool>();
+    }
     std::string string(const char* key) const {
         if (!value_.at(key).is_string()) fail(key, "must be a string");
         return value_.at(key).get<std::string>();
@@ -320,14 +324,16 @@ SceneDescription readSceneDescription(const std::string& path) {
     }
     if (top.has("camera_path")) {
         for (const JsonObject& in : top.objects("camera_path")) {
-            in.allowOnly(
-                {"time", "position", "target", "direction", "up", "yfov_deg", "near", "far"});
+            in.allowOnly({"time", "position", "target", "direction", "up", "yfov_deg", "near",
+                          "far", "cut"});
             if (!in.has("time")) in.fail("time", "is missing");
             const float time = float(in.number("time", {-1e9, 1e9}));
             // Equal times are allowed: they make a camera cut.
             if (!scene.cameraPath.empty() && time < scene.cameraPath.back().first)
                 in.fail("time", "is earlier than the key before it; keys must be sorted by time");
-            scene.cameraPath.emplace_back(time, readCameraKeys(in));
+            CameraSpec key = readCameraKeys(in);
+            key.cut = in.has("cut") && in.boolean("cut");
+            scene.cameraPath.emplace_back(time, key);
         }
     }
     if (top.has("object_paths"))

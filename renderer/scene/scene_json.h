@@ -17,6 +17,7 @@ struct CameraSpec {
     std::string where; // "camera" or "camera_path[2]", for messages
     std::optional<glm::vec3> position, target, direction, up;
     std::optional<float> yfovDegrees, znear, zfar;
+    bool cut = false; // a camera path key that starts every history afresh
 };
 
 // Light keys as written; what is absent comes from the glTF light or the default light.

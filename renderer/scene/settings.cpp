@@ -42,6 +42,12 @@ const std::map<std::string, SettingSpec>& settingSpecs() {
         {"cache_bias", {0.0, 0, 1e3, false, "bias of the confidence rule (eq. 4)"}},
         {"cache_epsilon", {2.0, 0, 1e3, false, "reprojection test (eq. 3), in pixel footprints"}},
         {"cache_rotations", {36, 1, 1e6, true, "pattern rotations until a pixel is converged"}},
+        // Automatic camera cuts: a turn or a jump this large between two frames restarts every
+        // history, as engines reset temporal effects on a cut.
+        {"cache_cut_angle_deg",
+         {45.0, 0, 180, false, "a camera turn beyond this between frames is a cut (180: never)"}},
+        {"cache_cut_distance",
+         {0.2, 0, 1e9, false, "a camera jump beyond this x scene diagonal is a cut (huge: never)"}},
         {"cache_rotation_deg", {10.0, -360, 360, false, "turn of every sampling pattern a frame"}},
         {"cache_scale_jitter", {0.1, 0, 0.9, false, "relative change of pattern size a frame"}},
         {"cache_refresh", {1, 0, 1, true, "tiled refresh: one tile a frame computed anew"}},

@@ -242,7 +242,8 @@ inline CaseResult runCase(vk::Context& ctx, const Case& c, const RunOptions& o,
         relative.push_back(errors[k] / tolerance);
     }
     res.tolerance = 2.0 * (std::isfinite(res.restError) ? res.restError : freshSettled);
-    res.recoveryFrames = framesUntilWithin(relative, 1.0);
+    // An empty region (a cut that kept no history) has nothing to recover.
+    res.recoveryFrames = res.regionPixels == 0 ? 0 : framesUntilWithin(relative, 1.0);
     res.excessOverFresh = mean(errors, 0, 8) / mean(freshErrors, 0, 8) - 1.0;
     std::vector<double> pathFlicker;
     for (const FrameRecord& rec : res.frames)
