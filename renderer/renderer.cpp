@@ -99,8 +99,12 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
         terms.indirect =
             addTemporalPass(*setup_, cache, addIndirectPasses(*setup_, scenes, cache), scenes);
     }
-    // The sky's visibility beyond the screen, for the sky term beside the AO.
-    if (scene.setting("sky_visibility") != 0.0 && !ssdo)
+    // The sky's visibility beyond the screen, for the sky term beside the AO (none to see under a
+    // black sky, as in the Cornell boxes).
+    const bool blackSky = scene.sky.zenith == glm::vec3(0.0f) &&
+                          scene.sky.horizon == glm::vec3(0.0f) &&
+                          scene.sky.ground == glm::vec3(0.0f);
+    if (scene.setting("sky_visibility") != 0.0 && !ssdo && !blackSky)
         terms.skyVisibility = addSkyVisibilityPasses(*setup_, scenes);
     setup_->view = view;
     addCompositePass(*setup_, scenes, terms);

@@ -92,12 +92,11 @@ void timingsSection(PanelState& s) {
     if (s.history.total.empty()) return;
     const ProfileSummary summary = s.history.recent.summary();
     char label[160];
-    std::snprintf(label, sizeof label, "frame %.1f ms (passes), host clock %.1f ms",
-                  s.history.total.back(), s.history.host.back());
+    std::snprintf(label, sizeof label, "passes %.1f ms, host clock %.1f ms", s.history.total.back(),
+                  s.history.host.back());
     plot("##total", s.history.total, ImVec2(-1.0f, 48.0f));
     ImGui::TextUnformatted(label);
-    std::snprintf(label, sizeof label,
-                  "over %u frames: median %.2f ms, host %.2f ms, covered %.1f%%",
+    std::snprintf(label, sizeof label, "%u frames: median %.1f, host %.1f ms (%.0f%%)",
                   summary.timedFrames, summary.passSum.medianMs, summary.host.medianMs,
                   100.0 * summary.worstCoverage);
     ImGui::TextUnformatted(label);
@@ -116,9 +115,9 @@ void timingsSection(PanelState& s) {
         ImGui::TableNextColumn();
         ImGui::TextUnformatted(p.name.c_str());
         ImGui::TableNextColumn();
-        ImGui::Text("%8.2f", p.medianMs);
+        ImGui::Text("%.2f", p.medianMs);
         ImGui::TableNextColumn();
-        ImGui::Text("%.2f-%.2f", p.minMs, p.maxMs);
+        ImGui::Text("%.1f-%.1f", p.minMs, p.maxMs);
         ImGui::TableNextColumn();
         ImGui::PushID(p.name.c_str());
         plot("##h", s.history.perPass[p.name], ImVec2(-1.0f, 14.0f));
