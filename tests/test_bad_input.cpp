@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -15,6 +16,7 @@
 #include <random>
 #include <regex>
 #include <sstream>
+#include <sys/stat.h>
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -176,6 +178,54 @@ TEST_F(BadInput, AFolderIsNotASceneFile) {
     fs::create_directories(dir_ / "folder.json");
     EXPECT_NE(loadError((dir_ / "folder.json").string()).find("not a regular file"),
               std::string::npos);
+}
+
+// A .gltf whose buffer is an external file: each URI resolves against the glTF's own folder
+// (`..` allowed), never the working directory; absolute paths and other schemes are refused, and
+// so is anything but a regular file, without opening it (a FIFO hung the loader, /dev/zero
+// filled the memory until std::bad_alloc).
+TEST_F(BadInput, ExternalUrisResolveBesideTheGltfAndOnlyToRegularFiles) {
+    const std::string bin = meshBytes(kTriangle, {0, 1, 2});
+    fs::create_directories(dir_ / "models");
+    fs::create_directories(dir_ / "shared");
+    fs::create_directories(dir_ / "cwd");
+    fs::create_directories(dir_ / "models" / "folder.bin");
+    ASSERT_EQ(mkfifo((dir_ / "models" / "fifo.bin").c_str(), 0600), 0);
+    write("shared/mesh.bin", bin);
+    write("cwd/only-in-cwd.bin", bin);
+    auto gltfWith = [&](const std::string& uri) {
+        json g = meshJson(9, 3);
+        g["buffers"][0]["uri"] = uri;
+        return write("models/m.gltf", g.dump());
+    };
+    const fs::path saved = fs::current_path();
+    fs::current_path(dir_ / "cwd"); // where tinygltf used to look second
+    std::string up;
+    for (int i = 0; i < 12; ++i)
+        up += "../";
+    const char* const cases[][2] = {
+        {"only-in-cwd.bin", "only-in-cwd.bin"},         {"folder.bin", "'folder.bin' is a folder"},
+        {"fifo.bin", "'fifo.bin' is a FIFO"},           {"/dev/zero", "is an absolute path"},
+        {"file:///dev/zero", "is not a relative path"},
+    };
+    for (const auto& [uri, expected] : cases) {
+        SCOPED_TRACE(uri);
+        const auto start = std::chrono::steady_clock::now();
+        const std::string message = loadError(gltfWith(uri));
+        EXPECT_NE(message.find("m.gltf"), std::string::npos) << message;
+        EXPECT_NE(message.find(expected), std::string::npos) << message;
+        EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
+    }
+    for (const char* device : {"dev/zero", "dev/stdin", "dev/null"}) {
+        SCOPED_TRACE(device);
+        const std::string message = loadError(gltfWith(up + device));
+        EXPECT_NE(message.find(", not a regular file"), std::string::npos) << message;
+    }
+    fs::current_path(saved);
+    Scene scene;
+    EXPECT_NO_THROW(scene = loadScene(gltfWith("../shared/mesh.bin")));
+    EXPECT_EQ(scene.instances.size(), 1u);
+    EXPECT_NO_THROW(loadScene(gltfWith("..%2Fshared%2Fmesh.bin"))); // percent-encoded as well
 }
 
 // Every prefix of a GLB and of a scene file is rejected with an InputError; none crashes.
