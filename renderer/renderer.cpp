@@ -7,9 +7,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <glm/gtx/component_wise.hpp>
 #include <limits>
 
 namespace ssgi {
+
+// A quarter of half-float range: radiance up to this is kept in its own units.
+constexpr float kLargestUnscaledRadiance = 16384.0f;
 
 const std::vector<std::string>& viewNames() {
     // Order matches the VIEW_* values in shared.h.
@@ -133,12 +137,24 @@ void Renderer::updateUniforms(const Camera& camera) {
     const SpotLight& l = light_;
     u.lightPosition = glm::vec4(l.position, l.radius);
     u.lightDirection = glm::vec4(glm::normalize(l.direction), std::cos(l.outerConeAngle));
-    u.lightColor = glm::vec4(l.color * l.intensity, std::cos(l.innerConeAngle));
+    // The brightest radiance to expect: the sky's, and the light's on a white surface a
+    // twentieth of the scene away. Past a quarter of half-float range the lights are scaled down
+    // (by a power of two, which loses no precision) and the composite scales its result back up.
+    const float diagonal = glm::length(scene_.bounds.size());
+    const glm::vec3 emitted = l.color * l.intensity;
+    const float nearby = 0.05f * diagonal;
+    const float peak = std::max({glm::compMax(scene_.sky.zenith), glm::compMax(scene_.sky.horizon),
+                                 glm::compMax(scene_.sky.ground),
+                                 glm::compMax(emitted) / (glm::pi<float>() * nearby * nearby)});
+    const float scale =
+        peak > kLargestUnscaledRadiance ? std::exp2(std::ceil(std::log2(peak / 1024.0f))) : 1.0f;
+    u.radianceScale = glm::vec4(scale, 0.0f, 0.0f, 0.0f);
+    u.lightColor = glm::vec4(emitted / scale, std::cos(l.innerConeAngle));
     u.lightFrustum =
         glm::vec4(light.znear, light.zfar, light.tanHalfFov, float(setup_->rsmSize.width));
-    u.skyZenith = glm::vec4(scene_.sky.zenith, 0.0f);
-    u.skyHorizon = glm::vec4(scene_.sky.horizon, 0.0f);
-    u.skyGround = glm::vec4(scene_.sky.ground, 0.0f);
+    u.skyZenith = glm::vec4(scene_.sky.zenith / scale, 0.0f);
+    u.skyHorizon = glm::vec4(scene_.sky.horizon / scale, 0.0f);
+    u.skyGround = glm::vec4(scene_.sky.ground / scale, 0.0f);
     u.viewport = glm::vec4(size.width, size.height, 1.0f / size.width, 1.0f / size.height);
     u.params = glm::vec4(scene_.setting("exposure"), scene_.setting("shadow_bias"),
                          float(frameIndex_), glm::length(scene_.bounds.size()));

@@ -3,6 +3,7 @@
 // non-finite and overflowing numbers, degenerate and empty geometry, missing textures,
 // unsupported glTF features, absurd settings and sizes, no Vulkan device. Each case gets an
 // error naming the problem or its documented fallback, never a crash, never a half-written file.
+#include "image_io.h"
 #include "renderer.h"
 #include "support.h"
 
@@ -343,6 +344,107 @@ TEST_F(BadInput, ProgramsExitStatusAndNoPartialOutput) {
             EXPECT_EQ(entry.path().filename().string().rfind(".tmp", 0), std::string::npos)
                 << entry.path();
     }
+}
+
+// Values inside the scene file's ranges that overflow a half float (65504): a sky of 1e6 and a
+// light of 1e12 × 1e6 wrote an EXR of +Inf with exit status 0, from render and from reference.
+// Now the lights are scaled to fit the intermediate images, the EXR takes 32-bit floats where a
+// value needs them, and no image holding a NaN or Inf is ever written.
+TEST_F(BadInput, BrightScenesGiveFiniteImages) {
+    const fs::path build = fs::read_symlink("/proc/self/exe").parent_path().parent_path();
+    std::ifstream in(test::sourcePath("tests/scenes/empty-box.json"));
+    json scene = json::parse(in);
+    scene["sky"] = {{"color", {1e6, 1e6, 1e6}}};
+    const std::string sky = write("sky.json", scene.dump());
+    scene.erase("sky");
+    scene["light"]["intensity"] = 1e12;
+    scene["light"]["color"] = {1e6, 1e6, 1e6};
+    const std::string light = write("light.json", scene.dump());
+    for (const std::string& file : {sky, light}) {
+        const std::string stem = fs::path(file).stem().string();
+        const std::string png = (dir_ / (stem + ".png")).string();
+        const std::string refExr = (dir_ / (stem + "-ref.exr")).string();
+        const test::CommandResult render = test::runCommand((build / "render").string() + " " +
+                                                            file + " --size 16x16 --output " + png);
+        const test::CommandResult reference =
+            test::runCommand((build / "reference").string() + " " + file +
+                             " --size 8x8 --spp 2 --no-cache --quiet --output " + refExr);
+        for (const auto& [run, exr] :
+             {std::pair{render, dir_ / (stem + ".exr")}, std::pair{reference, fs::path(refExr)}}) {
+            SCOPED_TRACE(exr.string());
+            ASSERT_EQ(run.status, 0) << run.output;
+            uint32_t w = 0, h = 0;
+            const std::vector<float> pixels = readImage(exr.string(), w, h);
+            float largest = 0.0f;
+            for (float v : pixels) {
+                ASSERT_TRUE(std::isfinite(v));
+                largest = std::max(largest, v);
+            }
+            EXPECT_GT(largest, 65504.0f); // brighter than half floats hold, and kept as it is
+        }
+    }
+    // Scaled, not clipped: a sky of 1e6 is drawn as a sky of 1e6 / 1024 (which needs no scale),
+    // times 1024. (The image is not linear in the sky's brightness: compare like with like.)
+    scene.erase("light");
+    scene["sky"] = {{"color", {1e6 / 1024, 1e6 / 1024, 1e6 / 1024}}};
+    const std::string unitSky = write("unit-sky.json", scene.dump());
+    ASSERT_EQ(test::runCommand((build / "render").string() + " " + unitSky +
+                               " --size 16x16 --output " + (dir_ / "unit-sky.png").string())
+                  .status,
+              0);
+    scene["sky"] = {{"color", {1e6, 1e6, 1e6}}};
+    const std::string brightSky = write("bright-sky.json", scene.dump());
+    ASSERT_EQ(test::runCommand((build / "render").string() + " " + brightSky +
+                               " --size 16x16 --output " + (dir_ / "bright-sky.png").string())
+                  .status,
+              0);
+    uint32_t w = 0, h = 0;
+    const std::vector<float> unit = readImage((dir_ / "unit-sky.exr").string(), w, h);
+    const std::vector<float> bright = readImage((dir_ / "bright-sky.exr").string(), w, h);
+    ASSERT_EQ(unit.size(), bright.size());
+    for (size_t i = 0; i < unit.size(); ++i)
+        if (i % 4 != 3) // alpha is 1
+            ASSERT_NEAR(bright[i], unit[i] * 1024.0f, 2e-3f * unit[i] * 1024.0f) << i;
+    // The final guard: a NaN or Inf is a renderer's failure (exit status 1), and nothing lands.
+    const std::vector<float> bad = {0.5f, NAN, 0.5f, 1.0f};
+    for (const char* name : {"nan.exr", "nan.png"}) {
+        try {
+            writeImage((dir_ / name).string(), 1, 1, bad);
+            ADD_FAILURE() << name << " was written";
+        } catch (const InputError&) {
+            ADD_FAILURE() << "a non-finite image is not bad input";
+        } catch (const std::runtime_error& error) {
+            EXPECT_NE(std::string(error.what()).find("NaN or infinite"), std::string::npos);
+        }
+        EXPECT_FALSE(fs::exists(dir_ / name));
+    }
+}
+
+// The PNG and the EXR beside it land together or not at all: when the EXR's name is taken by a
+// folder the PNG was left behind, and the message ended in "Success" (a stale errno).
+TEST_F(BadInput, PngAndExrLandTogetherOrNotAtAll) {
+    const fs::path build = fs::read_symlink("/proc/self/exe").parent_path().parent_path();
+    const std::string render = (build / "render").string() + " " +
+                               test::sourcePath("tests/scenes/empty-box.json") + " --size 16x16";
+    fs::create_directories(dir_ / "new.exr");
+    fs::create_directories(dir_ / "old.exr");
+    write("old.png", "what was there before");
+    for (const char* stem : {"new", "old"}) {
+        SCOPED_TRACE(stem);
+        const test::CommandResult run =
+            test::runCommand(render + " --output " + (dir_ / stem).string() + ".png");
+        EXPECT_EQ(run.status, 2) << run.output;
+        EXPECT_NE(run.output.find(std::string(stem) + ".exr: cannot move the finished file into "
+                                                      "place: Is a directory"),
+                  std::string::npos)
+            << run.output;
+        EXPECT_EQ(run.output.find("Success"), std::string::npos) << run.output;
+    }
+    EXPECT_FALSE(fs::exists(dir_ / "new.png"));
+    std::ifstream old(dir_ / "old.png");
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(old), {}), "what was there before");
+    for (const auto& entry : fs::directory_iterator(dir_)) // no temporary, no backup left
+        EXPECT_NE(entry.path().filename().string()[0], '.') << entry.path();
 }
 
 class BadInputOnDevice : public test::VulkanTest {};

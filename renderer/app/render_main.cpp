@@ -113,8 +113,9 @@ int run(int argc, char** argv) {
     }
 
     const std::string exrPath = fs::path(args.output).replace_extension(".exr").string();
-    writeImage(args.output, common.width, common.height, renderer.readImage("ldr"));
-    writeImage(exrPath, common.width, common.height, renderer.readImage("hdr"));
+    const std::vector<float> ldr = renderer.readImage("ldr"), hdr = renderer.readImage("hdr");
+    writeImages({{args.output, common.width, common.height, &ldr},
+                 {exrPath, common.width, common.height, &hdr}}); // both or neither
     std::printf("wrote %s and %s (%ux%u, %u frame%s, scene %s)\n", args.output.c_str(),
                 exrPath.c_str(), common.width, common.height, args.frames,
                 args.frames == 1 ? "" : "s", common.scene.c_str());
