@@ -15,6 +15,34 @@ namespace ssgi {
 // A quarter of half-float range: radiance up to this is kept in its own units.
 constexpr float kLargestUnscaledRadiance = 16384.0f;
 
+// Where the GPU's coordinates have their origin. A float holds about 7 digits, so a scene 1e5
+// units from the origin keeps about 1 cm of precision in its G-buffer positions, reprojection
+// tests and shadow lookups, and renders visibly wrong. Everything that reaches the GPU is
+// therefore moved, in double precision on the CPU, by minus the centre of the scene's bounds:
+// geometry (through the instance transforms), camera, light, light frustum and moved boxes; the
+// previous frame's matrices were made the same way. A scene near the origin (its centre within
+// 16 diagonals) keeps the origin where it is, so that its numbers do not change at all.
+static glm::dvec3 gpuOrigin(const Aabb& bounds) {
+    const glm::dvec3 centre = (glm::dvec3(bounds.min) + glm::dvec3(bounds.max)) * 0.5;
+    const double diagonal = glm::length(glm::dvec3(bounds.max) - glm::dvec3(bounds.min));
+    // A float itself, so that the GPU's float arithmetic (vertex minus origin, in the instance
+    // transform) gives the same exact differences as the CPU's double.
+    return glm::compMax(glm::abs(centre)) <= 16.0 * diagonal ? glm::dvec3(0.0)
+                                                             : glm::dvec3(glm::vec3(centre));
+}
+
+static glm::vec3 moved(const glm::vec3& point, const glm::dvec3& origin) {
+    return glm::vec3(glm::dvec3(point) - origin);
+}
+
+// translate(-origin) * m, in double precision.
+static glm::mat4 moved(const glm::mat4& m, const glm::dvec3& origin) {
+    glm::dmat4 d(m);
+    for (int column = 0; column < 4; ++column)
+        d[column] -= glm::dvec4(origin * d[column].w, 0.0);
+    return glm::mat4(d);
+}
+
 const std::vector<std::string>& viewNames() {
     // Order matches the VIEW_* values in shared.h.
     static const std::vector<std::string> names = {
@@ -52,7 +80,8 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
 
     sceneGpu_ = std::make_unique<SceneGpu>(ctx, scene);
     transforms_ = instanceTransformsAt(scene, std::numeric_limits<float>::lowest());
-    sceneGpu_->setTransforms(transforms_);
+    origin_ = gpuOrigin(scene.bounds);
+    uploadTransforms();
     graph_ = std::make_unique<graph::FrameGraph>(ctx);
     setup_.reset(new PassSetup{ctx, *graph_, *sceneGpu_, scene});
     setup_->frameUniforms = vk::createBuffer(ctx, sizeof(shader::FrameUniforms),
@@ -117,10 +146,23 @@ Renderer::~Renderer() {
     vkDestroySampler(ctx_.device, setup_->linearSampler, nullptr);
 }
 
-void Renderer::updateUniforms(const Camera& camera) {
+void Renderer::uploadTransforms() {
+    std::vector<glm::mat4> onGpu = transforms_;
+    for (glm::mat4& m : onGpu)
+        m = moved(m, origin_);
+    sceneGpu_->setTransforms(onGpu);
+}
+
+void Renderer::updateUniforms(const Camera& worldCamera) {
     const VkExtent2D size = setup_->size;
     const float aspect = float(size.width) / float(size.height);
-    const LightFrustum light = lightFrustum(light_, scene_.bounds);
+    // The camera, light and bounds as the GPU sees them (see gpuOrigin).
+    Camera camera = worldCamera;
+    camera.position = moved(camera.position, origin_);
+    SpotLight l = light_;
+    l.position = moved(l.position, origin_);
+    const Aabb bounds{moved(scene_.bounds.min, origin_), moved(scene_.bounds.max, origin_)};
+    const LightFrustum light = lightFrustum(l, bounds);
     shader::FrameUniforms u{};
     u.view = viewMatrix(camera);
     u.projection = projectionMatrix(camera, aspect);
@@ -134,7 +176,6 @@ void Renderer::updateUniforms(const Camera& camera) {
     u.lightViewProjection = light.viewProjection;
     u.inverseLightViewProjection = glm::inverse(light.viewProjection);
     u.cameraPosition = glm::vec4(camera.position, 1.0f);
-    const SpotLight& l = light_;
     u.lightPosition = glm::vec4(l.position, l.radius);
     u.lightDirection = glm::vec4(glm::normalize(l.direction), std::cos(l.outerConeAngle));
     // The brightest radiance to expect: the sky's, and the light's on a white surface a
@@ -159,8 +200,8 @@ void Renderer::updateUniforms(const Camera& camera) {
     u.params = glm::vec4(scene_.setting("exposure"), scene_.setting("shadow_bias"),
                          float(frameIndex_), glm::length(scene_.bounds.size()));
     for (size_t i = 0; i < moved_.size(); ++i) {
-        u.movedBoxes[2 * i] = glm::vec4(moved_[i].min, 0.0f);
-        u.movedBoxes[2 * i + 1] = glm::vec4(moved_[i].max, 0.0f);
+        u.movedBoxes[2 * i] = glm::vec4(moved(moved_[i].min, origin_), 0.0f);
+        u.movedBoxes[2 * i + 1] = glm::vec4(moved(moved_[i].max, origin_), 0.0f);
     }
     u.motion = glm::vec4(float(moved_.size()), 0.0f, 0.0f, 0.0f);
     std::memcpy(setup_->frameUniforms.mapped, &u, sizeof(u));
@@ -218,7 +259,7 @@ void Renderer::setTime(float seconds) {
     }
     if (!any) return;
     transforms_ = next;
-    sceneGpu_->setTransforms(transforms_);
+    uploadTransforms();
     setup_->rsmStale = true;
     for (EffectCache& cache : setup_->caches)
         if (cache.motionTest == 0) {

@@ -61,6 +61,7 @@ public:
 
 private:
     void updateUniforms(const Camera& camera);
+    void uploadTransforms(); // transforms_, moved to the GPU's origin
 
     vk::Context& ctx_;
     const Scene& scene_;
@@ -74,6 +75,7 @@ private:
     std::vector<glm::mat4> transforms_; // where the instances stand
     std::vector<Aabb> moved_;           // boxes of the objects moved since the last frame
     glm::mat4 previousViewProjection_{1.0f};
+    glm::dvec3 origin_{0.0}; // world point at the GPU's origin (renderer.cpp: gpuOrigin)
 };
 
 } // namespace ssgi
