@@ -282,6 +282,19 @@ TEST_F(SceneFiles, BadKeysAndValues) {
         expectInputError(quadScene(bad.file, bad.keys), {bad.detail});
     }
 }
+// A key said twice in one object was silently the last one said.
+TEST_F(SceneFiles, DuplicateKeysAreAnError) {
+    expectInputError(write("dup-light.json", R"({"light": {"intensity": 1, "intensity": 2}})"),
+                     {"'intensity' appears twice in 'light'"});
+    expectInputError(write("dup-top.json", R"({"sky": {}, "sky": {"color": [1, 1, 1]}})"),
+                     {"'sky' appears twice in the top-level object"});
+    expectInputError(write("dup-object.json", R"({"objects": [{"type": "quad", "type": "box"}]})"),
+                     {"'type' appears twice in 'objects[]'"});
+    // The same key in different objects is no duplicate.
+    EXPECT_NO_THROW(loadScene(quadScene(
+        "same-key.json", {{"light", {{"intensity", 2}}}, {"camera", {{"yfov_deg", 40}}}})));
+}
+
 TEST_F(SceneFiles, UnknownMaterialName) {
     json scene = json::parse(std::ifstream(quadScene("tmp.json", json::object())));
     scene["objects"][0]["material"] = "chrome";
