@@ -64,6 +64,32 @@ static int viewIndex(const std::string& name) {
     return int(view - views.begin());
 }
 
+// The frame's largest images hold 16 bytes a pixel (world positions, the HDR image); a size
+// whose image is larger than the device allows for one image, or than its memory, is refused
+// before anything is made, with the figures (it was a failed vkBindImageMemory).
+static void checkImageMemory(const vk::Context& ctx, uint32_t width, uint32_t height) {
+    VkImageFormatProperties limits{};
+    vkGetPhysicalDeviceImageFormatProperties(ctx.physicalDevice, VK_FORMAT_R32G32B32A32_SFLOAT,
+                                             VK_IMAGE_TYPE_2D, VK_IMAGE_TILING_OPTIMAL,
+                                             VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT |
+                                                 VK_IMAGE_USAGE_SAMPLED_BIT |
+                                                 VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                                             0, &limits);
+    VkDeviceSize heap = 0;
+    for (uint32_t h = 0; h < ctx.memoryProperties.memoryHeapCount; ++h)
+        if (ctx.memoryProperties.memoryHeaps[h].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
+            heap = std::max(heap, ctx.memoryProperties.memoryHeaps[h].size);
+    const VkDeviceSize image = VkDeviceSize(width) * height * 16;
+    const VkDeviceSize allowed = std::min(limits.maxResourceSize, heap);
+    if (image <= allowed) return;
+    throw InputError("image size " + std::to_string(width) + "x" + std::to_string(height) +
+                     " needs " + std::to_string(image >> 20) +
+                     " MiB for each of the frame's 16-byte-per-pixel images, and there are "
+                     "several; this device allows " +
+                     std::to_string(limits.maxResourceSize >> 20) + " MiB for one image and has " +
+                     std::to_string(heap >> 20) + " MiB of memory: choose a smaller --size");
+}
+
 Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& options)
     : ctx_(ctx), scene_(scene), light_(scene.light) {
     const uint32_t limit = ctx.properties.limits.maxImageDimension2D;
@@ -72,73 +98,86 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
         throw InputError("image size " + std::to_string(options.width) + "x" +
                          std::to_string(options.height) + " is outside 1.." +
                          std::to_string(limit) + " (this device's largest 2D image)");
+    checkImageMemory(ctx, options.width, options.height);
     const int view = viewIndex(options.view);
     const uint32_t rsmSize = uint32_t(scene.setting("shadow_map_size"));
     if (rsmSize == 0 || rsmSize > limit)
         throw InputError("shadow_map_size " + std::to_string(rsmSize) + " is outside 1.." +
                          std::to_string(limit));
 
-    sceneGpu_ = std::make_unique<SceneGpu>(ctx, scene);
-    transforms_ = instanceTransformsAt(scene, std::numeric_limits<float>::lowest());
-    origin_ = gpuOrigin(scene.bounds);
-    uploadTransforms();
-    graph_ = std::make_unique<graph::FrameGraph>(ctx);
-    setup_.reset(new PassSetup{ctx, *graph_, *sceneGpu_, scene});
-    setup_->frameUniforms = vk::createBuffer(ctx, sizeof(shader::FrameUniforms),
-                                             VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
-    setup_->nearestSampler =
-        vk::createSampler(ctx, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
-    setup_->linearSampler =
-        vk::createSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
-    setup_->size = {options.width, options.height};
-    setup_->rsmSize = {rsmSize, rsmSize};
+    // A failure past this point (out of device memory) gives back what was made before it.
+    try {
+        sceneGpu_ = std::make_unique<SceneGpu>(ctx, scene);
+        transforms_ = instanceTransformsAt(scene, std::numeric_limits<float>::lowest());
+        origin_ = gpuOrigin(scene.bounds);
+        uploadTransforms();
+        graph_ = std::make_unique<graph::FrameGraph>(ctx);
+        setup_.reset(new PassSetup{ctx, *graph_, *sceneGpu_, scene});
+        setup_->frameUniforms = vk::createBuffer(ctx, sizeof(shader::FrameUniforms),
+                                                 VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+        setup_->nearestSampler =
+            vk::createSampler(ctx, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+        setup_->linearSampler =
+            vk::createSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+        setup_->size = {options.width, options.height};
+        setup_->rsmSize = {rsmSize, rsmSize};
 
-    // The frame, in order: rasterise the camera's and the light's views; the shadow term and the
-    // direct light; ambient occlusion (or SSDO in its place); the indirect light at half
-    // resolution and its upsampling; composite and tonemap.
-    GBufferAndRsm scenes;
-    scenes.gbuffer = addGBufferPass(*setup_);
-    scenes.rsm = addRsmPass(*setup_);
-    // Each cached effect: its pass computes what is not converged, its temporal pass blends
-    // that into the history, and the consumers read the blended value.
-    LightingTerms terms;
-    EffectCache* shadowCache = createCache(*setup_, "shadow", "cache_tile_shadow", true);
-    if (shadowCache) shadowCache->motionTest = 2;
-    terms.shadow =
-        addTemporalPass(*setup_, shadowCache, addShadowPass(*setup_, scenes, shadowCache), scenes);
-    // Depth peeling's second layer serves SSDO's occlusion test and the contact shadows'.
-    const bool contact = scene.setting("contact_shadows") != 0.0;
-    const bool ssdo = scene.setting("ssdo") != 0.0;
-    if (scene.setting("depth_peeling") != 0.0 && (ssdo || contact))
-        terms.secondLayer = addPeelPass(*setup_, scenes);
-    if (contact) terms.shadow = addContactPass(*setup_, scenes, terms.shadow, terms.secondLayer);
-    terms.direct = addDirectPass(*setup_, scenes, terms.shadow);
-    if (ssdo) {
-        EffectCache* cache = createCache(*setup_, "ssdo", "cache_tile_ssdo", true);
-        terms.ssdo = addTemporalPass(
-            *setup_, cache, addSsdoPass(*setup_, scenes, terms.direct, terms.secondLayer, cache),
-            scenes);
-    } else if (scene.setting("ao") != 0.0) {
-        EffectCache* cache = createCache(*setup_, "ao", "cache_tile_ao", false);
-        if (cache) { // the farthest an AO sample reaches, its pattern at its largest
-            cache->motionTest = 1;
-            cache->motionReach =
-                aoRadius(scene) * (1.0f + float(scene.setting("cache_scale_jitter")));
+        // The frame, in order: rasterise the camera's and the light's views; the shadow term and
+        // the direct light; ambient occlusion (or SSDO in its place); the indirect light at half
+        // resolution and its upsampling; composite and tonemap.
+        GBufferAndRsm scenes;
+        scenes.gbuffer = addGBufferPass(*setup_);
+        scenes.rsm = addRsmPass(*setup_);
+        // Each cached effect: its pass computes what is not converged, its temporal pass blends
+        // that into the history, and the consumers read the blended value.
+        LightingTerms terms;
+        EffectCache* shadowCache = createCache(*setup_, "shadow", "cache_tile_shadow", true);
+        if (shadowCache) shadowCache->motionTest = 2;
+        terms.shadow = addTemporalPass(*setup_, shadowCache,
+                                       addShadowPass(*setup_, scenes, shadowCache), scenes);
+        // Depth peeling's second layer serves SSDO's occlusion test and the contact shadows'.
+        const bool contact = scene.setting("contact_shadows") != 0.0;
+        const bool ssdo = scene.setting("ssdo") != 0.0;
+        if (scene.setting("depth_peeling") != 0.0 && (ssdo || contact))
+            terms.secondLayer = addPeelPass(*setup_, scenes);
+        if (contact)
+            terms.shadow = addContactPass(*setup_, scenes, terms.shadow, terms.secondLayer);
+        terms.direct = addDirectPass(*setup_, scenes, terms.shadow);
+        if (ssdo) {
+            EffectCache* cache = createCache(*setup_, "ssdo", "cache_tile_ssdo", true);
+            terms.ssdo = addTemporalPass(
+                *setup_, cache,
+                addSsdoPass(*setup_, scenes, terms.direct, terms.secondLayer, cache), scenes);
+        } else if (scene.setting("ao") != 0.0) {
+            EffectCache* cache = createCache(*setup_, "ao", "cache_tile_ao", false);
+            if (cache) { // the farthest an AO sample reaches, its pattern at its largest
+                cache->motionTest = 1;
+                cache->motionReach =
+                    aoRadius(scene) * (1.0f + float(scene.setting("cache_scale_jitter")));
+            }
+            terms.ao = addTemporalPass(*setup_, cache, addAoPass(*setup_, scenes, cache), scenes);
         }
-        terms.ao = addTemporalPass(*setup_, cache, addAoPass(*setup_, scenes, cache), scenes);
+        if (scene.setting("indirect") != 0.0) {
+            EffectCache* cache = createCache(*setup_, "indirect", "cache_tile_indirect", true);
+            terms.indirect =
+                addTemporalPass(*setup_, cache, addIndirectPasses(*setup_, scenes, cache), scenes);
+        }
+        setup_->view = view;
+        addCompositePass(*setup_, scenes, terms);
+    } catch (...) {
+        release();
+        throw;
     }
-    if (scene.setting("indirect") != 0.0) {
-        EffectCache* cache = createCache(*setup_, "indirect", "cache_tile_indirect", true);
-        terms.indirect =
-            addTemporalPass(*setup_, cache, addIndirectPasses(*setup_, scenes, cache), scenes);
-    }
-    setup_->view = view;
-    addCompositePass(*setup_, scenes, terms);
 }
 
 Renderer::~Renderer() {
+    release();
+}
+
+void Renderer::release() {
     vkDeviceWaitIdle(ctx_.device);
     graph_.reset();
+    if (!setup_) return;
     for (vk::Pipeline& p : setup_->pipelines)
         vk::destroyPipeline(ctx_, p);
     vk::destroyBuffer(ctx_, setup_->frameUniforms);

@@ -62,6 +62,7 @@ public:
 private:
     void updateUniforms(const Camera& camera);
     void uploadTransforms(); // transforms_, moved to the GPU's origin
+    void release();          // what the destructor gives back, also when the constructor fails
 
     vk::Context& ctx_;
     const Scene& scene_;

@@ -535,6 +535,27 @@ TEST_F(BadInputOnDevice, BeyondTheDeviceLimits) {
     scene.settings["shadow_map_size"] = limit + 1.0; // past checkSetting, as a caller could
     EXPECT_THROW(Renderer(test::context(), scene, {16, 16, "final"}), InputError);
 }
+// An image size the device allows in each dimension but whose images its memory cannot hold
+// says what it needs and what there is (it was the bare text of a failed vkBindImageMemory).
+TEST_F(BadInputOnDevice, ImageSizeBeyondTheDeviceMemory) {
+    const vk::Context& ctx = test::context();
+    VkDeviceSize heap = 0;
+    for (uint32_t h = 0; h < ctx.memoryProperties.memoryHeapCount; ++h)
+        heap = std::max(heap, ctx.memoryProperties.memoryHeaps[h].size);
+    const uint32_t limit = ctx.properties.limits.maxImageDimension2D;
+    if (VkDeviceSize(limit) * limit * 16 <= heap)
+        GTEST_SKIP() << "one 16-byte image of the largest size fits this device's memory";
+    const Scene scene = loadScene(test::sourcePath("tests/scenes/empty-box.json"));
+    try {
+        Renderer renderer(test::context(), scene, {limit, limit, "final"});
+        ADD_FAILURE() << "a " << limit << "x" << limit << " renderer was made";
+    } catch (const InputError& error) {
+        const std::string message = error.what();
+        EXPECT_NE(message.find("MiB for each of the frame's"), std::string::npos) << message;
+        EXPECT_NE(message.find("choose a smaller --size"), std::string::npos) << message;
+    }
+}
+
 // A texture larger than the device's largest 2D image is refused before any image is made.
 TEST_F(BadInputOnDevice, TextureBeyondTheDeviceLimit) {
     Scene scene = loadScene(test::sourcePath("tests/scenes/empty-box.json"));
