@@ -32,8 +32,8 @@ struct FrameUniforms {
     vec4 skyZenith;      // rgb radiance
     vec4 skyHorizon;
     vec4 skyGround;
-    vec4 viewport; // x = width, y = height, z = 1/width, w = 1/height
-    vec4 params;   // x = exposure, y = shadow bias (texels), z = frame index, w = scene diagonal
+    vec4 viewport;       // x = width, y = height, z = 1/width, w = 1/height
+    vec4 params;         // x = exposure, y = shadow bias (texels), z = frame index, w = scene diagonal
     // Objects that moved since the last frame: box i spans movedBoxes[2i].xyz..movedBoxes[2i+1].xyz
     // (world space, old and new place together); motion.x = number of boxes (at most 4).
     vec4 movedBoxes[8];
