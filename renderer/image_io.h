@@ -2,16 +2,28 @@
 // place only once it is complete).
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
 namespace ssgi {
 
 // Writes RGBA float pixels (rows top to bottom). The format follows the extension: .exr keeps
-// linear floats (RGB, half), .png stores 8-bit values of the pixels as they are (already
-// encoded for display). Throws InputError naming the file on failure.
+// linear floats (RGB, half, or 32-bit floats where a value exceeds half's 65504), .png stores
+// 8-bit values of the pixels as they are (already encoded for display). Throws InputError
+// naming the file on failure, std::runtime_error (a renderer's failure) when a value is NaN or
+// infinite; either way nothing is written.
 void writeImage(const std::string& path, uint32_t width, uint32_t height,
                 const std::vector<float>& rgba);
+
+struct ImageFile {
+    std::string path;
+    uint32_t width = 0, height = 0;
+    const std::vector<float>* rgba = nullptr;
+};
+// Writes several images as one: all of them land, or none does (what was at their paths before
+// stays), as writeImage says for each.
+void writeImages(const std::vector<ImageFile>& images);
 
 // Reads an image as RGBA floats; for tests and comparisons.
 std::vector<float> readImage(const std::string& path, uint32_t& width, uint32_t& height);

@@ -7,9 +7,41 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <glm/gtx/component_wise.hpp>
 #include <limits>
 
 namespace ssgi {
+
+// A quarter of half-float range: radiance up to this is kept in its own units.
+constexpr float kLargestUnscaledRadiance = 16384.0f;
+
+// Where the GPU's coordinates have their origin. A float holds about 7 digits, so a scene 1e5
+// units from the origin keeps about 1 cm of precision in its G-buffer positions, reprojection
+// tests and shadow lookups, and renders visibly wrong. Everything that reaches the GPU is
+// therefore moved, in double precision on the CPU, by minus the centre of the scene's bounds:
+// geometry (through the instance transforms), camera, light, light frustum and moved boxes; the
+// previous frame's matrices were made the same way. A scene near the origin (its centre within
+// 16 diagonals) keeps the origin where it is, so that its numbers do not change at all.
+static glm::dvec3 gpuOrigin(const Aabb& bounds) {
+    const glm::dvec3 centre = (glm::dvec3(bounds.min) + glm::dvec3(bounds.max)) * 0.5;
+    const double diagonal = glm::length(glm::dvec3(bounds.max) - glm::dvec3(bounds.min));
+    // A float itself, so that the GPU's float arithmetic (vertex minus origin, in the instance
+    // transform) gives the same exact differences as the CPU's double.
+    return glm::compMax(glm::abs(centre)) <= 16.0 * diagonal ? glm::dvec3(0.0)
+                                                             : glm::dvec3(glm::vec3(centre));
+}
+
+static glm::vec3 moved(const glm::vec3& point, const glm::dvec3& origin) {
+    return glm::vec3(glm::dvec3(point) - origin);
+}
+
+// translate(-origin) * m, in double precision.
+static glm::mat4 moved(const glm::mat4& m, const glm::dvec3& origin) {
+    glm::dmat4 d(m);
+    for (int column = 0; column < 4; ++column)
+        d[column] -= glm::dvec4(origin * d[column].w, 0.0);
+    return glm::mat4(d);
+}
 
 const std::vector<std::string>& viewNames() {
     // Order matches the VIEW_* values in shared.h.
@@ -32,6 +64,32 @@ static int viewIndex(const std::string& name) {
     return int(view - views.begin());
 }
 
+// The frame's largest images hold 16 bytes a pixel (world positions, the HDR image); a size
+// whose image is larger than the device allows for one image, or than its memory, is refused
+// before anything is made, with the figures (it was a failed vkBindImageMemory).
+static void checkImageMemory(const vk::Context& ctx, uint32_t width, uint32_t height) {
+    VkImageFormatProperties limits{};
+    vkGetPhysicalDeviceImageFormatProperties(ctx.physicalDevice, VK_FORMAT_R32G32B32A32_SFLOAT,
+                                             VK_IMAGE_TYPE_2D, VK_IMAGE_TILING_OPTIMAL,
+                                             VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT |
+                                                 VK_IMAGE_USAGE_SAMPLED_BIT |
+                                                 VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                                             0, &limits);
+    VkDeviceSize heap = 0;
+    for (uint32_t h = 0; h < ctx.memoryProperties.memoryHeapCount; ++h)
+        if (ctx.memoryProperties.memoryHeaps[h].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
+            heap = std::max(heap, ctx.memoryProperties.memoryHeaps[h].size);
+    const VkDeviceSize image = VkDeviceSize(width) * height * 16;
+    const VkDeviceSize allowed = std::min(limits.maxResourceSize, heap);
+    if (image <= allowed) return;
+    throw InputError("image size " + std::to_string(width) + "x" + std::to_string(height) +
+                     " needs " + std::to_string(image >> 20) +
+                     " MiB for each of the frame's 16-byte-per-pixel images, and there are "
+                     "several; this device allows " +
+                     std::to_string(limits.maxResourceSize >> 20) + " MiB for one image and has " +
+                     std::to_string(heap >> 20) + " MiB of memory: choose a smaller --size");
+}
+
 Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& options)
     : ctx_(ctx), scene_(scene), light_(scene.light) {
     const uint32_t limit = ctx.properties.limits.maxImageDimension2D;
@@ -40,79 +98,94 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
         throw InputError("image size " + std::to_string(options.width) + "x" +
                          std::to_string(options.height) + " is outside 1.." +
                          std::to_string(limit) + " (this device's largest 2D image)");
+    checkImageMemory(ctx, options.width, options.height);
     const int view = viewIndex(options.view);
     const uint32_t rsmSize = uint32_t(scene.setting("shadow_map_size"));
     if (rsmSize == 0 || rsmSize > limit)
         throw InputError("shadow_map_size " + std::to_string(rsmSize) + " is outside 1.." +
                          std::to_string(limit));
 
-    sceneGpu_ = std::make_unique<SceneGpu>(ctx, scene);
-    transforms_ = instanceTransformsAt(scene, std::numeric_limits<float>::lowest());
-    sceneGpu_->setTransforms(transforms_);
-    graph_ = std::make_unique<graph::FrameGraph>(ctx);
-    setup_.reset(new PassSetup{ctx, *graph_, *sceneGpu_, scene});
-    setup_->frameUniforms = vk::createBuffer(ctx, sizeof(shader::FrameUniforms),
-                                             VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
-    setup_->nearestSampler =
-        vk::createSampler(ctx, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
-    setup_->linearSampler =
-        vk::createSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
-    setup_->size = {options.width, options.height};
-    setup_->rsmSize = {rsmSize, rsmSize};
+    // A failure past this point (out of device memory) gives back what was made before it.
+    try {
+        sceneGpu_ = std::make_unique<SceneGpu>(ctx, scene);
+        transforms_ = instanceTransformsAt(scene, std::numeric_limits<float>::lowest());
+        origin_ = gpuOrigin(scene.bounds);
+        uploadTransforms();
+        graph_ = std::make_unique<graph::FrameGraph>(ctx);
+        setup_.reset(new PassSetup{ctx, *graph_, *sceneGpu_, scene});
+        setup_->gpuOrigin = origin_;
+        setup_->frameUniforms = vk::createBuffer(ctx, sizeof(shader::FrameUniforms),
+                                                 VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+        setup_->nearestSampler =
+            vk::createSampler(ctx, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+        setup_->linearSampler =
+            vk::createSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+        setup_->size = {options.width, options.height};
+        setup_->rsmSize = {rsmSize, rsmSize};
 
-    // The frame, in order: rasterise the camera's and the light's views; the shadow term and the
-    // direct light; ambient occlusion (or SSDO in its place); the indirect light at half
-    // resolution and its upsampling; composite and tonemap.
-    GBufferAndRsm scenes;
-    scenes.gbuffer = addGBufferPass(*setup_);
-    scenes.rsm = addRsmPass(*setup_);
-    // Each cached effect: its pass computes what is not converged, its temporal pass blends
-    // that into the history, and the consumers read the blended value.
-    LightingTerms terms;
-    EffectCache* shadowCache = createCache(*setup_, "shadow", "cache_tile_shadow", true);
-    if (shadowCache) shadowCache->motionTest = 2;
-    terms.shadow =
-        addTemporalPass(*setup_, shadowCache, addShadowPass(*setup_, scenes, shadowCache), scenes);
-    // Depth peeling's second layer serves SSDO's occlusion test and the contact shadows'.
-    const bool contact = scene.setting("contact_shadows") != 0.0;
-    const bool ssdo = scene.setting("ssdo") != 0.0;
-    if (scene.setting("depth_peeling") != 0.0 && (ssdo || contact))
-        terms.secondLayer = addPeelPass(*setup_, scenes);
-    if (contact) terms.shadow = addContactPass(*setup_, scenes, terms.shadow, terms.secondLayer);
-    terms.direct = addDirectPass(*setup_, scenes, terms.shadow);
-    if (ssdo) {
-        EffectCache* cache = createCache(*setup_, "ssdo", "cache_tile_ssdo", true);
-        terms.ssdo = addTemporalPass(
-            *setup_, cache, addSsdoPass(*setup_, scenes, terms.direct, terms.secondLayer, cache),
-            scenes);
-    } else if (scene.setting("ao") != 0.0) {
-        EffectCache* cache = createCache(*setup_, "ao", "cache_tile_ao", false);
-        if (cache) { // the farthest an AO sample reaches, its pattern at its largest
-            cache->motionTest = 1;
-            cache->motionReach =
-                aoRadius(scene) * (1.0f + float(scene.setting("cache_scale_jitter")));
+        // The frame, in order: rasterise the camera's and the light's views; the shadow term and
+        // the direct light; ambient occlusion (or SSDO in its place); the indirect light at half
+        // resolution and its upsampling; composite and tonemap.
+        GBufferAndRsm scenes;
+        scenes.gbuffer = addGBufferPass(*setup_);
+        scenes.rsm = addRsmPass(*setup_);
+        // Each cached effect: its pass computes what is not converged, its temporal pass blends
+        // that into the history, and the consumers read the blended value.
+        LightingTerms terms;
+        EffectCache* shadowCache = createCache(*setup_, "shadow", "cache_tile_shadow", true);
+        if (shadowCache) shadowCache->motionTest = 2;
+        terms.shadow = addTemporalPass(*setup_, shadowCache,
+                                       addShadowPass(*setup_, scenes, shadowCache), scenes);
+        // Depth peeling's second layer serves SSDO's occlusion test and the contact shadows'.
+        const bool contact = scene.setting("contact_shadows") != 0.0;
+        const bool ssdo = scene.setting("ssdo") != 0.0;
+        if (scene.setting("depth_peeling") != 0.0 && (ssdo || contact))
+            terms.secondLayer = addPeelPass(*setup_, scenes);
+        if (contact)
+            terms.shadow = addContactPass(*setup_, scenes, terms.shadow, terms.secondLayer);
+        terms.direct = addDirectPass(*setup_, scenes, terms.shadow);
+        if (ssdo) {
+            EffectCache* cache = createCache(*setup_, "ssdo", "cache_tile_ssdo", true);
+            terms.ssdo = addTemporalPass(
+                *setup_, cache,
+                addSsdoPass(*setup_, scenes, terms.direct, terms.secondLayer, cache), scenes);
+        } else if (scene.setting("ao") != 0.0) {
+            EffectCache* cache = createCache(*setup_, "ao", "cache_tile_ao", false);
+            if (cache) { // the farthest an AO sample reaches, its pattern at its largest
+                cache->motionTest = 1;
+                cache->motionReach =
+                    aoRadius(scene) * (1.0f + float(scene.setting("cache_scale_jitter")));
+            }
+            terms.ao = addTemporalPass(*setup_, cache, addAoPass(*setup_, scenes, cache), scenes);
         }
-        terms.ao = addTemporalPass(*setup_, cache, addAoPass(*setup_, scenes, cache), scenes);
+        if (scene.setting("indirect") != 0.0) {
+            EffectCache* cache = createCache(*setup_, "indirect", "cache_tile_indirect", true);
+            terms.indirect =
+                addTemporalPass(*setup_, cache, addIndirectPasses(*setup_, scenes, cache), scenes);
+        }
+        // The sky's visibility beyond the screen, for the sky term beside the AO (none to see
+        // under a black sky, as in the Cornell boxes).
+        const bool blackSky = scene.sky.zenith == glm::vec3(0.0f) &&
+                              scene.sky.horizon == glm::vec3(0.0f) &&
+                              scene.sky.ground == glm::vec3(0.0f);
+        if (scene.setting("sky_visibility") != 0.0 && !ssdo && !blackSky)
+            terms.skyVisibility = addSkyVisibilityPasses(*setup_, scenes);
+        setup_->view = view;
+        addCompositePass(*setup_, scenes, terms);
+    } catch (...) {
+        release();
+        throw;
     }
-    if (scene.setting("indirect") != 0.0) {
-        EffectCache* cache = createCache(*setup_, "indirect", "cache_tile_indirect", true);
-        terms.indirect =
-            addTemporalPass(*setup_, cache, addIndirectPasses(*setup_, scenes, cache), scenes);
-    }
-    // The sky's visibility beyond the screen, for the sky term beside the AO (none to see under a
-    // black sky, as in the Cornell boxes).
-    const bool blackSky = scene.sky.zenith == glm::vec3(0.0f) &&
-                          scene.sky.horizon == glm::vec3(0.0f) &&
-                          scene.sky.ground == glm::vec3(0.0f);
-    if (scene.setting("sky_visibility") != 0.0 && !ssdo && !blackSky)
-        terms.skyVisibility = addSkyVisibilityPasses(*setup_, scenes);
-    setup_->view = view;
-    addCompositePass(*setup_, scenes, terms);
 }
 
 Renderer::~Renderer() {
+    release();
+}
+
+void Renderer::release() {
     vkDeviceWaitIdle(ctx_.device);
     graph_.reset();
+    if (!setup_) return;
     for (vk::Pipeline& p : setup_->pipelines)
         vk::destroyPipeline(ctx_, p);
     for (vk::Buffer& b : setup_->buffers)
@@ -122,10 +195,23 @@ Renderer::~Renderer() {
     vkDestroySampler(ctx_.device, setup_->linearSampler, nullptr);
 }
 
-void Renderer::updateUniforms(const Camera& camera) {
+void Renderer::uploadTransforms() {
+    std::vector<glm::mat4> onGpu = transforms_;
+    for (glm::mat4& m : onGpu)
+        m = moved(m, origin_);
+    sceneGpu_->setTransforms(onGpu);
+}
+
+void Renderer::updateUniforms(const Camera& worldCamera) {
     const VkExtent2D size = setup_->size;
     const float aspect = float(size.width) / float(size.height);
-    const LightFrustum light = lightFrustum(light_, scene_.bounds);
+    // The camera, light and bounds as the GPU sees them (see gpuOrigin).
+    Camera camera = worldCamera;
+    camera.position = moved(camera.position, origin_);
+    SpotLight l = light_;
+    l.position = moved(l.position, origin_);
+    const Aabb bounds{moved(scene_.bounds.min, origin_), moved(scene_.bounds.max, origin_)};
+    const LightFrustum light = lightFrustum(l, bounds);
     shader::FrameUniforms u{};
     u.view = viewMatrix(camera);
     u.projection = projectionMatrix(camera, aspect);
@@ -140,21 +226,32 @@ void Renderer::updateUniforms(const Camera& camera) {
     u.lightViewProjection = light.viewProjection;
     u.inverseLightViewProjection = glm::inverse(light.viewProjection);
     u.cameraPosition = glm::vec4(camera.position, 1.0f);
-    const SpotLight& l = light_;
     u.lightPosition = glm::vec4(l.position, l.radius);
     u.lightDirection = glm::vec4(glm::normalize(l.direction), std::cos(l.outerConeAngle));
-    u.lightColor = glm::vec4(l.color * l.intensity, std::cos(l.innerConeAngle));
+    // The brightest radiance to expect: the sky's, and the light's on a white surface a
+    // twentieth of the scene away. Past a quarter of half-float range the lights are scaled down
+    // (by a power of two, which loses no precision) and the composite scales its result back up.
+    const float diagonal = glm::length(scene_.bounds.size());
+    const glm::vec3 emitted = l.color * l.intensity;
+    const float nearby = 0.05f * diagonal;
+    const float peak = std::max({glm::compMax(scene_.sky.zenith), glm::compMax(scene_.sky.horizon),
+                                 glm::compMax(scene_.sky.ground),
+                                 glm::compMax(emitted) / (glm::pi<float>() * nearby * nearby)});
+    const float scale =
+        peak > kLargestUnscaledRadiance ? std::exp2(std::ceil(std::log2(peak / 1024.0f))) : 1.0f;
+    u.radianceScale = glm::vec4(scale, 0.0f, 0.0f, 0.0f);
+    u.lightColor = glm::vec4(emitted / scale, std::cos(l.innerConeAngle));
     u.lightFrustum =
         glm::vec4(light.znear, light.zfar, light.tanHalfFov, float(setup_->rsmSize.width));
-    u.skyZenith = glm::vec4(scene_.sky.zenith, 0.0f);
-    u.skyHorizon = glm::vec4(scene_.sky.horizon, 0.0f);
-    u.skyGround = glm::vec4(scene_.sky.ground, 0.0f);
+    u.skyZenith = glm::vec4(scene_.sky.zenith / scale, 0.0f);
+    u.skyHorizon = glm::vec4(scene_.sky.horizon / scale, 0.0f);
+    u.skyGround = glm::vec4(scene_.sky.ground / scale, 0.0f);
     u.viewport = glm::vec4(size.width, size.height, 1.0f / size.width, 1.0f / size.height);
     u.params = glm::vec4(scene_.setting("exposure"), scene_.setting("shadow_bias"),
                          float(frameIndex_), glm::length(scene_.bounds.size()));
     for (size_t i = 0; i < moved_.size(); ++i) {
-        u.movedBoxes[2 * i] = glm::vec4(moved_[i].min, 0.0f);
-        u.movedBoxes[2 * i + 1] = glm::vec4(moved_[i].max, 0.0f);
+        u.movedBoxes[2 * i] = glm::vec4(moved(moved_[i].min, origin_), 0.0f);
+        u.movedBoxes[2 * i + 1] = glm::vec4(moved(moved_[i].max, origin_), 0.0f);
     }
     u.motion = glm::vec4(float(moved_.size()), 0.0f, 0.0f, 0.0f);
     std::memcpy(setup_->frameUniforms.mapped, &u, sizeof(u));
@@ -237,7 +334,7 @@ void Renderer::setTime(float seconds) {
     }
     if (!any) return;
     transforms_ = next;
-    sceneGpu_->setTransforms(transforms_);
+    uploadTransforms();
     setup_->rsmStale = true;
     setup_->skyMapsStale = true;
     for (EffectCache& cache : setup_->caches)

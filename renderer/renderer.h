@@ -69,6 +69,8 @@ public:
 private:
     void updateUniforms(const Camera& camera);
     bool startsAfresh(const Camera& camera) const;
+    void uploadTransforms(); // transforms_, moved to the GPU's origin
+    void release();          // what the destructor gives back, also when the constructor fails
 
     vk::Context& ctx_;
     const Scene& scene_;
@@ -86,6 +88,7 @@ private:
     bool cutRequested_ = false;
     uint32_t cuts_ = 0;
     float time_ = std::numeric_limits<float>::lowest(); // the last setTime()
+    glm::dvec3 origin_{0.0}; // world point at the GPU's origin (renderer.cpp: gpuOrigin)
 };
 
 } // namespace ssgi

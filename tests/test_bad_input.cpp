@@ -3,18 +3,23 @@
 // non-finite and overflowing numbers, degenerate and empty geometry, missing textures,
 // unsupported glTF features, absurd settings and sizes, no Vulkan device. Each case gets an
 // error naming the problem or its documented fallback, never a crash, never a half-written file.
+#include "image_io.h"
 #include "renderer.h"
 #include "support.h"
 
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <iostream>
 #include <random>
 #include <regex>
 #include <sstream>
+#include <sys/stat.h>
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -178,6 +183,54 @@ TEST_F(BadInput, AFolderIsNotASceneFile) {
               std::string::npos);
 }
 
+// A .gltf whose buffer is an external file: each URI resolves against the glTF's own folder
+// (`..` allowed), never the working directory; absolute paths and other schemes are refused, and
+// so is anything but a regular file, without opening it (a FIFO hung the loader, /dev/zero
+// filled the memory until std::bad_alloc).
+TEST_F(BadInput, ExternalUrisResolveBesideTheGltfAndOnlyToRegularFiles) {
+    const std::string bin = meshBytes(kTriangle, {0, 1, 2});
+    fs::create_directories(dir_ / "models");
+    fs::create_directories(dir_ / "shared");
+    fs::create_directories(dir_ / "cwd");
+    fs::create_directories(dir_ / "models" / "folder.bin");
+    ASSERT_EQ(mkfifo((dir_ / "models" / "fifo.bin").c_str(), 0600), 0);
+    write("shared/mesh.bin", bin);
+    write("cwd/only-in-cwd.bin", bin);
+    auto gltfWith = [&](const std::string& uri) {
+        json g = meshJson(9, 3);
+        g["buffers"][0]["uri"] = uri;
+        return write("models/m.gltf", g.dump());
+    };
+    const fs::path saved = fs::current_path();
+    fs::current_path(dir_ / "cwd"); // where tinygltf used to look second
+    std::string up;
+    for (int i = 0; i < 12; ++i)
+        up += "../";
+    const char* const cases[][2] = {
+        {"only-in-cwd.bin", "only-in-cwd.bin"},         {"folder.bin", "'folder.bin' is a folder"},
+        {"fifo.bin", "'fifo.bin' is a FIFO"},           {"/dev/zero", "is an absolute path"},
+        {"file:///dev/zero", "is not a relative path"},
+    };
+    for (const auto& [uri, expected] : cases) {
+        SCOPED_TRACE(uri);
+        const auto start = std::chrono::steady_clock::now();
+        const std::string message = loadError(gltfWith(uri));
+        EXPECT_NE(message.find("m.gltf"), std::string::npos) << message;
+        EXPECT_NE(message.find(expected), std::string::npos) << message;
+        EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
+    }
+    for (const char* device : {"dev/zero", "dev/stdin", "dev/null"}) {
+        SCOPED_TRACE(device);
+        const std::string message = loadError(gltfWith(up + device));
+        EXPECT_NE(message.find(", not a regular file"), std::string::npos) << message;
+    }
+    fs::current_path(saved);
+    Scene scene;
+    EXPECT_NO_THROW(scene = loadScene(gltfWith("../shared/mesh.bin")));
+    EXPECT_EQ(scene.instances.size(), 1u);
+    EXPECT_NO_THROW(loadScene(gltfWith("..%2Fshared%2Fmesh.bin"))); // percent-encoded as well
+}
+
 // Every prefix of a GLB and of a scene file is rejected with an InputError; none crashes.
 TEST_F(BadInput, EveryTruncationIsAnError) {
     const std::string whole = meshGlb(kTriangle, {0, 1, 2});
@@ -241,7 +294,7 @@ TEST_F(BadInput, UnsupportedGltfFeaturesWarnOnce) {
     const std::string text = said.str();
     for (const char* warning :
          {"skins are ignored", "animations are ignored", "morph targets are ignored",
-          "mode 1 (not TRIANGLES)", "orthographic cameras are ignored"}) {
+          "mode 1 (points or lines)", "orthographic cameras are ignored"}) {
         const size_t first = text.find(warning);
         EXPECT_NE(first, std::string::npos) << warning << " not in:\n" << text;
         EXPECT_EQ(text.find(warning, first + 1), std::string::npos) << warning << " twice";
@@ -296,6 +349,107 @@ TEST_F(BadInput, ProgramsExitStatusAndNoPartialOutput) {
     }
 }
 
+// Values inside the scene file's ranges that overflow a half float (65504): a sky of 1e6 and a
+// light of 1e12 × 1e6 wrote an EXR of +Inf with exit status 0, from render and from reference.
+// Now the lights are scaled to fit the intermediate images, the EXR takes 32-bit floats where a
+// value needs them, and no image holding a NaN or Inf is ever written.
+TEST_F(BadInput, BrightScenesGiveFiniteImages) {
+    const fs::path build = fs::read_symlink("/proc/self/exe").parent_path().parent_path();
+    std::ifstream in(test::sourcePath("tests/scenes/empty-box.json"));
+    json scene = json::parse(in);
+    scene["sky"] = {{"color", {1e6, 1e6, 1e6}}};
+    const std::string sky = write("sky.json", scene.dump());
+    scene.erase("sky");
+    scene["light"]["intensity"] = 1e12;
+    scene["light"]["color"] = {1e6, 1e6, 1e6};
+    const std::string light = write("light.json", scene.dump());
+    for (const std::string& file : {sky, light}) {
+        const std::string stem = fs::path(file).stem().string();
+        const std::string png = (dir_ / (stem + ".png")).string();
+        const std::string refExr = (dir_ / (stem + "-ref.exr")).string();
+        const test::CommandResult render = test::runCommand((build / "render").string() + " " +
+                                                            file + " --size 16x16 --output " + png);
+        const test::CommandResult reference =
+            test::runCommand((build / "reference").string() + " " + file +
+                             " --size 8x8 --spp 2 --no-cache --quiet --output " + refExr);
+        for (const auto& [run, exr] :
+             {std::pair{render, dir_ / (stem + ".exr")}, std::pair{reference, fs::path(refExr)}}) {
+            SCOPED_TRACE(exr.string());
+            ASSERT_EQ(run.status, 0) << run.output;
+            uint32_t w = 0, h = 0;
+            const std::vector<float> pixels = readImage(exr.string(), w, h);
+            float largest = 0.0f;
+            for (float v : pixels) {
+                ASSERT_TRUE(std::isfinite(v));
+                largest = std::max(largest, v);
+            }
+            EXPECT_GT(largest, 65504.0f); // brighter than half floats hold, and kept as it is
+        }
+    }
+    // Scaled, not clipped: a sky of 1e6 is drawn as a sky of 1e6 / 1024 (which needs no scale),
+    // times 1024. (The image is not linear in the sky's brightness: compare like with like.)
+    scene.erase("light");
+    scene["sky"] = {{"color", {1e6 / 1024, 1e6 / 1024, 1e6 / 1024}}};
+    const std::string unitSky = write("unit-sky.json", scene.dump());
+    ASSERT_EQ(test::runCommand((build / "render").string() + " " + unitSky +
+                               " --size 16x16 --output " + (dir_ / "unit-sky.png").string())
+                  .status,
+              0);
+    scene["sky"] = {{"color", {1e6, 1e6, 1e6}}};
+    const std::string brightSky = write("bright-sky.json", scene.dump());
+    ASSERT_EQ(test::runCommand((build / "render").string() + " " + brightSky +
+                               " --size 16x16 --output " + (dir_ / "bright-sky.png").string())
+                  .status,
+              0);
+    uint32_t w = 0, h = 0;
+    const std::vector<float> unit = readImage((dir_ / "unit-sky.exr").string(), w, h);
+    const std::vector<float> bright = readImage((dir_ / "bright-sky.exr").string(), w, h);
+    ASSERT_EQ(unit.size(), bright.size());
+    for (size_t i = 0; i < unit.size(); ++i)
+        if (i % 4 != 3) // alpha is 1
+            ASSERT_NEAR(bright[i], unit[i] * 1024.0f, 2e-3f * unit[i] * 1024.0f) << i;
+    // The final guard: a NaN or Inf is a renderer's failure (exit status 1), and nothing lands.
+    const std::vector<float> bad = {0.5f, NAN, 0.5f, 1.0f};
+    for (const char* name : {"nan.exr", "nan.png"}) {
+        try {
+            writeImage((dir_ / name).string(), 1, 1, bad);
+            ADD_FAILURE() << name << " was written";
+        } catch (const InputError&) {
+            ADD_FAILURE() << "a non-finite image is not bad input";
+        } catch (const std::runtime_error& error) {
+            EXPECT_NE(std::string(error.what()).find("NaN or infinite"), std::string::npos);
+        }
+        EXPECT_FALSE(fs::exists(dir_ / name));
+    }
+}
+
+// The PNG and the EXR beside it land together or not at all: when the EXR's name is taken by a
+// folder the PNG was left behind, and the message ended in "Success" (a stale errno).
+TEST_F(BadInput, PngAndExrLandTogetherOrNotAtAll) {
+    const fs::path build = fs::read_symlink("/proc/self/exe").parent_path().parent_path();
+    const std::string render = (build / "render").string() + " " +
+                               test::sourcePath("tests/scenes/empty-box.json") + " --size 16x16";
+    fs::create_directories(dir_ / "new.exr");
+    fs::create_directories(dir_ / "old.exr");
+    write("old.png", "what was there before");
+    for (const char* stem : {"new", "old"}) {
+        SCOPED_TRACE(stem);
+        const test::CommandResult run =
+            test::runCommand(render + " --output " + (dir_ / stem).string() + ".png");
+        EXPECT_EQ(run.status, 2) << run.output;
+        EXPECT_NE(run.output.find(std::string(stem) + ".exr: cannot move the finished file into "
+                                                      "place: Is a directory"),
+                  std::string::npos)
+            << run.output;
+        EXPECT_EQ(run.output.find("Success"), std::string::npos) << run.output;
+    }
+    EXPECT_FALSE(fs::exists(dir_ / "new.png"));
+    std::ifstream old(dir_ / "old.png");
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(old), {}), "what was there before");
+    for (const auto& entry : fs::directory_iterator(dir_)) // no temporary, no backup left
+        EXPECT_NE(entry.path().filename().string()[0], '.') << entry.path();
+}
+
 class BadInputOnDevice : public test::VulkanTest {};
 
 // Zero-area and collinear triangles load (made-up flat normals) and render cleanly.
@@ -315,6 +469,65 @@ TEST_F(BadInputOnDevice, DegenerateTrianglesRender) {
         ASSERT_TRUE(std::isfinite(value));
 }
 
+// The Cornell box, its camera and its light moved 1e3 units along every axis render as they do
+// at the origin (they gave relMSE 0.16 before the renderer moved everything next to the GPU's
+// origin); 1e5 units away, where the scene model's floats round the coordinates themselves,
+// loading says so.
+TEST_F(BadInputOnDevice, FarFromTheOrigin) {
+    std::ifstream in(test::sourcePath("scenes/cornell-box.json"));
+    const json original = json::parse(in);
+    auto shifted = [&](double offset) {
+        json scene = original;
+        scene.erase("camera_path");
+        std::function<void(json&)> shift = [&](json& value) {
+            if (value.is_array() && value.size() == 3 && value[0].is_number())
+                for (json& c : value)
+                    c = c.get<double>() + offset;
+            else if (value.is_array())
+                for (json& element : value)
+                    shift(element);
+        };
+        for (json& object : scene["objects"])
+            for (const char* key : {"corners", "center"})
+                if (object.contains(key)) shift(object[key]);
+        shift(scene["light"]["position"]);
+        shift(scene["camera"]["position"]);
+        shift(scene["camera"]["target"]);
+        const std::string path =
+            (fs::temp_directory_path() /
+             ("ssgi-far-" + std::to_string(getpid()) + "-" + std::to_string(int(offset)) + ".json"))
+                .string();
+        std::ofstream(path) << scene.dump();
+        return path;
+    };
+    auto load = [](const std::string& path, std::string& said) {
+        std::ostringstream capture;
+        std::streambuf* saved = std::cerr.rdbuf(capture.rdbuf());
+        Scene scene = loadScene(path);
+        std::cerr.rdbuf(saved);
+        fs::remove(path);
+        said = capture.str();
+        return scene;
+    };
+    std::string said;
+    const Scene atOrigin = load(shifted(0.0), said);
+    EXPECT_EQ(said, "");
+    const Scene away = load(shifted(1e3), said);
+    EXPECT_EQ(said, "");
+    load(shifted(1e5), said);
+    EXPECT_NE(said.find("lies 1e+05 units from the origin"), std::string::npos) << said;
+    const test::Frame a = test::render(atOrigin, 32, 32), b = test::render(away, 32, 32);
+    double error = 0.0;
+    size_t count = 0;
+    for (size_t i = 0; i < a.hdr.size(); ++i)
+        if (i % 4 != 3) {
+            const double d = a.hdr[i] - b.hdr[i];
+            error += d * d / (double(a.hdr[i]) * a.hdr[i] + 1e-2);
+            ++count;
+        }
+    EXPECT_LT(error / double(count), 1e-3);
+}
+
 // Sizes beyond the device's limits are input errors before anything is allocated.
 TEST_F(BadInputOnDevice, BeyondTheDeviceLimits) {
     Scene scene = loadScene(test::sourcePath("tests/scenes/empty-box.json"));
@@ -323,6 +536,27 @@ TEST_F(BadInputOnDevice, BeyondTheDeviceLimits) {
     scene.settings["shadow_map_size"] = limit + 1.0; // past checkSetting, as a caller could
     EXPECT_THROW(Renderer(test::context(), scene, {16, 16, "final"}), InputError);
 }
+// An image size the device allows in each dimension but whose images its memory cannot hold
+// says what it needs and what there is (it was the bare text of a failed vkBindImageMemory).
+TEST_F(BadInputOnDevice, ImageSizeBeyondTheDeviceMemory) {
+    const vk::Context& ctx = test::context();
+    VkDeviceSize heap = 0;
+    for (uint32_t h = 0; h < ctx.memoryProperties.memoryHeapCount; ++h)
+        heap = std::max(heap, ctx.memoryProperties.memoryHeaps[h].size);
+    const uint32_t limit = ctx.properties.limits.maxImageDimension2D;
+    if (VkDeviceSize(limit) * limit * 16 <= heap)
+        GTEST_SKIP() << "one 16-byte image of the largest size fits this device's memory";
+    const Scene scene = loadScene(test::sourcePath("tests/scenes/empty-box.json"));
+    try {
+        Renderer renderer(test::context(), scene, {limit, limit, "final"});
+        ADD_FAILURE() << "a " << limit << "x" << limit << " renderer was made";
+    } catch (const InputError& error) {
+        const std::string message = error.what();
+        EXPECT_NE(message.find("MiB for each of the frame's"), std::string::npos) << message;
+        EXPECT_NE(message.find("choose a smaller --size"), std::string::npos) << message;
+    }
+}
+
 // A texture larger than the device's largest 2D image is refused before any image is made.
 TEST_F(BadInputOnDevice, TextureBeyondTheDeviceLimit) {
     Scene scene = loadScene(test::sourcePath("tests/scenes/empty-box.json"));

@@ -6,10 +6,12 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <sys/stat.h>
 
 namespace fs = std::filesystem;
 
@@ -244,6 +246,46 @@ TEST_F(Cli, BadInputGetsAClearErrorAndNoOutput) {
             << "'" << c.expected << "' not named for: " << c.arguments << "\n"
             << r.output;
         EXPECT_FALSE(fs::exists(dir / "bad.png")) << c.arguments;
+    }
+    expectNoTemporaries();
+}
+
+// Issue 21's classes as a user meets them: a glTF buffer that is a FIFO (it hung), one that is
+// a folder, a device reached through `..` (std::bad_alloc, exit 1), an absolute path, a scene
+// file saying a key twice (the last won), a size whose images the device cannot hold; each is
+// bad input (exit 2) within seconds, naming the file and the problem, and writes nothing.
+TEST_F(Cli, HostileInputSecondRound) {
+    const std::string out = " --output " + (dir / "bad.png").string();
+    ASSERT_EQ(mkfifo((dir / "fifo.bin").c_str(), 0600), 0);
+    fs::create_directories(dir / "folder.bin");
+    auto gltfWithBuffer = [&](const std::string& name, const std::string& uri) {
+        return file(name,
+                    R"({"asset": {"version": "2.0"}, "buffers": [{"byteLength": 36, "uri": ")" +
+                        uri + R"("}]})");
+    };
+    std::string up;
+    for (int i = 0; i < 12; ++i)
+        up += "../";
+    const BadInput cases[] = {
+        {gltfWithBuffer("fifo.gltf", "fifo.bin") + out, "",
+         "fifo.gltf: external file 'fifo.bin' is a FIFO"},
+        {gltfWithBuffer("folder.gltf", "folder.bin") + out, "", "'folder.bin' is a folder"},
+        {gltfWithBuffer("zero.gltf", up + "dev/zero") + out, "", "dev/zero' is a character device"},
+        {gltfWithBuffer("absolute.gltf", "/etc/passwd") + out, "", "is an absolute path"},
+        {file("twice.json", R"({"light": {"intensity": 1, "intensity": 2}})") + out, "",
+         "twice.json: the key 'intensity' appears twice in 'light'"},
+    };
+    for (const BadInput& c : cases) {
+        const auto start = std::chrono::steady_clock::now();
+        Result r = run(c.arguments, c.environment);
+        EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(20));
+        EXPECT_EQ(r.status, 2) << c.arguments << "\n" << r.output;
+        EXPECT_NE(r.output.find("error: "), std::string::npos) << c.arguments << "\n" << r.output;
+        EXPECT_NE(r.output.find(c.expected), std::string::npos)
+            << "'" << c.expected << "' not named for: " << c.arguments << "\n"
+            << r.output;
+        EXPECT_FALSE(fs::exists(dir / "bad.png")) << c.arguments;
+        EXPECT_FALSE(fs::exists(dir / "bad.exr")) << c.arguments;
     }
     expectNoTemporaries();
 }

@@ -201,6 +201,35 @@ TEST_F(SceneFiles, NodeTransformsGiveWorldBounds) {
     EXPECT_EQ(both.materials[2].name, "red");
 }
 
+// Triangle strips and fans are triangles: the unit square drawn either way is two triangles of
+// total area 1 facing +Z (the glTF winding rules keep every triangle counter-clockwise).
+TEST_F(SceneFiles, TriangleStripsAndFansAreTriangles) {
+    const std::vector<float> square = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
+    const struct {
+        int mode;
+        std::vector<uint16_t> indices;
+    } cases[] = {{5, {0, 1, 2, 3}}, {6, {0, 1, 3, 2}}, {5, {0, 1, 2, 3, 3, 2}}};
+    for (const auto& [mode, indices] : cases) {
+        SCOPED_TRACE("mode " + std::to_string(mode) + ", " + std::to_string(indices.size()));
+        json gltf = triangleGltf(square, indices, {{{"mesh", 0}}}, {0});
+        gltf["meshes"][0]["primitives"][0]["mode"] = mode;
+        const Scene scene = loadScene(write("strip.gltf", gltf.dump()));
+        ASSERT_EQ(scene.meshes.size(), 1u);
+        const ssgi::Mesh& mesh = scene.meshes[0];
+        EXPECT_EQ(mesh.indices.size(), 3 * (indices.size() - 2));
+        float area = 0.0f;
+        for (size_t t = 0; t < mesh.indices.size(); t += 3) {
+            const glm::vec3 a = mesh.vertices[mesh.indices[t]].position,
+                            b = mesh.vertices[mesh.indices[t + 1]].position,
+                            c = mesh.vertices[mesh.indices[t + 2]].position;
+            const glm::vec3 doubled = glm::cross(b - a, c - a);
+            area += 0.5f * glm::length(doubled);
+            if (glm::length(doubled) > 0.0f) EXPECT_GT(doubled.z, 0.0f) << "triangle " << t / 3;
+        }
+        EXPECT_NEAR(area, 1.0f, 1e-6f);
+    }
+}
+
 TEST_F(SceneFiles, GltfCameraAndSpotLightAreUsed) {
     // Node 2 is turned -90 degrees about X, which points its -Z (the light's axis) down.
     const json light = {{"KHR_lights_punctual", {{"light", 0}}}};
@@ -255,6 +284,19 @@ TEST_F(SceneFiles, BadKeysAndValues) {
         expectInputError(quadScene(bad.file, bad.keys), {bad.detail});
     }
 }
+// A key said twice in one object was silently the last one said.
+TEST_F(SceneFiles, DuplicateKeysAreAnError) {
+    expectInputError(write("dup-light.json", R"({"light": {"intensity": 1, "intensity": 2}})"),
+                     {"'intensity' appears twice in 'light'"});
+    expectInputError(write("dup-top.json", R"({"sky": {}, "sky": {"color": [1, 1, 1]}})"),
+                     {"'sky' appears twice in the top-level object"});
+    expectInputError(write("dup-object.json", R"({"objects": [{"type": "quad", "type": "box"}]})"),
+                     {"'type' appears twice in 'objects[]'"});
+    // The same key in different objects is no duplicate.
+    EXPECT_NO_THROW(loadScene(quadScene(
+        "same-key.json", {{"light", {{"intensity", 2}}}, {"camera", {{"yfov_deg", 40}}}})));
+}
+
 TEST_F(SceneFiles, UnknownMaterialName) {
     json scene = json::parse(std::ifstream(quadScene("tmp.json", json::object())));
     scene["objects"][0]["material"] = "chrome";

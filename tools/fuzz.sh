@@ -37,7 +37,7 @@ rm -rf "$seeds"
 mkdir -p "$seeds" "$corpus" "$findings"
 cp scenes/*.json tests/scenes/*.json "$seeds"/
 for f in scenes/*/*.json; do [ -f "$f" ] && cp "$f" "$seeds/$(basename "$(dirname "$f")")-$(basename "$f")"; done
-cp scenes/models/*.glb "$seeds"/
+cp scenes/models/*.glb tests/fuzz/seeds/* "$seeds"/
 
 # One process (the machine is shared); -max_len keeps executions fast: the large models are
 # read as their first 512 KiB, which keeps their whole JSON chunk and truncates the binary one.

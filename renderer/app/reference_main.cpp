@@ -165,9 +165,10 @@ int run(int argc, char** argv) {
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    writeImage(args.output, image.width, image.height, image.rgba);
+    std::vector<ImageFile> files = {{args.output, image.width, image.height, &image.rgba}};
+    std::vector<float> shown;
     if (!args.png.empty()) {
-        std::vector<float> shown = image.rgba;
+        shown = image.rgba;
         const float exposure = float(scene.setting("exposure", 1.0));
         for (size_t i = 0; i < shown.size(); ++i) {
             if (i % 4 == 3)
@@ -175,8 +176,9 @@ int run(int argc, char** argv) {
             else if (args.options.mode != Mode::Ao)
                 shown[i] = display(shown[i], exposure);
         }
-        writeImage(args.png, image.width, image.height, shown);
+        files.push_back({args.png, image.width, image.height, &shown});
     }
+    writeImages(files); // both or neither
     char noise[32] = "not estimated";
     if (std::isfinite(image.noise))
         std::snprintf(noise, sizeof noise, "%.2f%%", 100.0 * image.noise);

@@ -7,10 +7,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <unistd.h>
 
 namespace fs = std::filesystem;
 using namespace ssgi;
@@ -107,14 +109,29 @@ int run(int argc, char** argv) {
     }
 
     ProfileLog log(args.warmup);
+    // Many frames take long (a million is hours on a CPU device): on a terminal, say how far.
+    const bool progress = args.frames > 1 && isatty(fileno(stderr));
+    const auto start = std::chrono::steady_clock::now();
+    auto lastShown = start;
     for (uint32_t f = 0; f < args.frames; ++f) {
         renderer.renderFrame(camera);
         log.add(renderer.lastFrameProfile());
+        const auto now = std::chrono::steady_clock::now();
+        if (progress &&
+            (now - lastShown > std::chrono::milliseconds(500) || f + 1 == args.frames)) {
+            lastShown = now;
+            const double seconds = std::chrono::duration<double>(now - start).count();
+            const double left = seconds / (f + 1) * (args.frames - f - 1);
+            std::fprintf(stderr, "\rframe %u of %u, %.0f s, about %.0f s left   ", f + 1,
+                         args.frames, seconds, left);
+            if (f + 1 == args.frames) std::fprintf(stderr, "\n");
+        }
     }
 
     const std::string exrPath = fs::path(args.output).replace_extension(".exr").string();
-    writeImage(args.output, common.width, common.height, renderer.readImage("ldr"));
-    writeImage(exrPath, common.width, common.height, renderer.readImage("hdr"));
+    const std::vector<float> ldr = renderer.readImage("ldr"), hdr = renderer.readImage("hdr");
+    writeImages({{args.output, common.width, common.height, &ldr},
+                 {exrPath, common.width, common.height, &hdr}}); // both or neither
     std::printf("wrote %s and %s (%ux%u, %u frame%s, scene %s)\n", args.output.c_str(),
                 exrPath.c_str(), common.width, common.height, args.frames,
                 args.frames == 1 ? "" : "s", common.scene.c_str());

@@ -116,10 +116,15 @@ int run(int argc, char** argv) {
             char name[32];
             std::snprintf(name, sizeof name, "frame_%04u.png", f);
             const fs::path path = fs::path(args.framesDir) / name;
-            writeImage(path.string(), common.width, common.height, renderer.readImage("ldr"));
-            if (args.exr)
-                writeImage(fs::path(path).replace_extension(".exr").string(), common.width,
-                           common.height, renderer.readImage("hdr"));
+            const std::vector<float> ldr = renderer.readImage("ldr");
+            std::vector<float> hdr;
+            std::vector<ImageFile> files = {{path.string(), common.width, common.height, &ldr}};
+            if (args.exr) {
+                hdr = renderer.readImage("hdr");
+                files.push_back({fs::path(path).replace_extension(".exr").string(), common.width,
+                                 common.height, &hdr});
+            }
+            writeImages(files); // a frame's PNG and EXR land together or not at all
         }
         if (isatty(2)) std::fprintf(stderr, "\rframe %u/%u  %.1f ms", f + 1, args.frames, total);
     }

@@ -40,6 +40,7 @@ struct PassSetup {
     VkSampler nearestSampler = VK_NULL_HANDLE;
     VkSampler linearSampler = VK_NULL_HANDLE;
     VkExtent2D size{};                   // the output image
+    glm::dvec3 gpuOrigin{0.0};           // the world point at the GPU's origin (renderer.cpp)
     VkExtent2D rsmSize{};                // the reflective shadow map
     std::vector<vk::Pipeline> pipelines; // destroyed with the renderer
     std::vector<vk::Buffer> buffers;     // likewise (the sky maps' views)

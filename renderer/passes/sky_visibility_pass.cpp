@@ -27,7 +27,8 @@ graph::ImageRef addSkyVisibilityPasses(PassSetup& s, const GBufferAndRsm& in) {
                          std::to_string(atlas.width) + "x" + std::to_string(atlas.height) +
                          " atlas, beyond this device's largest 2D image (" + std::to_string(limit) +
                          ")");
-    const glm::vec3 centre = m.bounds.center();
+    // In the GPU's coordinates, as the G-buffer and the draws are.
+    const glm::vec3 centre = glm::vec3(glm::dvec3(m.bounds.center()) - s.gpuOrigin);
     const float radius = std::max(0.5f * glm::length(m.bounds.size()) * 1.02f, 1e-6f);
     shader::SkyMapView view{glm::vec4(centre, radius), glm::ivec4(0, count, perRow, tileSize)};
 

@@ -27,9 +27,10 @@ private:
 
 // Triangle data out of glTF accessors (gltf_mesh.cpp), with every offset, stride, count and
 // index checked, so that a malformed file is an InputError, never a read past a buffer's end.
-// The Mesh of one TRIANGLES primitive, vertices in object space, material left at 0. Without a
-// NORMAL attribute the triangles are un-indexed and get their face normals (glTF's flat rule).
-// `where` names the primitive in messages ("mesh 3 primitive 0").
+// The Mesh of one TRIANGLES, TRIANGLE_STRIP or TRIANGLE_FAN primitive (as a triangle list),
+// vertices in object space, material left at 0. Without a NORMAL attribute the triangles are
+// un-indexed and get their face normals (glTF's flat rule). `where` names the primitive in messages
+// ("mesh 3 primitive 0").
 Mesh buildPrimitiveMesh(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
                         const std::string& file, const std::string& where, GltfWarnings& warnings);
 

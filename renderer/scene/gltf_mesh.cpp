@@ -181,6 +181,23 @@ void repairNormals(Mesh& mesh, GltfWarnings& warnings) {
         if (broken[i]) mesh.vertices[i].normal = unitOr(mesh.vertices[i].normal, {0, 1, 0});
 }
 
+// The corners of a TRIANGLES, TRIANGLE_STRIP or TRIANGLE_FAN primitive as a triangle list, in
+// the order the glTF specification (§3.7.2.1) gives each triangle, so that the front faces stay
+// the front faces: strip triangle i is (i, i+1+i%2, i+2-i%2), fan triangle i is (i+1, i+2, 0).
+std::vector<uint32_t> triangleList(std::vector<uint32_t> corners, int mode) {
+    if (mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) return corners;
+    std::vector<uint32_t> list;
+    const size_t triangles = corners.size() < 3 ? 0 : corners.size() - 2;
+    list.reserve(triangles * 3);
+    for (size_t i = 0; i < triangles; ++i) {
+        if (mode == TINYGLTF_MODE_TRIANGLE_STRIP)
+            list.insert(list.end(), {corners[i], corners[i + 1 + i % 2], corners[i + 2 - i % 2]});
+        else
+            list.insert(list.end(), {corners[i + 1], corners[i + 2], corners[0]});
+    }
+    return list;
+}
+
 } // namespace
 
 Mesh buildPrimitiveMesh(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
@@ -220,6 +237,7 @@ Mesh buildPrimitiveMesh(const tinygltf::Model& model, const tinygltf::Primitive&
     } else {
         std::iota(corners.begin(), corners.end(), 0u);
     }
+    corners = triangleList(std::move(corners), primitive.mode);
     if (corners.size() % 3 != 0)
         fail(file, where + ": " + std::to_string(corners.size()) +
                        " triangle corners is not a multiple of 3");

@@ -127,9 +127,10 @@ private:
         const tinygltf::Primitive& primitive =
             model_.meshes[size_t(gltfMesh)].primitives[size_t(primitiveIndex)];
         const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
-        if (mode != TINYGLTF_MODE_TRIANGLES) {
+        if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+            mode != TINYGLTF_MODE_TRIANGLE_FAN) {
             warnings_.once("glTF primitives of mode " + std::to_string(mode) +
-                           " (not TRIANGLES) are skipped");
+                           " (points or lines) are skipped");
             return -1;
         }
         if (!primitive.targets.empty()) warnings_.once("glTF morph targets are ignored");

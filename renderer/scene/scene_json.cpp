@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <set>
 #include <sstream>
 
 namespace ssgi {
@@ -261,7 +262,43 @@ SceneDescription readSceneDescription(const std::string& path) {
     const std::string text = readInputFile(path);
     Json document;
     try {
-        document = Json::parse(text);
+        // JSON allows a key twice in one object, and the parser keeps the last: a scene file
+        // that says "intensity" twice would silently lose the first. That is an error here.
+        struct Open {
+            std::string name; // "light", "objects[]": where it is, for the message
+            bool isObject = false;
+            std::set<std::string> keys;
+        };
+        std::vector<Open> open;
+        std::string lastKey;
+        auto nameOfNext = [&] {
+            return open.empty()           ? std::string()
+                   : open.back().isObject ? lastKey
+                                          : open.back().name + "[]";
+        };
+        document = Json::parse(text, [&](int, Json::parse_event_t event, Json& parsed) {
+            switch (event) {
+            case Json::parse_event_t::object_start:
+            case Json::parse_event_t::array_start:
+                open.push_back({nameOfNext(), event == Json::parse_event_t::object_start, {}});
+                break;
+            case Json::parse_event_t::object_end:
+            case Json::parse_event_t::array_end:
+                if (!open.empty()) open.pop_back();
+                break;
+            case Json::parse_event_t::key:
+                lastKey = parsed.get<std::string>();
+                if (!open.empty() && !open.back().keys.insert(lastKey).second)
+                    throw InputError(path + ": the key '" + lastKey + "' appears twice in " +
+                                     (open.back().name.empty() ? std::string("the top-level object")
+                                                               : "'" + open.back().name + "'") +
+                                     " (JSON would silently keep only the last)");
+                break;
+            default:
+                break;
+            }
+            return true;
+        });
     } catch (const Json::parse_error& error) {
         // what() starts with "[json.exception.parse_error.101] ", which helps nobody.
         std::string detail = error.what();

@@ -68,6 +68,9 @@ void main() {
         vec3 sky = HAS_SSDO != 0 ? ssdo : albedo * skyLight(n) * ao * skyVisibility;
         hdr = direct + sky + indirect;
     }
+    // Every radiance above is in the intermediate images' units (see radianceScale).
+    float unit = frame.radianceScale.x;
+    hdr *= unit;
 
     // A debug view replaces both outputs: the EXR holds the view's linear quantity (radiance,
     // visibility, normal, distance), the PNG its display encoding.
@@ -78,15 +81,15 @@ void main() {
     if (view == VIEW_NORMAL) value = position.w == 0.0 ? vec3(0.0) : n;
     if (view == VIEW_DEPTH)
         value = vec3(position.w == 0.0 ? 0.0 : distance(position.xyz, frame.cameraPosition.xyz));
-    if (view == VIEW_DIRECT) value = direct;
+    if (view == VIEW_DIRECT) value = direct * unit;
     float texel = 2.0 * frame.lightFrustum.z / frame.lightFrustum.w;
-    if (view == VIEW_RSM_FLUX) value = texture(rsmFlux, uv).rgb / (texel * texel);
+    if (view == VIEW_RSM_FLUX) value = texture(rsmFlux, uv).rgb * unit / (texel * texel);
     if (view == VIEW_RSM_NORMAL) value = texture(rsmNormal, uv).xyz;
     vec4 shadow = texelFetch(shadowImage, pixel, 0);
     if (view == VIEW_SHADOW) value = vec3(shadow.r);
     if (view == VIEW_AO) value = vec3(ao);
-    if (view == VIEW_INDIRECT) value = indirect;
-    if (view == VIEW_SSDO) value = ssdo;
+    if (view == VIEW_INDIRECT) value = indirect * unit;
+    if (view == VIEW_SSDO) value = ssdo * unit;
     if (view == VIEW_SKY_VISIBILITY) value = skyVisibility;
     // The contact pass keeps the shadow map's term in g: what contact shadows took away.
     if (view == VIEW_CONTACT) value = vec3(shadow.r, max(shadow.g - shadow.r, 0.0), 0.0);

@@ -38,8 +38,12 @@ struct FrameUniforms {
     // (world space, old and new place together); motion.x = number of boxes (at most 4).
     vec4 movedBoxes[8];
     vec4 motion;
+    // x = the power of two every light, sky and so every radiance in the intermediate images is
+    // divided by, so that a very bright scene fits their half floats (65504 at most); 1 for the
+    // usual scene. The composite multiplies it back.
+    vec4 radianceScale;
 };
-SSGI_CHECK_SIZE(FrameUniforms, 7 * 64 + 19 * 16);
+SSGI_CHECK_SIZE(FrameUniforms, 7 * 64 + 20 * 16);
 
 // Per draw in the raster passes (push constants).
 struct DrawConstants {

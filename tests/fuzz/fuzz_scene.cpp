@@ -15,6 +15,7 @@
 #include <iostream>
 #include <streambuf>
 #include <string>
+#include <sys/stat.h>
 #include <typeinfo>
 #include <unistd.h>
 
@@ -152,6 +153,22 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
             for (const auto& entry : fs::directory_iterator(models))
                 if (entry.path().extension() == ".glb")
                     fs::create_symlink(small, scenes / entry.path().filename(), ignored);
+    }
+    // Files a mutated .gltf can name as a buffer or image (seeded by tests/fuzz/seeds/): one
+    // triangle beside it and one a folder up, and what must be refused without being opened —
+    // a folder, a FIFO (opening it would hang), a device (reading it would never end).
+    {
+        const float triangle[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+        const uint32_t corners[3] = {0, 1, 2};
+        for (const fs::path& bin : {gInputDir / "mesh.bin", gInputDir.parent_path() / "up.bin"}) {
+            std::ofstream out(bin, std::ios::binary);
+            out.write(reinterpret_cast<const char*>(triangle), sizeof triangle);
+            out.write(reinterpret_cast<const char*>(corners), sizeof corners);
+        }
+        std::error_code ignored;
+        fs::create_directories(gInputDir / "folder.bin", ignored);
+        mkfifo((gInputDir / "fifo.bin").c_str(), 0600);
+        fs::create_symlink("/dev/zero", gInputDir / "zero.bin", ignored);
     }
     std::atexit(removeRoot);
     return 0;
