@@ -249,6 +249,21 @@ def tables(sweeps, walks, size, note):
     return "".join(md)
 
 
+def write_tables(md, results, name, doc_path, begin, end):
+    """The tables as results/NAME, and in place of what stands between the markers begin and end
+    of the doc, when one is given."""
+    with open(os.path.join(results, name), "w") as f:
+        f.write(md)
+    if doc_path:
+        with open(doc_path) as f:
+            doc = f.read()
+        pattern = re.compile(re.escape(begin) + ".*?" + re.escape(end), re.S)
+        doc = pattern.sub(lambda _: begin + "\n" + md + end, doc)
+        with open(doc_path, "w") as f:
+            f.write(doc)
+    print("tables: %s" % os.path.join(results, name))
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--results", required=True)
@@ -262,17 +277,8 @@ def main():
     os.makedirs(a.images, exist_ok=True)
     write_csvs(sweeps, walks, a.results)
     charts.draw_all(sweeps, walks, a.size, a.images)
-    md = tables(sweeps, walks, a.size, a.note)
-    with open(os.path.join(a.results, "tables.md"), "w") as f:
-        f.write(md)
-    if a.doc:
-        with open(a.doc) as f:
-            doc = f.read()
-        pattern = re.compile(re.escape(BEGIN) + ".*?" + re.escape(END), re.S)
-        doc = pattern.sub(lambda _: BEGIN + "\n" + md + END, doc)
-        with open(a.doc, "w") as f:
-            f.write(doc)
-    print("tables: %s" % os.path.join(a.results, "tables.md"))
+    write_tables(tables(sweeps, walks, a.size, a.note), a.results, "tables.md", a.doc,
+                 BEGIN, END)
 
 
 if __name__ == "__main__":

@@ -8,7 +8,6 @@ Writes the per-frame chart and the tables between the walkthrough-results marker
 
 import argparse
 import os
-import re
 
 import analysis
 import charts
@@ -53,18 +52,7 @@ def main():
     os.makedirs(a.images, exist_ok=True)
     scenes = sorted(walks, key=lambda s: TABLES.get(s, "Table 9"))
     charts.walkthrough_chart(walks, a.images, "bench-walkthroughs", scenes)
-    md = tables(walks)
-    with open(os.path.join(a.results, "walkthroughs.md"), "w") as f:
-        f.write(md)
-    if a.doc:
-        with open(a.doc) as f:
-            doc = f.read()
-        pattern = re.compile(re.escape(BEGIN) + ".*?" + re.escape(END), re.S)
-        doc = pattern.sub(lambda _: BEGIN + "\n" + md + END, doc)
-        with open(a.doc, "w") as f:
-            f.write(doc)
-    print("tables: %s" % os.path.join(a.results, "walkthroughs.md"))
-
+    report.write_tables(tables(walks), a.results, "walkthroughs.md", a.doc, BEGIN, END)
 
 if __name__ == "__main__":
     main()
