@@ -213,7 +213,7 @@ TEST_F(SceneFiles, TriangleStripsAndFansAreTriangles) {
         SCOPED_TRACE("mode " + std::to_string(mode) + ", " + std::to_string(indices.size()));
         json gltf = triangleGltf(square, indices, {{{"mesh", 0}}}, {0});
         gltf["meshes"][0]["primitives"][0]["mode"] = mode;
-        const Scene scene = loadScene(write("strip.gltf", gltf.dump()));
+        const Scene scene = loadScene(write("strip.gltf", gltf.dump()), {{"ground_plane", 0}});
         ASSERT_EQ(scene.meshes.size(), 1u);
         const ssgi::Mesh& mesh = scene.meshes[0];
         EXPECT_EQ(mesh.indices.size(), 3 * (indices.size() - 2));
