@@ -4,6 +4,7 @@
 #include "metrics/error_map.h"
 #include "support.h"
 
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -12,6 +13,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
@@ -207,6 +209,23 @@ TEST_F(Program, CompareNamesBadInput) {
     EXPECT_EQ(run("compare", a + " " + a + " --error-map " + (dir / "map.jpg").string(), output),
               2);
     EXPECT_FALSE(fs::exists(dir / "map.jpg"));
+    // Images that cannot be compared (issue 21): a tonemapped PNG against a linear EXR, and a
+    // reference holding NaN (written past writeImage, which refuses to write one).
+    const std::string png = image("a.png", constant(32, 24, 0.5f));
+    EXPECT_EQ(run("compare", png + " " + a, output), 2);
+    EXPECT_NE(output.find("hold different quantities"), std::string::npos) << output;
+    const std::string nan = (dir / "nan.exr").string();
+    {
+        std::vector<float> pixels = constant(32, 24, 0.5f).rgba;
+        pixels[4 * 7] = std::numeric_limits<float>::quiet_NaN();
+        auto out = OIIO::ImageOutput::create(nan);
+        ASSERT_TRUE(out);
+        ASSERT_TRUE(out->open(nan, OIIO::ImageSpec(32, 24, 4, OIIO::TypeDesc::FLOAT)));
+        ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
+        out->close();
+    }
+    EXPECT_EQ(run("compare", a + " " + nan, output), 2);
+    EXPECT_NE(output.find("1 pixels are NaN or infinite"), std::string::npos) << output;
 }
 
 // Every scene in scenes/ renders, to an image that is neither black nor NaN.

@@ -158,10 +158,36 @@ Image display(const Image& image, const std::string& path, double exposure) {
     return displayImage(image, fs::path(path).extension() == ".exr", exposure);
 }
 
+// Pixels with a NaN or infinite colour channel.
+size_t nonFinitePixels(const Image& image) {
+    size_t count = 0;
+    for (size_t i = 0; i < image.pixels(); ++i)
+        count += !std::isfinite(image.rgba[4 * i] + image.rgba[4 * i + 1] + image.rgba[4 * i + 2]);
+    return count;
+}
+
+// Two images whose figures would mean nothing are bad input (issue 21): a tonemapped sRGB .png
+// against linear radiance in an .exr gave a relMSE with exit status 0, and a reference holding
+// NaN gave NaN figures without a word.
+void requireComparable(const Args& args, const Image& reference) {
+    const std::string a = fs::path(args.test).extension().string();
+    const std::string b = fs::path(args.reference).extension().string();
+    if (a != b)
+        throw InputError(args.test + " (" + (a == ".png" ? "tonemapped sRGB" : "linear") +
+                         ") and " + args.reference + " (" +
+                         (b == ".png" ? "tonemapped sRGB" : "linear") +
+                         ") hold different quantities: compare a .png with a .png, an .exr with "
+                         "an .exr");
+    if (const size_t bad = nonFinitePixels(reference))
+        throw InputError(args.reference + ": " + std::to_string(bad) +
+                         " pixels are NaN or infinite; a reference must be finite");
+}
+
 int run(int argc, char** argv) {
     const Args args = parseArgs(argc, argv);
     const Image test = load(args.test), reference = load(args.reference);
     requireSize(reference, args.reference, test, args.test);
+    requireComparable(args, reference);
 
     std::vector<Check> checks;
     std::vector<std::pair<std::string, Mask>> regions = {{"image", Mask()}};
@@ -174,9 +200,7 @@ int run(int argc, char** argv) {
         regions.emplace_back("mask " + path, thresholdMask(mask));
     }
 
-    size_t nonFinite = 0;
-    for (size_t i = 0; i < test.pixels(); ++i)
-        nonFinite += !std::isfinite(test.rgba[4 * i] + test.rgba[4 * i + 1] + test.rgba[4 * i + 2]);
+    const size_t nonFinite = nonFinitePixels(test);
 
     const std::vector<double> ssim = ssimMap(test, reference);
     nlohmann::json jsonRegions = nlohmann::json::array();
