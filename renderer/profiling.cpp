@@ -13,6 +13,7 @@ namespace {
 
 PassStatistics statistics(const std::string& name, std::vector<double> values) {
     PassStatistics s{name};
+    s.framesMs = values;
     if (values.empty()) return s;
     std::sort(values.begin(), values.end());
     const size_t n = values.size();

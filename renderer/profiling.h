@@ -31,6 +31,7 @@ struct FrameProfile {
 struct PassStatistics {
     std::string name;
     double medianMs = 0.0, minMs = 0.0, maxMs = 0.0;
+    std::vector<double> framesMs; // each timed frame's, in order
 };
 
 struct ProfileSummary {

@@ -142,21 +142,14 @@ int run(int argc, char** argv) {
         const ProfileSummary summary = log.summary();
         nlohmann::json passes = nlohmann::json::array();
         double total = 0.0;
-        for (size_t p = 0; p < summary.passes.size(); ++p) {
-            const PassStatistics& s = summary.passes[p];
-            std::vector<double> frames;
-            for (size_t f = summary.warmupFrames; f < log.frames().size(); ++f)
-                frames.push_back(log.frames()[f].passes[p].milliseconds);
+        for (const PassStatistics& s : summary.passes) {
             passes.push_back({{"name", s.name},
                               {"median_ms", s.medianMs},
                               {"min_ms", s.minMs},
                               {"max_ms", s.maxMs},
-                              {"frames_ms", frames}});
+                              {"frames_ms", s.framesMs}});
             total += s.medianMs;
         }
-        std::vector<double> host;
-        for (size_t f = summary.warmupFrames; f < log.frames().size(); ++f)
-            host.push_back(log.frames()[f].hostMs);
         nlohmann::json j = {{"scene", common.scene},
                             {"device", ctx.properties.deviceName},
                             {"driver", ctx.driverName},
@@ -168,7 +161,7 @@ int run(int argc, char** argv) {
                             {"total_median_ms", total},
                             {"sum_of_passes_median_ms", summary.passSum.medianMs},
                             {"host_median_ms", summary.host.medianMs},
-                            {"host_frames_ms", host},
+                            {"host_frames_ms", summary.host.framesMs},
                             {"worst_coverage", summary.worstCoverage}};
         cli::writeTextAtomically(args.profileJson, j.dump(2) + "\n");
     }

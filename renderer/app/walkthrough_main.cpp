@@ -11,7 +11,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
-#include <map>
 #include <sstream>
 #include <unistd.h>
 
@@ -93,25 +92,15 @@ int run(int argc, char** argv) {
     Renderer renderer(ctx, scene, {common.width, common.height, args.view});
 
     const float duration = scene.cameraPath.empty() ? 0.0f : scene.cameraPath.keys.back().time;
-    std::vector<std::string> passNames;
-    std::map<std::string, std::vector<double>> perPass; // frame by frame
-    std::vector<double> totals, host;
-    // The first frame compiles pipelines and starts the caches: the summary leaves it out.
+    // Every frame's passes and host clock; the first frame compiles pipelines and starts the
+    // caches: the summary leaves it out.
     ProfileLog log(args.frames > 1 ? 1 : 0);
     for (uint32_t f = 0; f < args.frames; ++f) {
         const float t = args.still || args.frames == 1 ? 0.0f : duration * f / (args.frames - 1);
         renderer.setTime(t);
         renderer.renderFrame(scene.cameraPath.empty() ? scene.camera
                                                       : cameraAt(scene.cameraPath, t));
-        double total = 0.0;
-        for (const auto& timing : renderer.timings()) {
-            if (!perPass.count(timing.name)) passNames.push_back(timing.name);
-            perPass[timing.name].push_back(timing.milliseconds);
-            total += timing.milliseconds;
-        }
-        totals.push_back(total);
         log.add(renderer.lastFrameProfile());
-        host.push_back(log.frames().back().hostMs);
         if (!args.framesDir.empty()) {
             char name[32];
             std::snprintf(name, sizeof name, "frame_%04u.png", f);
@@ -126,7 +115,9 @@ int run(int argc, char** argv) {
             }
             writeImages(files); // a frame's PNG and EXR land together or not at all
         }
-        if (isatty(2)) std::fprintf(stderr, "\rframe %u/%u  %.1f ms", f + 1, args.frames, total);
+        if (isatty(2))
+            std::fprintf(stderr, "\rframe %u/%u  %.1f ms", f + 1, args.frames,
+                         log.frames().back().passSumMs());
     }
     if (isatty(2)) std::fprintf(stderr, "\n");
 
@@ -135,13 +126,22 @@ int run(int argc, char** argv) {
             std::ostringstream csv;
             csv << "frame,pass,ms\n"; // "total": the passes added up; "host": the host clock
             for (uint32_t f = 0; f < args.frames; ++f) {
-                for (const auto& name : passNames)
-                    csv << f << "," << name << "," << perPass[name][f] << "\n";
-                csv << f << ",total," << totals[f] << "\n";
-                csv << f << ",host," << host[f] << "\n";
+                const FrameProfile& frame = log.frames()[f];
+                for (const PassTiming& pass : frame.passes)
+                    csv << f << "," << pass.name << "," << pass.milliseconds << "\n";
+                csv << f << ",total," << frame.passSumMs() << "\n";
+                csv << f << ",host," << frame.hostMs << "\n";
             }
             cli::writeTextAtomically(args.timings, csv.str());
         } else {
+            std::vector<double> totals, host;
+            nlohmann::json passes = nlohmann::json::object();
+            for (const FrameProfile& frame : log.frames()) {
+                totals.push_back(frame.passSumMs());
+                host.push_back(frame.hostMs);
+                for (const PassTiming& pass : frame.passes)
+                    passes[pass.name].push_back(pass.milliseconds);
+            }
             nlohmann::json j = {{"scene", common.scene},
                                 {"device", ctx.properties.deviceName},
                                 {"driver", ctx.driverName},
@@ -151,9 +151,8 @@ int run(int argc, char** argv) {
                                 {"cache", scene.setting("cache")},
                                 {"still", args.still},
                                 {"total_ms", totals},
-                                {"host_ms", host}};
-            for (const auto& name : passNames)
-                j["passes"][name] = perPass[name];
+                                {"host_ms", host},
+                                {"passes", passes}};
             cli::writeTextAtomically(args.timings, j.dump(1) + "\n");
         }
     }
