@@ -30,7 +30,8 @@ graph::ImageRef addSkyVisibilityPasses(PassSetup& s, const GBufferAndRsm& in) {
     // In the GPU's coordinates, as the G-buffer and the draws are.
     const glm::vec3 centre = glm::vec3(glm::dvec3(m.bounds.center()) - s.gpuOrigin);
     const float radius = std::max(0.5f * glm::length(m.bounds.size()) * 1.02f, 1e-6f);
-    shader::SkyMapView view{glm::vec4(centre, radius), glm::ivec4(0, count, perRow, tileSize)};
+    const shader::SkyMapView view{glm::vec4(centre, radius),
+                                  glm::ivec4(0, count, perRow, tileSize)};
 
     const graph::ImageRef maps = s.graph.createImage(
         "sky.maps", VK_FORMAT_D32_SFLOAT, atlas,
@@ -40,8 +41,9 @@ graph::ImageRef addSkyVisibilityPasses(PassSetup& s, const GBufferAndRsm& in) {
     for (int k = 0; k < count; ++k) {
         s.buffers.push_back(vk::createBuffer(s.ctx, sizeof(shader::SkyMapView),
                                              VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true));
-        view.tile.x = k;
-        std::memcpy(s.buffers.back().mapped, &view, sizeof(view));
+        shader::SkyMapView map = view;
+        map.tile.x = k;
+        std::memcpy(s.buffers.back().mapped, &map, sizeof(map));
         views.push_back(s.buffers.back().buffer);
     }
     vk::GraphicsPipelineDesc desc;
@@ -91,7 +93,6 @@ graph::ImageRef addSkyVisibilityPasses(PassSetup& s, const GBufferAndRsm& in) {
     // of nearness is left out (the map's own resolution).
     const float texel = 2.0f * radius / float(tileSize);
     shader::SkyVisibilityConstants constants{view, {}};
-    constants.maps.tile.x = 0;
     const float nearest = m.setting("ao") != 0.0 && m.setting("ssdo") == 0.0 ? aoRadius(m) : 0.0f;
     constants.params = glm::vec4(std::max(nearest, 3.0f * texel), 1.5f * texel, 0.0f, 0.0f);
     s.graph.addPass(
