@@ -54,6 +54,10 @@ class ProfileLog {
 public:
     explicit ProfileLog(uint32_t warmupFrames = 1) : warmup_(warmupFrames) {}
     void add(FrameProfile frame) { frames_.push_back(std::move(frame)); }
+    // Drops all but the last `count` frames (a rolling window, as the viewer keeps).
+    void keepLast(size_t count) {
+        if (frames_.size() > count) frames_.erase(frames_.begin(), frames_.end() - count);
+    }
     const std::vector<FrameProfile>& frames() const { return frames_; }
     uint32_t warmupFrames() const { return warmup_; }
 

@@ -22,12 +22,8 @@ void TimingHistory::add(const FrameProfile& frame) {
     }
     push(total, frame.passSumMs());
     push(host, frame.hostMs);
-    ProfileLog next(0);
-    const std::vector<FrameProfile>& kept = recent.frames();
-    for (size_t f = kept.size() >= kFrames ? 1 : 0; f < kept.size(); ++f)
-        next.add(kept[f]);
-    next.add(frame);
-    recent = std::move(next);
+    recent.add(frame);
+    recent.keepLast(kFrames);
 }
 
 void TimingHistory::clear() {
