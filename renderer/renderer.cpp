@@ -160,8 +160,11 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
         }
         if (scene.setting("indirect") != 0.0) {
             EffectCache* cache = createCache(*setup_, "indirect", "cache_tile_indirect", true);
-            terms.indirect =
-                addTemporalPass(*setup_, cache, addIndirectPasses(*setup_, scenes, cache), scenes);
+            const graph::ImageRef indirect =
+                scene.setting("indirect_method") == 1.0
+                    ? addInterleavedIndirectPasses(*setup_, scenes, cache)
+                    : addIndirectPasses(*setup_, scenes, cache);
+            terms.indirect = addTemporalPass(*setup_, cache, indirect, scenes);
         }
         // The sky's visibility beyond the screen, for the sky term beside the AO (none to see
         // under a black sky, as in the Cornell boxes).

@@ -44,9 +44,10 @@ void main() {
     vec3 result = vec3(0.0);
     if (position.w != 0.0) {
         vec3 n = texelFetch(gbufferNormal, source, 0).xyz;
+        vec4 unused; // the directional sums serve the interleaved method alone
         result = gatherIndirect(position.xyz, n, pixelRotation(pixel) + constants.pattern.x,
                                 constants.pattern.y, constants.pattern.z,
-                                radialOffset(constants.pattern.w, 0.5));
+                                radialOffset(constants.pattern.w, 0.5), 0, 1, unused);
     }
     imageStore(halfIndirect, pixel, vec4(result, 1.0));
 }

@@ -39,9 +39,16 @@ bool vplVisible(vec3 p, vec3 q) {
     return true;
 }
 
-// Irradiance / pi at p (normal n) from the RSM's VPLs.
+// Irradiance / pi at p (normal n) from the RSM's VPLs: all VPLS of the pattern (`subsets` 1), or
+// the interleaved subset `subset` of `subsets` = k*k (shared.h vplSubset), weighted so that each
+// subset alone estimates the whole pattern's sum and their mean is that sum.
+// `directional` receives the same VPLs' light, before p's cosine and visibility, as an L1
+// spherical harmonic of its luminance (x = sum of c, yzw = sum of c D, for c the VPL's luminance
+// towards p): f(m) = x / 4 + dot(yzw, m) / 2 approximates the irradiance / pi a normal m
+// would receive, which lets the interleaved method's filter carry a neighbour's estimate over
+// to another normal (indirect_reconstruct.comp).
 vec3 gatherIndirect(vec3 p, vec3 n, float rotation, float radiusScale, float radius,
-                    float stratum) {
+                    float stratum, int subset, int subsets, out vec4 directional) {
     vec4 clip = frame.lightViewProjection * vec4(p, 1.0);
     // The pattern is centred on p's projection (the map's centre when p is behind the light) and
     // clamped into the map. With radius 0 it reaches the map's farthest corner, so that every
@@ -54,10 +61,18 @@ vec3 gatherIndirect(vec3 p, vec3 n, float rotation, float radiusScale, float rad
     float size = frame.lightFrustum.w;
     // Texels in the disk per sample: the sum over all texels ~ (texels per unit area) x area
     // element of each sample, which for this pattern is 2 pi R r / VPLS.
-    float weightScale = size * size * 2.0 * PI * samplingRadius * samplingRadius / float(VPLS);
+    float weightScale =
+        size * size * 2.0 * PI * samplingRadius * samplingRadius / float(VPLS) * float(subsets);
+    // A cached effect's `stratum` moves over [0, 1) frame by frame; with subsets it also turns
+    // which subset the pixel gathers, so that over frames every pixel draws every VPL's radii
+    // (one subset alone covers 1/subsets of them). With one subset both are the plain stratum.
+    float shifted = stratum * float(subsets);
+    subset = (subset + int(shifted)) % subsets;
+    float withinStratum = fract(shifted);
     vec3 irradiance = vec3(0.0);
-    for (int i = 0; i < VPLS; ++i) {
-        float xi1 = (float(i) + stratum) / float(VPLS);
+    directional = vec4(0.0);
+    for (int i = subset; i < VPLS; i += subsets) {
+        float xi1 = (float(i) + withinStratum) / float(VPLS);
         float theta = float(i) * 2.39996323 + rotation;
         vec2 uv = center + samplingRadius * xi1 * vec2(cos(theta), sin(theta));
         if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) continue;
@@ -73,10 +88,13 @@ vec3 gatherIndirect(vec3 p, vec3 n, float rotation, float radiusScale, float rad
         vec3 D = toVpl * inversesqrt(max(distance2, 1e-12));
         float cosP = max(dot(n, D), 0.0);
         float cosQ = max(dot(texelFetch(rsmNormal, texel, 0).xyz, -D), 0.0);
+        vec3 flux = texelFetch(rsmFlux, texel, 0).rgb;
+        directional += dot(flux, vec3(0.2126, 0.7152, 0.0722)) * cosQ / (PI * d2) * xi1 *
+                       vec4(1.0, D);
         if (cosP * cosQ <= 0.0) continue;
         if (VISIBILITY != 0 && !vplVisible(p, q.xyz)) continue;
-        vec3 flux = texelFetch(rsmFlux, texel, 0).rgb;
         irradiance += flux * (cosP * cosQ / (PI * d2)) * xi1;
     }
+    directional *= weightScale / PI;
     return irradiance * weightScale / PI;
 }

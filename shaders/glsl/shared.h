@@ -11,8 +11,10 @@ using vec4 = glm::vec4;
 using mat4 = glm::mat4;
 using ivec4 = glm::ivec4;
 #define SSGI_CHECK_SIZE(type, bytes) static_assert(sizeof(type) == bytes, #type " layout")
+#define SSGI_INLINE inline
 #else
 #define SSGI_CHECK_SIZE(type, bytes)
+#define SSGI_INLINE
 #endif
 
 // Everything a pass may need about the frame: cameras, the light, the sky. Set 0, binding 0.
@@ -85,6 +87,21 @@ struct AoConstants {
     CacheConstants cache;
 };
 SSGI_CHECK_SIZE(AoConstants, 80);
+
+// Interleaved sampling of the VPLs (Keller and Heidrich 2001): the pattern's VPLs 0..n-1 are
+// split into k*k disjoint subsets, subset s holding VPLs s, s + k*k, s + 2*k*k, ...; a pixel
+// gathers the subset its place in a k x k block names, so every block of k x k pixels gathers
+// each VPL exactly once (tests/test_effects.cpp checks it).
+SSGI_INLINE int vplSubset(int x, int y, int k) {
+    return (y % k) * k + (x % k);
+}
+// The j-th VPL of subset s, and how many VPLs of n the subset holds.
+SSGI_INLINE int vplOfSubset(int s, int j, int k) {
+    return s + j * k * k;
+}
+SSGI_INLINE int vplSubsetSize(int s, int n, int k) {
+    return s < n ? (n - s + k * k - 1) / (k * k) : 0;
+}
 
 struct IndirectConstants {
     vec4 pattern; // x = rotation, y = scale, z = sampling radius (fraction of the RSM), w = radial

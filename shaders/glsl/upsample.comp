@@ -68,9 +68,10 @@ void main() {
     if (weightSum > 0.0) {
         imageStore(indirectImage, pixel, vec4(sum / weightSum, 1.0));
     } else {
+        vec4 unused; // the directional sums serve the interleaved method alone
         vec3 e = gatherIndirect(p, n, pixelRotation(pixel) + constants.pattern.x,
                                 constants.pattern.y, constants.pattern.z,
-                                radialOffset(constants.pattern.w, 0.5));
+                                radialOffset(constants.pattern.w, 0.5), 0, 1, unused);
         imageStore(indirectImage, pixel, vec4(e, 1.0));
     }
 }

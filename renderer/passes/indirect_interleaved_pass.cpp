@@ -1,0 +1,115 @@
+// indirect + indirect.reconstruct: one-bounce indirect light from the RSM's virtual point lights
+// with interleaved sampling (indirect_method 1): each pixel gathers 1/k^2 of the VPLs at full
+// resolution (indirect_interleaved.comp), then a geometry-aware filter, one axis a pass
+// (indirect_reconstruct.comp), gives every pixel the whole set's estimate many times over
+// (Keller and Heidrich 2001; Segovia et al. 2006). No upsampling, so no staircase, and no pixel
+// gathers every VPL.
+//   reads:  gbuffer.position, gbuffer.normal, rsm.position, rsm.normal, rsm.flux, the cache's
+//           meta history (to skip converged pixels)
+//   writes: indirect.interleaved + indirect.directional (each pixel's subset: irradiance / pi,
+//           and the L1 sums of its VPLs' light), indirect.filtered_x + .filtered_x_directional
+//           (after the x axis), indirect (after the y axis; the y pass's directional sums go
+//           back into indirect.directional, unused after)
+#include "passes/pass_setup.h"
+
+#include "shared.h"
+
+namespace ssgi {
+
+graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& in,
+                                             EffectCache* cache) {
+    const VkImageUsageFlags usage =
+        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    auto image = [&](const char* name) {
+        return s.graph.createImage(name, VK_FORMAT_R16G16B16A16_SFLOAT, s.size, usage);
+    };
+    const graph::ImageRef subsets = image("indirect.interleaved");
+    const graph::ImageRef subsetsDirectional = image("indirect.directional");
+    const graph::ImageRef across = image("indirect.filtered_x");
+    const graph::ImageRef acrossDirectional = image("indirect.filtered_x_directional");
+    const graph::ImageRef full = image("indirect");
+    const int k = int(s.model.setting("indirect_interleave"));
+    const vk::Pipeline gather = s.computePipeline(
+        "indirect_interleaved.comp", 6, 2, sizeof(shader::IndirectConstants),
+        vk::Specialization{{int(s.model.setting("indirect_vpls")),
+                            int(s.model.setting("indirect_visibility")),
+                            int(s.model.setting("indirect_visibility_steps")), k}});
+    const vk::Pipeline filter =
+        s.computePipeline("indirect_reconstruct.comp", 5, 2, sizeof(shader::IndirectConstants),
+                          vk::Specialization{{k, int(s.model.setting("indirect_filter_radius"))}});
+
+    const graph::ImageRef meta = cacheMetaInput(cache, in.gbuffer.position);
+    auto constants = [&s, cache](glm::ivec2 axis) {
+        shader::IndirectConstants c{};
+        c.pattern = {s.patternRotation, s.patternScale, float(s.model.setting("indirect_radius")),
+                     radialOffset(s, cache)};
+        c.target = {int(s.size.width), int(s.size.height), axis.x, axis.y};
+        c.cache = cacheConstants(s, cache);
+        return c;
+    };
+
+    addKeepPass(s, cache, {subsets, subsetsDirectional, across, acrossDirectional, full});
+    using graph::Use;
+    s.graph.addPass("indirect", graph::PassKind::Compute,
+                    {{in.gbuffer.position, Use::Sampled},
+                     {in.gbuffer.normal, Use::Sampled},
+                     {in.rsm.position, Use::Sampled},
+                     {in.rsm.normal, Use::Sampled},
+                     {in.rsm.third, Use::Sampled},
+                     {meta, Use::Sampled},
+                     {subsets, Use::StorageWrite},
+                     {subsetsDirectional, Use::StorageWrite}},
+                    [&s, in, meta, cache, subsets, subsetsDirectional, gather,
+                     constants](const graph::PassContext& pc) {
+                        vk::Descriptors()
+                            .uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size)
+                            .sampledImage(1, pc.image(in.gbuffer.position).view, s.nearestSampler)
+                            .sampledImage(2, pc.image(in.gbuffer.normal).view, s.nearestSampler)
+                            .sampledImage(3, pc.image(in.rsm.position).view, s.nearestSampler)
+                            .sampledImage(4, pc.image(in.rsm.normal).view, s.nearestSampler)
+                            .sampledImage(5, pc.image(in.rsm.third).view, s.nearestSampler)
+                            .sampledImage(6, pc.image(meta).view, s.nearestSampler)
+                            .storageImage(7, pc.image(subsets).view)
+                            .storageImage(8, pc.image(subsetsDirectional).view)
+                            .push(s.ctx, pc.cmd, gather);
+                        const VkExtent2D area = cacheDispatch(s, cache, s.size);
+                        vk::dispatch(pc.cmd, gather, area.width, area.height, constants({0, 0}));
+                    });
+    // The filter, one axis a pass: x from the subsets, y from x's result.
+    struct Axis {
+        const char* pass;
+        glm::ivec2 axis;
+        graph::ImageRef source, sourceDirectional, target, targetDirectional;
+    };
+    const Axis axes[] = {
+        {"indirect.filter_x", {1, 0}, subsets, subsetsDirectional, across, acrossDirectional},
+        {"indirect.filter_y", {0, 1}, across, acrossDirectional, full, subsetsDirectional}};
+    for (const Axis& a : axes) {
+        s.graph.addPass(
+            a.pass, graph::PassKind::Compute,
+            {{in.gbuffer.position, Use::Sampled},
+             {in.gbuffer.normal, Use::Sampled},
+             {meta, Use::Sampled},
+             {a.source, Use::Sampled},
+             {a.sourceDirectional, Use::Sampled},
+             {a.target, Use::StorageWrite},
+             {a.targetDirectional, Use::StorageWrite}},
+            [&s, in, meta, cache, a, filter, constants](const graph::PassContext& pc) {
+                vk::Descriptors()
+                    .uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size)
+                    .sampledImage(1, pc.image(in.gbuffer.position).view, s.nearestSampler)
+                    .sampledImage(2, pc.image(in.gbuffer.normal).view, s.nearestSampler)
+                    .sampledImage(3, pc.image(meta).view, s.nearestSampler)
+                    .sampledImage(4, pc.image(a.source).view, s.nearestSampler)
+                    .sampledImage(5, pc.image(a.sourceDirectional).view, s.nearestSampler)
+                    .storageImage(6, pc.image(a.target).view)
+                    .storageImage(7, pc.image(a.targetDirectional).view)
+                    .push(s.ctx, pc.cmd, filter);
+                const VkExtent2D area = cacheDispatch(s, cache, s.size);
+                vk::dispatch(pc.cmd, filter, area.width, area.height, constants(a.axis));
+            });
+    }
+    return full;
+}
+
+} // namespace ssgi

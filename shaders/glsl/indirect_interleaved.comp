@@ -1,0 +1,59 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// One-bounce indirect light with interleaved sampling (Keller and Heidrich 2001; Segovia et al.
+// 2006): every pixel gathers, at full resolution, one of INTERLEAVE^2 disjoint subsets of the
+// pattern's VPLS virtual point lights, the one its place in an INTERLEAVE x INTERLEAVE block
+// names (shared.h vplSubset). A pixel so pays 1/INTERLEAVE^2 of the VPLs, and every block
+// gathers each VPL once; indirect_reconstruct.comp then gives each pixel the whole set's
+// estimate from its neighbours on the same surface. Beside its irradiance / pi each pixel
+// writes the directional sums of its VPLs' light (indirect_gather.glsl), with which the filter
+// carries a neighbour's estimate over to the pixel's own normal. A converged pixel is skipped
+// (alpha 0): its cache holds it.
+#include "shared.h"
+#include "common.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(constant_id = 0) const int VPLS = 512;
+layout(constant_id = 1) const int VISIBILITY = 1;
+layout(constant_id = 2) const int VISIBILITY_STEPS = 6;
+layout(constant_id = 3) const int INTERLEAVE = 4;
+
+layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
+layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
+layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
+layout(set = 0, binding = 3) uniform sampler2D rsmPosition;
+layout(set = 0, binding = 4) uniform sampler2D rsmNormal;
+layout(set = 0, binding = 5) uniform sampler2D rsmFlux;
+layout(set = 0, binding = 6) uniform sampler2D historyMeta;
+layout(set = 0, binding = 7, rgba16f) uniform writeonly image2D interleavedIndirect;
+layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D interleavedDirectional;
+layout(push_constant) uniform IndirectBlock { IndirectConstants constants; };
+
+#include "screen_space.glsl"
+#include "temporal.glsl"
+#include "indirect_gather.glsl"
+
+void main() {
+    ivec2 pixel = cachePixel(gl_GlobalInvocationID.xy, constants.cache, 1);
+    if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
+    vec4 position = texelFetch(gbufferPosition, pixel, 0);
+    if (position.w == 0.0) {
+        imageStore(interleavedIndirect, pixel, vec4(0.0));
+        imageStore(interleavedDirectional, pixel, vec4(0.0));
+        return;
+    }
+    vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
+    if (converged(pixel, position.xyz, n, constants.cache)) {
+        imageStore(interleavedIndirect, pixel, vec4(0.0));
+        imageStore(interleavedDirectional, pixel, vec4(0.0));
+        return;
+    }
+    int subset = vplSubset(pixel.x, pixel.y, INTERLEAVE);
+    vec4 directional;
+    vec3 e = gatherIndirect(position.xyz, n, pixelRotation(pixel) + constants.pattern.x,
+                            constants.pattern.y, constants.pattern.z,
+                            radialOffset(constants.pattern.w, 0.5 / float(INTERLEAVE * INTERLEAVE)),
+                            subset, INTERLEAVE * INTERLEAVE, directional);
+    imageStore(interleavedIndirect, pixel, vec4(e, 1.0));
+    imageStore(interleavedDirectional, pixel, directional);
+}

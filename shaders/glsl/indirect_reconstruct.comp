@@ -1,0 +1,84 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// The interleaved gather's subsets put back together (Segovia et al. 2006's geometry-aware
+// filter), one axis per dispatch (constants.target.zw: the axis). Each pixel averages the
+// estimates of the pixels within RADIUS along the axis (at least INTERLEAVE / 2; when the
+// window's length is a multiple of INTERLEAVE its two end taps weigh half, so every subset
+// weighs the same) that lie on its own surface: within 1.5 pixel footprints of its tangent
+// plane per pixel of distance. A neighbour's estimate belongs to the neighbour's normal; it is
+// carried over to the pixel's normal by the ratio f(n_p) / f(n_q) of the neighbour's directional
+// sums (indirect_gather.glsl: an L1 spherical harmonic of the light its VPLs bring), so that a
+// bumpy surface keeps its shading instead of being blurred flat. The directional sums are
+// averaged alike for the next axis. Both axes together give a pixel the mean of up to
+// (2 RADIUS)^2 subset estimates, the whole VPL set's many times over; at an edge or a contact,
+// those of its own side. A converged pixel is skipped (alpha 0): its cache holds it.
+#include "shared.h"
+#include "common.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(constant_id = 0) const int INTERLEAVE = 4;
+layout(constant_id = 1) const int RADIUS = 8;
+
+layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
+layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
+layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
+layout(set = 0, binding = 3) uniform sampler2D historyMeta;
+layout(set = 0, binding = 4) uniform sampler2D estimates;
+layout(set = 0, binding = 5) uniform sampler2D directionals;
+layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D filtered;
+layout(set = 0, binding = 7, rgba16f) uniform writeonly image2D filteredDirectional;
+layout(push_constant) uniform IndirectBlock { IndirectConstants constants; };
+
+#include "screen_space.glsl"
+#include "temporal.glsl"
+
+// The L1 model's irradiance / pi for normal m (never below a sliver of its mean, so that the
+// ratio of two stays finite).
+float directionalAt(vec4 sums, vec3 m) {
+    return max(0.25 * sums.x + 0.5 * dot(sums.yzw, m), 0.02 * sums.x + 1e-12);
+}
+
+void main() {
+    ivec2 pixel = cachePixel(gl_GlobalInvocationID.xy, constants.cache, 1);
+    ivec2 size = ivec2(frame.viewport.xy);
+    if (any(greaterThanEqual(pixel, size))) return;
+    vec4 position = texelFetch(gbufferPosition, pixel, 0);
+    if (position.w == 0.0) {
+        imageStore(filtered, pixel, vec4(0.0, 0.0, 0.0, 1.0));
+        imageStore(filteredDirectional, pixel, vec4(0.0));
+        return;
+    }
+    vec3 p = position.xyz;
+    vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
+    if (converged(pixel, p, n, constants.cache)) {
+        imageStore(filtered, pixel, vec4(0.0));
+        imageStore(filteredDirectional, pixel, vec4(0.0));
+        return;
+    }
+    float footprint = 1.0 / pixelsPerUnit(viewDepth(p));
+    ivec2 axis = constants.target.zw;
+    int reach = max(RADIUS, INTERLEAVE / 2);
+    bool halfEnds = (2 * reach) % INTERLEAVE == 0;
+    vec3 sum = vec3(0.0);
+    vec4 directionalSum = vec4(0.0);
+    float weightSum = 0.0;
+    for (int d = -reach; d <= reach; ++d) {
+        ivec2 q = pixel + d * axis;
+        if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
+        vec4 estimate = texelFetch(estimates, q, 0);
+        if (estimate.a < 0.5) continue; // background, or skipped
+        vec3 delta = texelFetch(gbufferPosition, q, 0).xyz - p;
+        if (abs(dot(n, delta)) > 1.5 * footprint * max(1.0, abs(float(d)))) continue;
+        vec3 nq = texelFetch(gbufferNormal, q, 0).xyz;
+        if (dot(n, nq) < 0.5) continue; // another face
+        vec4 sums = texelFetch(directionals, q, 0);
+        float toPixel = min(directionalAt(sums, n) / directionalAt(sums, nq), 4.0);
+        float w = halfEnds && abs(d) == reach ? 0.5 : 1.0;
+        sum += w * toPixel * estimate.rgb;
+        directionalSum += w * sums;
+        weightSum += w;
+    }
+    // The pixel's own estimate is always kept, so weightSum > 0.
+    imageStore(filtered, pixel, vec4(sum / max(weightSum, 1e-6), 1.0));
+    imageStore(filteredDirectional, pixel, directionalSum / max(weightSum, 1e-6));
+}
