@@ -132,4 +132,10 @@ size_t cachedSeriesSteps(const Options& options);
 Json walkthrough(vk::Context& ctx, const Scene& scene, const Options& options, uint32_t pathFrames,
                  uint32_t errorFrames);
 
+// The indirect light's methods (off, the thesis's, the interleaved one, or options.methods):
+// their cost relative to the rest of an uncached frame, and their error one frame and after
+// `convergedFrames` cached frames, over the image and around depth edges. See indirect.cpp.
+Json indirectComparison(vk::Context& ctx, const Scene& scene, const Options& options,
+                        uint32_t convergedFrames);
+
 } // namespace ssgi::bench

@@ -2,6 +2,7 @@
 // every scene and size, bench/report.py draws the charts and tables).
 //   benchmark sweep SCENE --out FILE       probe, configurations, cached series, memory
 //   benchmark walkthrough SCENE --out FILE the camera path with the cache off and on
+//   benchmark indirect SCENE --out FILE    the indirect light's methods: cost and error
 #include "app/cli.h"
 #include "bench.h"
 
@@ -16,7 +17,7 @@ using namespace ssgi;
 
 namespace {
 
-const char* kUsage = R"(usage: benchmark sweep|walkthrough SCENE --out FILE.json [options]
+const char* kUsage = R"(usage: benchmark sweep|walkthrough|indirect SCENE --out FILE.json [options]
   --out FILE.json       where the results go (written whole or not at all)
   --error-size N        real-time and reference images for the error are NxN (default 128)
   --warmup N            frames rendered before timing (default 1)
@@ -30,7 +31,10 @@ const char* kUsage = R"(usage: benchmark sweep|walkthrough SCENE --out FILE.json
   --series-methods N    sweep: 1 = the thesis rule only, 2 = also the running mean, 3 = also
                         the running mean with cheap frames (default)
   --method "LABEL: K=V ..."  walkthrough: a configuration to compare (repeatable); replaces the
-                        default ones (cache off; thesis rule; running mean with cheap frames)
+                        default ones (cache off; thesis rule; running mean with cheap frames);
+                        indirect: an indirect-light configuration to compare with "off"
+                        (replaces the thesis's and the interleaved method)
+  --converged-frames N  indirect: cached still-camera frames of the converged image (default 40)
   --commit TEXT         the source's commit, recorded with the results
 )";
 
@@ -39,7 +43,7 @@ struct Args {
     cli::CommonArgs common;
     bench::Options options;
     std::string out, commit = "unknown";
-    uint32_t pathFrames = 120, errorFrames = 4;
+    uint32_t pathFrames = 120, errorFrames = 4, convergedFrames = 40;
 };
 
 // "LABEL: key=value key=value ..." (a walkthrough configuration).
@@ -56,7 +60,8 @@ std::pair<std::string, bench::Settings> parseMethod(const std::string& text) {
 
 Args parseArgs(int argc, char** argv) {
     Args a;
-    if (argc < 2 || (std::string(argv[1]) != "sweep" && std::string(argv[1]) != "walkthrough")) {
+    const std::string command = argc >= 2 ? argv[1] : "";
+    if (command != "sweep" && command != "walkthrough" && command != "indirect") {
         std::cout << kUsage << cli::kCommonUsage;
         std::exit(argc >= 2 && std::string(argv[1]) == "--help" ? 0 : 2);
     }
@@ -76,6 +81,8 @@ Args parseArgs(int argc, char** argv) {
             a.options.seriesFrames = cli::parsePositiveCount(arg, value());
         else if (arg == "--path-frames")
             a.pathFrames = cli::parsePositiveCount(arg, value());
+        else if (arg == "--converged-frames")
+            a.convergedFrames = cli::parsePositiveCount(arg, value());
         else if (arg == "--error-frames")
             a.errorFrames = cli::parsePositiveCount(arg, value());
         else if (arg == "--spp")
@@ -130,6 +137,8 @@ int run(int argc, char** argv) {
     if (args.command == "sweep") {
         j["series_frames"] = o.series ? o.seriesFrames : 0;
         j.update(bench::sweep(ctx, scene, o));
+    } else if (args.command == "indirect") {
+        j["indirect"] = bench::indirectComparison(ctx, scene, o, args.convergedFrames);
     } else {
         j["walkthrough"] =
             bench::walkthrough(ctx, scene, o, args.pathFrames, o.error ? args.errorFrames : 0);

@@ -1,0 +1,197 @@
+// The one-bounce indirect light's methods side by side (issue #18's measures): the cost of the
+// light relative to the rest of an uncached frame, (frame with it - frame without) / frame
+// without, from frames interleaved renderer by renderer; and at the error size, against the
+// path-traced reference, one uncached frame and the converged cache (still camera), over the
+// whole image and inside a band around depth edges (where an upsampling leaves a staircase),
+// and how far one frame lies from its own converged image (the noise a viewer sees).
+#include "bench.h"
+
+#include "metrics/metrics.h"
+#include "reference/cache.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ssgi::bench {
+
+namespace {
+
+struct Method {
+    std::string label;
+    Settings settings;
+};
+
+std::vector<Method> methodsOf(const Options& options) {
+    std::vector<Method> methods = {{"off", {{"indirect", 0}}}};
+    if (options.methods.empty()) {
+        methods.push_back({"thesis: half resolution, 512 VPLs", {{"indirect_method", 0}}});
+        methods.push_back({"interleaved", {{"indirect_method", 1}}});
+    }
+    for (const auto& [label, settings] : options.methods)
+        methods.push_back({label, settings});
+    return methods;
+}
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+// Pixels within `band` pixels (chessboard distance) of a depth edge: neighbours whose distances
+// to the camera differ by more than 5%, or geometry beside background.
+metrics::Mask depthEdgeBand(const std::vector<float>& position, uint32_t w, uint32_t h,
+                            glm::vec3 camera, int band) {
+    std::vector<float> distance(size_t(w) * h, -1.0f);
+    for (size_t i = 0; i < distance.size(); ++i)
+        if (position[4 * i + 3] != 0.0f)
+            distance[i] = glm::length(
+                glm::vec3(position[4 * i], position[4 * i + 1], position[4 * i + 2]) - camera);
+    auto edge = [](float a, float b) {
+        if ((a < 0.0f) != (b < 0.0f)) return true;
+        return a >= 0.0f && std::abs(a - b) > 0.05f * std::min(a, b);
+    };
+    metrics::Mask edges(distance.size(), 0);
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w; ++x) {
+            const size_t i = size_t(y) * w + x;
+            if ((x + 1 < w && edge(distance[i], distance[i + 1])) ||
+                (y + 1 < h && edge(distance[i], distance[i + w])))
+                edges[i] = 1;
+        }
+    metrics::Mask mask(distance.size(), 0);
+    for (int y = 0; y < int(h); ++y)
+        for (int x = 0; x < int(w); ++x) {
+            const size_t i = size_t(y) * w + x;
+            if (distance[i] < 0.0f) continue;
+            for (int dy = -band; dy <= band && !mask[i]; ++dy)
+                for (int dx = -band; dx <= band; ++dx) {
+                    const int qx = x + dx, qy = y + dy;
+                    if (qx >= 0 && qy >= 0 && qx < int(w) && qy < int(h) &&
+                        edges[size_t(qy) * w + qx]) {
+                        mask[i] = 1;
+                        break;
+                    }
+                }
+        }
+    return mask;
+}
+
+Json figures(const metrics::Image& test, const metrics::Image& truth, const metrics::Mask& mask) {
+    const metrics::Figures f =
+        metrics::errorFigures(test, truth, mask, metrics::ssimMap(test, truth));
+    return {{"relmse", f.relMse}, {"pixels", f.pixels}};
+}
+
+} // namespace
+
+Json indirectComparison(vk::Context& ctx, const Scene& scene, const Options& options,
+                        uint32_t convergedFrames) {
+    const std::vector<Method> methods = methodsOf(options);
+    Progress progress("  " + scene.sourcePath + " indirect",
+                      options.warmup + options.frames + 2 + 2 * methods.size());
+    Json result;
+
+    // The cost, cache off, frames interleaved.
+    std::vector<Scene> scenes;
+    for (const Method& m : methods) {
+        Settings s = m.settings;
+        s["cache"] = 0;
+        scenes.push_back(withSettings(scene, s));
+    }
+    std::vector<FrameLog> logs(methods.size());
+    interleaved(
+        ctx, scenes, {options.width, options.height}, options.warmup + options.frames,
+        [&](uint32_t) { return scene.camera; },
+        [&](size_t i, uint32_t, Renderer& r, double wall) { logs[i].add(r, wall); }, &progress,
+        "timing");
+    auto timed = [&](const std::vector<double>& all) {
+        return std::vector<double>(all.begin() + std::min<size_t>(options.warmup, all.size()),
+                                   all.end());
+    };
+    const double off = median(timed(logs[0].totals));
+
+    // The error: reference, then each method's one frame and converged image.
+    progress.step("reference");
+    const Reference reference = fullReference(scene, scene.camera, options);
+    const VkExtent2D errorSize{options.errorWidth, options.errorHeight};
+    const metrics::Image truth{errorSize.width, errorSize.height, reference.rgba};
+    // The bounce alone (outgoing radiance of one bounce, no sky), for the term's own error.
+    reference::ReferenceOptions bounceOptions;
+    bounceOptions.mode = reference::Mode::Indirect;
+    bounceOptions.width = errorSize.width;
+    bounceOptions.height = errorSize.height;
+    bounceOptions.spp = options.referenceSpp;
+    bounceOptions.noiseTarget = options.referenceNoise;
+    const metrics::Image bounceTruth{errorSize.width, errorSize.height,
+                                     reference::cachedReference(scene, bounceOptions).rgba};
+    // The renderer's bounce (irradiance / pi) times the albedo: outgoing radiance, as the
+    // reference's (tests/test_accuracy.cpp does the same).
+    auto bounceOf = [&](Renderer& r, const std::string& image) {
+        std::vector<float> bounce = r.readImage(image);
+        const std::vector<float> albedo = r.readImage("gbuffer.albedo");
+        for (size_t i = 0; i < bounce.size(); ++i)
+            bounce[i] = i % 4 == 3 ? 1.0f : bounce[i] * albedo[i];
+        return metrics::Image{errorSize.width, errorSize.height, bounce};
+    };
+    metrics::Mask geometry, band;
+    for (size_t m = 0; m < methods.size(); ++m) {
+        Json entry = {{"label", methods[m].label},
+                      {"settings", settingsJson(methods[m].settings)},
+                      {"frames", logs[m].json()}};
+        const double total = median(timed(logs[m].totals));
+        entry["frame_ms"] = total;
+        entry["cost_relative"] = m == 0 ? 0.0 : (total - off) / off;
+        Json passes = Json::object();
+        for (const auto& [name, times] : logs[m].passes)
+            passes[name] = median(timed(times));
+        entry["pass_ms"] = passes;
+
+        progress.step(methods[m].label + ": one frame");
+        Settings once = methods[m].settings;
+        once["cache"] = 0;
+        const Scene onceScene = withSettings(scene, once); // the renderer keeps a reference
+        Renderer single(ctx, onceScene, RenderOptions{errorSize.width, errorSize.height, "final"});
+        single.renderFrame(scene.camera);
+        if (geometry.empty()) {
+            const std::vector<float> position = single.readImage("gbuffer.position");
+            geometry.assign(position.size() / 4, 0);
+            for (size_t i = 0; i < geometry.size(); ++i)
+                geometry[i] = position[4 * i + 3] != 0.0f;
+            band = depthEdgeBand(position, errorSize.width, errorSize.height, scene.camera.position,
+                                 8);
+            result["band_pixels"] = metrics::countInside(band);
+        }
+        const metrics::Image one{errorSize.width, errorSize.height, single.readImage("hdr")};
+
+        progress.step(methods[m].label + ": converged");
+        Settings cached = methods[m].settings;
+        cached["cache"] = 1;
+        const Scene cachedScene = withSettings(scene, cached);
+        Renderer still(ctx, cachedScene, RenderOptions{errorSize.width, errorSize.height, "final"});
+        for (uint32_t f = 0; f < convergedFrames; ++f)
+            still.renderFrame(scene.camera);
+        const metrics::Image converged{errorSize.width, errorSize.height, still.readImage("hdr")};
+
+        entry["one_frame"] = {{"all", figures(one, truth, geometry)},
+                              {"edge_band", figures(one, truth, band)}};
+        entry["converged"] = {{"all", figures(converged, truth, geometry)},
+                              {"edge_band", figures(converged, truth, band)}};
+        entry["one_frame_vs_converged"] = figures(one, converged, geometry);
+        if (m > 0) {
+            const metrics::Image oneBounce = bounceOf(single, "indirect");
+            const metrics::Image convergedBounce = bounceOf(still, "indirect.history");
+            entry["bounce"] = {
+                {"one_frame", figures(oneBounce, bounceTruth, geometry)},
+                {"one_frame_edge_band", figures(oneBounce, bounceTruth, band)},
+                {"converged", figures(convergedBounce, bounceTruth, geometry)},
+                {"converged_edge_band", figures(convergedBounce, bounceTruth, band)}};
+        }
+        result["methods"].push_back(entry);
+    }
+    result["converged_frames"] = convergedFrames;
+    result["reference_samples"] = reference.samples;
+    progress.done();
+    return result;
+}
+
+} // namespace ssgi::bench
