@@ -29,14 +29,24 @@ graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& 
     const graph::ImageRef acrossDirectional = image("indirect.filtered_x_directional");
     const graph::ImageRef full = image("indirect");
     const int k = int(s.model.setting("indirect_interleave"));
+    const int radius = int(s.model.setting("indirect_filter_radius"));
+    // On settled frames the refresh tile's pixels need their neighbours: the gather and the x
+    // axis run over the tile widened by the filter's reach (temporal.glsl cachePixelAround).
+    const uint32_t margin = uint32_t(std::max(radius, k / 2));
+    auto dispatchArea = [&s, cache](uint32_t widen) {
+        VkExtent2D area = cacheDispatch(s, cache, s.size);
+        if (cache && s.settled && area.width > 0)
+            area = {area.width + 2 * widen, area.height + 2 * widen};
+        return area;
+    };
     const vk::Pipeline gather = s.computePipeline(
         "indirect_interleaved.comp", 6, 2, sizeof(shader::IndirectConstants),
         vk::Specialization{{int(s.model.setting("indirect_vpls")),
                             int(s.model.setting("indirect_visibility")),
-                            int(s.model.setting("indirect_visibility_steps")), k}});
+                            int(s.model.setting("indirect_visibility_steps")), k, radius}});
     const vk::Pipeline filter =
         s.computePipeline("indirect_reconstruct.comp", 5, 2, sizeof(shader::IndirectConstants),
-                          vk::Specialization{{k, int(s.model.setting("indirect_filter_radius"))}});
+                          vk::Specialization{{k, radius}});
 
     const graph::ImageRef meta = cacheMetaInput(cache, in.gbuffer.position);
     auto constants = [&s, cache](glm::ivec2 axis) {
@@ -59,7 +69,7 @@ graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& 
                      {meta, Use::Sampled},
                      {subsets, Use::StorageWrite},
                      {subsetsDirectional, Use::StorageWrite}},
-                    [&s, in, meta, cache, subsets, subsetsDirectional, gather,
+                    [&s, in, meta, subsets, subsetsDirectional, gather, dispatchArea, margin,
                      constants](const graph::PassContext& pc) {
                         vk::Descriptors()
                             .uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size)
@@ -72,7 +82,7 @@ graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& 
                             .storageImage(7, pc.image(subsets).view)
                             .storageImage(8, pc.image(subsetsDirectional).view)
                             .push(s.ctx, pc.cmd, gather);
-                        const VkExtent2D area = cacheDispatch(s, cache, s.size);
+                        const VkExtent2D area = dispatchArea(margin);
                         vk::dispatch(pc.cmd, gather, area.width, area.height, constants({0, 0}));
                     });
     // The filter, one axis a pass: x from the subsets, y from x's result.
@@ -94,7 +104,8 @@ graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& 
              {a.sourceDirectional, Use::Sampled},
              {a.target, Use::StorageWrite},
              {a.targetDirectional, Use::StorageWrite}},
-            [&s, in, meta, cache, a, filter, constants](const graph::PassContext& pc) {
+            [&s, in, meta, a, filter, constants, dispatchArea,
+             margin](const graph::PassContext& pc) {
                 vk::Descriptors()
                     .uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size)
                     .sampledImage(1, pc.image(in.gbuffer.position).view, s.nearestSampler)
@@ -105,7 +116,7 @@ graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& 
                     .storageImage(6, pc.image(a.target).view)
                     .storageImage(7, pc.image(a.targetDirectional).view)
                     .push(s.ctx, pc.cmd, filter);
-                const VkExtent2D area = cacheDispatch(s, cache, s.size);
+                const VkExtent2D area = dispatchArea(a.axis.x == 1 ? margin : 0);
                 vk::dispatch(pc.cmd, filter, area.width, area.height, constants(a.axis));
             });
     }

@@ -39,16 +39,17 @@ bool vplVisible(vec3 p, vec3 q) {
     return true;
 }
 
-// Irradiance / pi at p (normal n) from the RSM's VPLs: all VPLS of the pattern (`subsets` 1), or
-// the interleaved subset `subset` of `subsets` = k*k (shared.h vplSubset), weighted so that each
-// subset alone estimates the whole pattern's sum and their mean is that sum.
+// Irradiance / pi at p (normal n) from the RSM's VPLs: all VPLS of the pattern (k = 1), or the
+// interleaved subset `subset` of k*k (shared.h vplSubset), weighted so that each subset alone
+// estimates the whole pattern's sum and their mean is that sum.
 // `directional` receives the same VPLs' light, before p's cosine and visibility, as an L1
 // spherical harmonic of its luminance (x = sum of c, yzw = sum of c D, for c the VPL's luminance
 // towards p): f(m) = x / 4 + dot(yzw, m) / 2 approximates the irradiance / pi a normal m
 // would receive, which lets the interleaved method's filter carry a neighbour's estimate over
 // to another normal (indirect_reconstruct.comp).
 vec3 gatherIndirect(vec3 p, vec3 n, float rotation, float radiusScale, float radius,
-                    float stratum, int subset, int subsets, out vec4 directional) {
+                    float stratum, int subset, int k, out vec4 directional) {
+    int subsets = k * k;
     vec4 clip = frame.lightViewProjection * vec4(p, 1.0);
     // The pattern is centred on p's projection (the map's centre when p is behind the light) and
     // clamped into the map. With radius 0 it reaches the map's farthest corner, so that every
@@ -71,7 +72,8 @@ vec3 gatherIndirect(vec3 p, vec3 n, float rotation, float radiusScale, float rad
     float withinStratum = fract(shifted);
     vec3 irradiance = vec3(0.0);
     directional = vec4(0.0);
-    for (int i = subset; i < VPLS; i += subsets) {
+    for (int j = 0; j < vplSubsetSize(subset, VPLS, k); ++j) {
+        int i = vplOfSubset(subset, j, k);
         float xi1 = (float(i) + withinStratum) / float(VPLS);
         float theta = float(i) * 2.39996323 + rotation;
         vec2 uv = center + samplingRadius * xi1 * vec2(cos(theta), sin(theta));
@@ -82,8 +84,11 @@ vec3 gatherIndirect(vec3 p, vec3 n, float rotation, float radiusScale, float rad
         vec3 toVpl = q.xyz - p;
         float distance2 = dot(toVpl, toVpl);
         // Clamp the distance to the VPL's own footprint: a texel cannot deliver more than the
-        // disk it covers, which removes the 1/d^2 spike of VPLs right next to p.
-        float footprint = distance(q.xyz, frame.lightPosition.xyz) * 2.0 * frame.lightFrustum.z / size;
+        // disk it covers, which removes the 1/d^2 spike of VPLs right next to p. A VPL of one
+        // subset of k^2 stands for k^2 texels' light (its weight is k^2 times a texel's), so its
+        // footprint is k texels wide.
+        float footprint = distance(q.xyz, frame.lightPosition.xyz) * 2.0 * frame.lightFrustum.z /
+                          size * float(k);
         float d2 = max(distance2, footprint * footprint);
         vec3 D = toVpl * inversesqrt(max(distance2, 1e-12));
         float cosP = max(dot(n, D), 0.0);
@@ -91,7 +96,8 @@ vec3 gatherIndirect(vec3 p, vec3 n, float rotation, float radiusScale, float rad
         vec3 flux = texelFetch(rsmFlux, texel, 0).rgb;
         directional += dot(flux, vec3(0.2126, 0.7152, 0.0722)) * cosQ / (PI * d2) * xi1 *
                        vec4(1.0, D);
-        if (cosP * cosQ <= 0.0) continue;
+        // A VPL outside the spot's cone reflects nothing: no visibility test for it.
+        if (cosP * cosQ <= 0.0 || all(equal(flux, vec3(0.0)))) continue;
         if (VISIBILITY != 0 && !vplVisible(p, q.xyz)) continue;
         irradiance += flux * (cosP * cosQ / (PI * d2)) * xi1;
     }

@@ -17,6 +17,7 @@ layout(constant_id = 0) const int VPLS = 512;
 layout(constant_id = 1) const int VISIBILITY = 1;
 layout(constant_id = 2) const int VISIBILITY_STEPS = 6;
 layout(constant_id = 3) const int INTERLEAVE = 4;
+layout(constant_id = 4) const int RADIUS = 8; // the filter's, for the refresh tile's margin
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
 layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
@@ -34,8 +35,11 @@ layout(push_constant) uniform IndirectBlock { IndirectConstants constants; };
 #include "indirect_gather.glsl"
 
 void main() {
-    ivec2 pixel = cachePixel(gl_GlobalInvocationID.xy, constants.cache, 1);
-    if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
+    // The refresh tile with a margin as wide as the filter's two axes reach.
+    int margin = max(RADIUS, INTERLEAVE / 2);
+    ivec2 pixel = cachePixelAround(gl_GlobalInvocationID.xy, constants.cache, margin);
+    if (any(lessThan(pixel, ivec2(0))) || any(greaterThanEqual(pixel, ivec2(frame.viewport.xy))))
+        return;
     vec4 position = texelFetch(gbufferPosition, pixel, 0);
     if (position.w == 0.0) {
         imageStore(interleavedIndirect, pixel, vec4(0.0));
@@ -43,7 +47,7 @@ void main() {
         return;
     }
     vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
-    if (converged(pixel, position.xyz, n, constants.cache)) {
+    if (convergedAround(pixel, position.xyz, n, constants.cache, margin)) {
         imageStore(interleavedIndirect, pixel, vec4(0.0));
         imageStore(interleavedDirectional, pixel, vec4(0.0));
         return;
@@ -53,7 +57,7 @@ void main() {
     vec3 e = gatherIndirect(position.xyz, n, pixelRotation(pixel) + constants.pattern.x,
                             constants.pattern.y, constants.pattern.z,
                             radialOffset(constants.pattern.w, 0.5 / float(INTERLEAVE * INTERLEAVE)),
-                            subset, INTERLEAVE * INTERLEAVE, directional);
+                            subset, INTERLEAVE, directional);
     imageStore(interleavedIndirect, pixel, vec4(e, 1.0));
     imageStore(interleavedDirectional, pixel, directional);
 }

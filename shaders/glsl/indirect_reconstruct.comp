@@ -11,7 +11,9 @@
 // bumpy surface keeps its shading instead of being blurred flat. The directional sums are
 // averaged alike for the next axis. Both axes together give a pixel the mean of up to
 // (2 RADIUS)^2 subset estimates, the whole VPL set's many times over; at an edge or a contact,
-// those of its own side. A converged pixel is skipped (alpha 0): its cache holds it.
+// those of its own side. A converged pixel is skipped (alpha 0): its cache holds it. On
+// settled frames the x axis runs over the refresh tile and a margin of RADIUS rows above and
+// below it, the y axis over the tile alone.
 #include "shared.h"
 #include "common.glsl"
 
@@ -39,9 +41,13 @@ float directionalAt(vec4 sums, vec3 m) {
 }
 
 void main() {
-    ivec2 pixel = cachePixel(gl_GlobalInvocationID.xy, constants.cache, 1);
+    ivec2 axis = constants.target.zw;
+    int reach = max(RADIUS, INTERLEAVE / 2);
+    // The x axis also filters the refresh tile's margin rows, which the y axis reads.
+    int margin = axis.x == 1 ? reach : 0;
+    ivec2 pixel = cachePixelAround(gl_GlobalInvocationID.xy, constants.cache, margin);
     ivec2 size = ivec2(frame.viewport.xy);
-    if (any(greaterThanEqual(pixel, size))) return;
+    if (any(lessThan(pixel, ivec2(0))) || any(greaterThanEqual(pixel, size))) return;
     vec4 position = texelFetch(gbufferPosition, pixel, 0);
     if (position.w == 0.0) {
         imageStore(filtered, pixel, vec4(0.0, 0.0, 0.0, 1.0));
@@ -50,14 +56,12 @@ void main() {
     }
     vec3 p = position.xyz;
     vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
-    if (converged(pixel, p, n, constants.cache)) {
+    if (convergedAround(pixel, p, n, constants.cache, margin)) {
         imageStore(filtered, pixel, vec4(0.0));
         imageStore(filteredDirectional, pixel, vec4(0.0));
         return;
     }
     float footprint = 1.0 / pixelsPerUnit(viewDepth(p));
-    ivec2 axis = constants.target.zw;
-    int reach = max(RADIUS, INTERLEAVE / 2);
     bool halfEnds = (2 * reach) % INTERLEAVE == 0;
     vec3 sum = vec3(0.0);
     vec4 directionalSum = vec4(0.0);
@@ -73,7 +77,7 @@ void main() {
         if (dot(n, nq) < 0.5) continue; // another face
         vec4 sums = texelFetch(directionals, q, 0);
         float toPixel = min(directionalAt(sums, n) / directionalAt(sums, nq), 4.0);
-        float w = halfEnds && abs(d) == reach ? 0.5 : 1.0;
+        float w = (halfEnds && abs(d) == reach ? 0.5 : 1.0) * pow(max(dot(n, nq), 0.0), 8.0);
         sum += w * toPixel * estimate.rgb;
         directionalSum += w * sums;
         weightSum += w;

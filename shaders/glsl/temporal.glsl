@@ -82,6 +82,28 @@ bool inRefreshTile(ivec2 pixel, CacheConstants cache) {
     return tile.y * tilesX + tile.x == cache.state.z;
 }
 
+// The same for a pass whose pixels read their neighbours' values of this frame (the interleaved
+// indirect light's filter): its refresh tile widened by `margin` pixels on every side, so that
+// the tile's pixels find their neighbours computed. The dispatch is widened to match
+// (indirect_interleaved_pass.cpp); the threads offset to the widened tile's corner may fall
+// outside the image.
+ivec2 cachePixelAround(uvec2 thread, CacheConstants cache, int margin) {
+    if (cache.accumulation.w == 0.0 || cache.state.z < 0) return ivec2(thread);
+    int tilesX = (int(frame.viewport.x) + cache.state.w - 1) / cache.state.w;
+    ivec2 tile = ivec2(cache.state.z % tilesX, cache.state.z / tilesX);
+    return ivec2(thread) + tile * cache.state.w - margin;
+}
+
+bool convergedAround(ivec2 pixel, vec3 world, vec3 normal, CacheConstants cache, int margin) {
+    Reprojection r = reproject(world, normal, cache);
+    if (!r.valid || r.count < float(cache.state.y)) return false;
+    if (cache.state.z < 0) return true;
+    int tilesX = (int(frame.viewport.x) + cache.state.w - 1) / cache.state.w;
+    ivec2 corner = ivec2(cache.state.z % tilesX, cache.state.z / tilesX) * cache.state.w;
+    return any(lessThan(pixel, corner - margin)) ||
+           any(greaterThanEqual(pixel, corner + cache.state.w + margin));
+}
+
 // A converged pixel reuses its cached value instead of computing the effect again.
 bool converged(ivec2 pixel, vec3 world, vec3 normal, CacheConstants cache) {
     Reprojection r = reproject(world, normal, cache);
