@@ -12,7 +12,7 @@ FLOOR_PASSES = ("gbuffer", "direct", "composite")
 # The passes in the order a frame runs them (tables and charts list them so).
 FRAME_ORDER = ("gbuffer", "rsm", "shadow", "shadow.temporal", "shadow.keep", "direct", "ao",
                "ssdo", "ao.temporal", "ao.keep", "ssdo.temporal", "ssdo.keep", "indirect",
-               "upsample", "indirect.temporal", "indirect.keep", "composite")
+               "upsample", "indirect.filter_x", "indirect.filter_y", "indirect.temporal", "indirect.keep", "composite")
 
 
 def frame_order(names):

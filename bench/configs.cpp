@@ -24,15 +24,26 @@ std::vector<Axis> makeAxes() {
     ao.values.push_back({"no AO", {{"ao", 0}, {"ssdo", 0}}});
     ao.off = ao.values.size() - 1;
 
-    Axis indirect{"indirect", {"indirect", "upsample"}, {}};
-    // 1024 VPLs only without the visibility test: with it, one frame costs as much as all the
-    // other rows together on lavapipe, and the thesis stops at 512.
+    Axis indirect{
+        "indirect", {"indirect", "upsample", "indirect.filter_x", "indirect.filter_y"}, {}};
+    // Interleaved subsets of 4 x 4 with the geometry-aware filter (indirect_method 1, the
+    // default: the axis's first value): the same VPL sets at 1/16 of the VPLs per pixel.
+    for (int vpls : {512, 256, 128})
+        indirect.values.push_back({std::to_string(vpls) + " VPLs + visibility, interleaved",
+                                   {{"indirect", 1},
+                                    {"indirect_method", 1},
+                                    {"indirect_vpls", vpls},
+                                    {"indirect_visibility", 1}}});
+    // The thesis's gather (indirect_method 0). 1024 VPLs only without the visibility test: with
+    // it, one frame costs as much as all the other rows together on lavapipe, and the thesis
+    // stops at 512.
     for (int visibility : {1, 0})
         for (int vpls : {512, 64, 128, 256, 1024})
             if (!(visibility && vpls == 1024))
                 indirect.values.push_back(
                     {std::to_string(vpls) + " VPLs" + (visibility ? " + visibility" : ""),
                      {{"indirect", 1},
+                      {"indirect_method", 0},
                       {"indirect_vpls", vpls},
                       {"indirect_visibility", visibility},
                       {"indirect_half_res", 1}}});
@@ -40,6 +51,7 @@ std::vector<Axis> makeAxes() {
     for (int vpls : {512, 128})
         indirect.values.push_back({std::to_string(vpls) + " VPLs + visibility, full res",
                                    {{"indirect", 1},
+                                    {"indirect_method", 0},
                                     {"indirect_vpls", vpls},
                                     {"indirect_visibility", 1},
                                     {"indirect_half_res", 0}}});

@@ -106,12 +106,14 @@ TEST_F(AccuracyTest, CornellBoxEffectsAgainstTheReference) {
     Measured m = measure(loadScene(test::sourcePath("scenes/cornell-box.json")));
     print("Cornell box", m);
     // Measured at 96x96, bounds about 1.3x: AO thesis 0.0447, Crytek 0.2658 (its grey flat
-    // surfaces), horizon 0.0427; indirect 0.0243 (0.0677 while the visibility test counted every
+    // surfaces), horizon 0.0427; indirect 0.0321 with the interleaved gather, whose filter
+    // reaches 8 pixels, 8% of this small image, and blurs the bleeding near the corners (the
+    // thesis's half-resolution gather: 0.0243; 0.0677 while the visibility test counted every
     // step behind a surface, however far, as blocked); direct (PCSS against the disk) 0.0226.
     EXPECT_LT(m.ao[0], 0.058);
     EXPECT_LT(m.ao[1], 0.35);
     EXPECT_LT(m.ao[2], 0.056);
-    EXPECT_LT(m.indirect, 0.032);
+    EXPECT_LT(m.indirect, 0.042);
     EXPECT_LT(m.direct, 0.03);
     // SSDO's whole image against the reference's full image: 0.2760 (its screen-space bounce
     // reaches only samples within r_max, far less than the box's one bounce).
@@ -122,7 +124,7 @@ TEST_F(AccuracyTest, BunnyEffectsAgainstTheReference) {
     Measured m = measure(loadScene(test::sourcePath("scenes/bunny.json")));
     print("bunny", m);
     // Measured at 96x96, bounds about 1.3x: AO thesis 0.0247, Crytek 0.2436, horizon 0.0302;
-    // indirect 0.0031; direct 0.0017.
+    // indirect 0.0033 (the thesis's gather: 0.0031); direct 0.0017.
     EXPECT_LT(m.ao[0], 0.033);
     EXPECT_LT(m.ao[1], 0.32);
     EXPECT_LT(m.ao[2], 0.04);

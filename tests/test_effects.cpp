@@ -1,6 +1,8 @@
 // Each screen-space effect doing its job where a reader can state what it must do.
 #include "support.h"
 
+#include "shared.h"
+
 #include <cmath>
 
 using namespace ssgi;
@@ -20,7 +22,7 @@ glm::vec3 mean(const std::vector<glm::vec3>& values) {
 // the indirect light on, and not with it off.
 TEST_F(EffectTest, IndirectLightBleedsTheWallsColourOntoTheFloor) {
     Scene scene = loadScene(test::sourcePath("scenes/cornell-box.json"));
-    scene.settings["indirect_vpls"] = 256;
+    scene.settings["indirect_vpls"] = 512;
     auto floorColour = [&](bool indirect, bool nearRed) {
         scene.settings["indirect"] = indirect ? 1 : 0;
         test::Frame f = test::render(scene, 128, 128);
@@ -38,15 +40,51 @@ TEST_F(EffectTest, IndirectLightBleedsTheWallsColourOntoTheFloor) {
     std::printf("red/green next to the red wall x%.3f, green/red next to the green wall x%.3f\n",
                 (redOn.r / redOn.g) / (redOff.r / redOff.g),
                 (greenOn.g / greenOn.r) / (greenOff.g / greenOff.r));
-    // Measured at 128x128 with 256 VPLs: red/green rises x1.128 next to the red wall, green/red
-    // x1.131 next to the green wall.
+    // Measured at 128x128 with 512 VPLs (the interleaved method, the default): red/green rises
+    // x1.129 next to the red wall, green/red x1.115 next to the green wall (the thesis's gather
+    // with 256 VPLs: x1.128 and x1.131).
     EXPECT_GT((redOn.r / redOn.g) / (redOff.r / redOff.g), 1.08f);
     EXPECT_GT((greenOn.g / greenOn.r) / (greenOff.g / greenOff.r), 1.08f);
 }
 
-// The visibility test removes the indirect light that would leak through a wall.
-TEST_F(EffectTest, VisibilityTestStopsIndirectLightLeakingThroughAWall) {
+// Interleaved sampling (shared.h, the functions the gather runs): the k^2 pixels of any k x k
+// block gather disjoint subsets that together hold each of the pattern's VPLs exactly once.
+TEST(VplSubsets, EveryBlockGathersEachVplOnce) {
+    for (int k = 1; k <= 8; ++k) {
+        for (int vpls : {k * k, 64, 100, 512, 1000}) {
+            if (vpls < k * k) continue;
+            for (glm::ivec2 corner : {glm::ivec2(0, 0), glm::ivec2(5, 11)}) {
+                std::vector<int> subsetSeen(size_t(k * k), 0), vplSeen(size_t(vpls), 0);
+                for (int y = corner.y; y < corner.y + k; ++y)
+                    for (int x = corner.x; x < corner.x + k; ++x) {
+                        const int s = shader::vplSubset(x, y, k);
+                        ASSERT_GE(s, 0);
+                        ASSERT_LT(s, k * k);
+                        ++subsetSeen[size_t(s)];
+                        for (int j = 0; j < shader::vplSubsetSize(s, vpls, k); ++j) {
+                            const int i = shader::vplOfSubset(s, j, k);
+                            ASSERT_GE(i, 0);
+                            ASSERT_LT(i, vpls);
+                            ++vplSeen[size_t(i)];
+                        }
+                    }
+                for (int seen : subsetSeen)
+                    EXPECT_EQ(seen, 1) << "k " << k;
+                for (int i = 0; i < vpls; ++i)
+                    EXPECT_EQ(vplSeen[size_t(i)], 1)
+                        << "k " << k << " VPLs " << vpls << " VPL " << i;
+            }
+        }
+    }
+}
+
+// The visibility test removes the indirect light that would leak through a wall, with either
+// method of gathering it.
+class LeakTest : public test::VulkanTest, public ::testing::WithParamInterface<int> {};
+
+TEST_P(LeakTest, VisibilityTestStopsIndirectLightLeakingThroughAWall) {
     Scene scene = loadScene(test::sourcePath("tests/scenes/light-leak.json"));
+    scene.settings["indirect_method"] = GetParam();
     auto leftFloorIndirect = [&](int visibility) {
         scene.settings["indirect_visibility"] = visibility;
         test::Frame f = test::render(scene, 160, 120);
@@ -65,9 +103,15 @@ TEST_F(EffectTest, VisibilityTestStopsIndirectLightLeakingThroughAWall) {
     const double leaking = leftFloorIndirect(0), tested = leftFloorIndirect(1);
     std::printf("left floor indirect: %.5f without the test, %.5f with it\n", leaking, tested);
     EXPECT_GT(leaking, 0.005) << "without the test, the right floor's VPLs light the left floor";
-    // Measured at 160x120: 0.03522 without the test, 0.00085 with it (2.4% left).
-    EXPECT_LT(tested, 0.1 * leaking) << "leaking " << leaking << " tested " << tested;
+    // At least 95% of the leak removed. Measured at 160x120 (method 0, the thesis's): 0.03522
+    // without the test, 0.00085 with it (2.4% left); method 1 (interleaved, the default): 0.03558
+    // and 0.00108 (3.0% left).
+    EXPECT_LT(tested, 0.05 * leaking) << "leaking " << leaking << " tested " << tested;
 }
+
+INSTANTIATE_TEST_SUITE_P(Methods, LeakTest, ::testing::Values(0, 1), [](const auto& info) {
+    return info.param == 0 ? "Thesis" : "Interleaved";
+});
 
 // SSDO keeps the direction of what it occludes: next to a block, the orange horizon is hidden
 // and the blue zenith is not, so the floor there turns bluer. AO darkens every colour alike (the

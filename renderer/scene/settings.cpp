@@ -26,7 +26,7 @@ const std::map<std::string, SettingSpec>& settingSpecs() {
         {"ao_attenuation_b", {0.0, 0, 1e3, false, "b in D(d) = 1 + a d + b d^2, d in AO radii"}},
         {"indirect", {1, 0, 1, true, "one-bounce indirect light from the RSM on (1) or off (0)"}},
         {"indirect_method",
-         {0, 0, 1, true,
+         {1, 0, 1, true,
           "0 the thesis's half-resolution gather + upsampling, 1 interleaved VPL subsets"}},
         {"indirect_vpls",
          {512, 1, 1024, true, "VPLs of the pattern (method 0: each pixel's; 1: each block's)"}},

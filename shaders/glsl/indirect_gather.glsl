@@ -64,17 +64,11 @@ vec3 gatherIndirect(vec3 p, vec3 n, float rotation, float radiusScale, float rad
     // element of each sample, which for this pattern is 2 pi R r / VPLS.
     float weightScale =
         size * size * 2.0 * PI * samplingRadius * samplingRadius / float(VPLS) * float(subsets);
-    // A cached effect's `stratum` moves over [0, 1) frame by frame; with subsets it also turns
-    // which subset the pixel gathers, so that over frames every pixel draws every VPL's radii
-    // (one subset alone covers 1/subsets of them). With one subset both are the plain stratum.
-    float shifted = stratum * float(subsets);
-    subset = (subset + int(shifted)) % subsets;
-    float withinStratum = fract(shifted);
     vec3 irradiance = vec3(0.0);
     directional = vec4(0.0);
     for (int j = 0; j < vplSubsetSize(subset, VPLS, k); ++j) {
         int i = vplOfSubset(subset, j, k);
-        float xi1 = (float(i) + withinStratum) / float(VPLS);
+        float xi1 = (float(i) + stratum) / float(VPLS);
         float theta = float(i) * 2.39996323 + rotation;
         vec2 uv = center + samplingRadius * xi1 * vec2(cos(theta), sin(theta));
         if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) continue;
