@@ -124,6 +124,14 @@ Json indirectComparison(vk::Context& ctx, const Scene& scene, const Options& opt
     bounceOptions.noiseTarget = options.referenceNoise;
     const metrics::Image bounceTruth{errorSize.width, errorSize.height,
                                      reference::cachedReference(scene, bounceOptions).rgba};
+    // The direct light and the sky light alone, for where the whole image's error comes from.
+    auto referenceOf = [&](reference::Mode mode) {
+        reference::ReferenceOptions o = bounceOptions;
+        o.mode = mode;
+        return reference::cachedReference(scene, o).rgba;
+    };
+    const std::vector<float> directTruth = referenceOf(reference::Mode::Direct);
+    const std::vector<float> skyTruth = referenceOf(reference::Mode::Sky);
     // The renderer's bounce (irradiance / pi) times the albedo: outgoing radiance, as the
     // reference's (tests/test_accuracy.cpp does the same).
     auto bounceOf = [&](Renderer& r, const std::string& image) {
@@ -134,6 +142,31 @@ Json indirectComparison(vk::Context& ctx, const Scene& scene, const Options& opt
         return metrics::Image{errorSize.width, errorSize.height, bounce};
     };
     metrics::Mask geometry, band;
+    // Means over the geometry of each term, real-time (converged) against the reference: the
+    // sky term is what the composite adds beyond the direct light and the bounce.
+    auto termMeans = [&](Renderer& r) {
+        const std::vector<float> hdr = r.readImage("hdr"), direct = r.readImage("direct");
+        const std::vector<float> bounce = bounceOf(r, "indirect.history").rgba;
+        double sums[6] = {};
+        size_t n = 0;
+        for (size_t i = 0; i < geometry.size(); ++i) {
+            if (!geometry[i]) continue;
+            for (size_t c = 0; c < 3; ++c) {
+                const size_t k = 4 * i + c;
+                sums[0] += direct[k];
+                sums[1] += directTruth[k];
+                sums[2] += bounce[k];
+                sums[3] += bounceTruth.rgba[k];
+                sums[4] += hdr[k] - direct[k] - bounce[k];
+                sums[5] += skyTruth[k];
+            }
+            n += 3;
+        }
+        const double d = double(std::max<size_t>(n, 1));
+        return Json{{"direct", sums[0] / d},   {"direct_reference", sums[1] / d},
+                    {"bounce", sums[2] / d},   {"bounce_reference", sums[3] / d},
+                    {"sky", sums[4] / d},      {"sky_reference", sums[5] / d}};
+    };
     for (size_t m = 0; m < methods.size(); ++m) {
         Json entry = {{"label", methods[m].label},
                       {"settings", settingsJson(methods[m].settings)},
@@ -185,6 +218,7 @@ Json indirectComparison(vk::Context& ctx, const Scene& scene, const Options& opt
                 {"one_frame_edge_band", figures(oneBounce, bounceTruth, band)},
                 {"converged", figures(convergedBounce, bounceTruth, geometry)},
                 {"converged_edge_band", figures(convergedBounce, bounceTruth, band)}};
+            entry["term_means"] = termMeans(still);
         }
         result["methods"].push_back(entry);
     }

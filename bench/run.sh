@@ -8,6 +8,9 @@
 #   bench/run.sh --walkthroughs   the thesis's Tables 4.1-4.4 only: the camera paths of the bunny,
 #                          Sponza, Sibenik and the conference room at 512x512, cache off and on,
 #                          into docs/bench-walkthroughs.md (about 1 h)
+#   bench/run.sh --indirect   the indirect light's methods (off, the thesis's, interleaved) on
+#                          the Cornell box, bunny and Sponza: cost at 256x256, error at 128x128,
+#                          into docs/bench-indirect.md (about 5 min)
 # Options: --scenes "a b"  only these scenes (names of scenes/*.json)
 #          --report-only   redraw charts and tables from the last run's JSON
 set -euo pipefail
@@ -19,9 +22,10 @@ while [ $# -gt 0 ]; do
     --quick) mode=quick ;;
     --all) mode=all ;;
     --walkthroughs) mode=walkthroughs ;;
+    --indirect) mode=indirect ;;
     --scenes) scenes="$2"; shift ;;
     --report-only) report_only=1 ;;
-    -h|--help) sed -n '2,14p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,17p' "$0"; exit 0 ;;
     *) echo "error: unknown option $1 (see bench/run.sh --help)" >&2; exit 2 ;;
   esac
   shift
@@ -34,10 +38,19 @@ if [ "$mode" = quick ]; then
   size=256x256 error=128 frames=2 series=44 series_methods=1 other_sizes=""
   walk_scenes="bunny" path_frames=48 error_frames=2
   images=$out/images doc=""
-elif [ "$mode" = walkthroughs ]; then
+elif [ "$mode" = indirect ]; then
+  "$py" bench/indirect.py --results "$out" --doc "$doc" --note "$note"
+  echo "done in $((seconds / 60)) min $((seconds % 60)) s: results in $out/, table in $doc"
+  exit 0
+fi
+if [ "$mode" = walkthroughs ]; then
   scenes=${scenes:-"sponza sibenik conference bunny"}
   size=512x512 error=256 frames=3 walk_scenes=$scenes path_frames=96 error_frames=3
   images=docs/images doc=docs/bench-walkthroughs.md out=out/bench/walk
+elif [ "$mode" = indirect ]; then
+  scenes=${scenes:-"cornell-box bunny sponza"}
+  size=256x256 error=128 frames=3 walk_scenes=""
+  images=docs/images doc=docs/bench-indirect.md out=out/bench/indirect
 else
   all="cornell-box bunny sponza sibenik conference mori-knob"
   [ "$mode" = all ] || all="cornell-box bunny sponza"
@@ -71,6 +84,10 @@ if [ "$report_only" = 0 ]; then
   steps=()
   for s in $scenes; do
     [ "$mode" = walkthroughs ] && continue
+    if [ "$mode" = indirect ]; then
+      steps+=("indirect $s $size --error-size $error")
+      continue
+    fi
     steps+=("sweep $s $size --error-size $error --series-frames $series --series-methods $series_methods")
     case " ${other_scenes:-} " in *" $s "*)
       for z in $other_sizes; do
@@ -102,6 +119,11 @@ if [ "$report_only" = 0 ]; then
     "$(nproc) cores ($(date -u +%Y-%m-%d))." >"$out/run.txt"
 fi
 note=$(cat "$out/run.txt" 2>/dev/null || echo "Mode: $mode.")
+if [ "$mode" = indirect ]; then
+  "$py" bench/indirect.py --results "$out" --doc "$doc" --note "$note"
+  echo "done in $((seconds / 60)) min $((seconds % 60)) s: results in $out/, table in $doc"
+  exit 0
+fi
 if [ "$mode" = walkthroughs ]; then
   "$py" bench/walkthroughs.py --results "$out" --images "$images" --doc "$doc"
   echo "done in $((seconds / 60)) min $((seconds % 60)) s: results in $out/, charts in $images/"

@@ -14,6 +14,9 @@
 
 #include "shared.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace ssgi {
 
 graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& in,
@@ -28,7 +31,10 @@ graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& 
     const graph::ImageRef across = image("indirect.filtered_x");
     const graph::ImageRef acrossDirectional = image("indirect.filtered_x_directional");
     const graph::ImageRef full = image("indirect");
-    const int k = int(s.model.setting("indirect_interleave"));
+    // k^2 subsets of at least one VPL each: k at most the square root of the VPL count.
+    const int vpls = int(s.model.setting("indirect_vpls"));
+    const int k =
+        std::min(int(s.model.setting("indirect_interleave")), int(std::sqrt(double(vpls)) + 1e-9));
     const int radius = int(s.model.setting("indirect_filter_radius"));
     // On settled frames the refresh tile's pixels need their neighbours: the gather and the x
     // axis run over the tile widened by the filter's reach (temporal.glsl cachePixelAround).
@@ -41,8 +47,7 @@ graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& 
     };
     const vk::Pipeline gather = s.computePipeline(
         "indirect_interleaved.comp", 6, 2, sizeof(shader::IndirectConstants),
-        vk::Specialization{{int(s.model.setting("indirect_vpls")),
-                            int(s.model.setting("indirect_visibility")),
+        vk::Specialization{{vpls, int(s.model.setting("indirect_visibility")),
                             int(s.model.setting("indirect_visibility_steps")), k, radius}});
     const vk::Pipeline filter =
         s.computePipeline("indirect_reconstruct.comp", 5, 2, sizeof(shader::IndirectConstants),

@@ -14,7 +14,7 @@
 bool vplVisible(vec3 p, vec3 q) {
     vec3 toVpl = q - p;
     float far = 0.99 * length(toVpl); // the last step stops just short of q's own surface
-    float near = min(far, 0.01 * far + 1e-4);
+    float near = 0.01 * far; // a fixed fraction: the same test in any unit
     vec3 direction = toVpl / length(toVpl);
     float previous = 0.0;
     for (int i = 1; i <= VISIBILITY_STEPS; ++i) {
