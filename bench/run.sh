@@ -38,12 +38,7 @@ if [ "$mode" = quick ]; then
   size=256x256 error=128 frames=2 series=44 series_methods=1 other_sizes=""
   walk_scenes="bunny" path_frames=48 error_frames=2
   images=$out/images doc=""
-elif [ "$mode" = indirect ]; then
-  "$py" bench/indirect.py --results "$out" --doc "$doc" --note "$note"
-  echo "done in $((seconds / 60)) min $((seconds % 60)) s: results in $out/, table in $doc"
-  exit 0
-fi
-if [ "$mode" = walkthroughs ]; then
+elif [ "$mode" = walkthroughs ]; then
   scenes=${scenes:-"sponza sibenik conference bunny"}
   size=512x512 error=256 frames=3 walk_scenes=$scenes path_frames=96 error_frames=3
   images=docs/images doc=docs/bench-walkthroughs.md out=out/bench/walk
@@ -119,6 +114,11 @@ if [ "$report_only" = 0 ]; then
     "$(nproc) cores ($(date -u +%Y-%m-%d))." >"$out/run.txt"
 fi
 note=$(cat "$out/run.txt" 2>/dev/null || echo "Mode: $mode.")
+if [ "$mode" = indirect ]; then
+  "$py" bench/indirect.py --results "$out" --doc "$doc" --note "$note"
+  echo "done in $((seconds / 60)) min $((seconds % 60)) s: results in $out/, table in $doc"
+  exit 0
+fi
 if [ "$mode" = indirect ]; then
   "$py" bench/indirect.py --results "$out" --doc "$doc" --note "$note"
   echo "done in $((seconds / 60)) min $((seconds % 60)) s: results in $out/, table in $doc"
