@@ -284,7 +284,7 @@ void Renderer::renderFrame(const Camera& camera) {
     cutRequested_ = false;
     previousCamera_ = camera;
     // Every frame turns the sampling patterns by a fixed angle and varies their size a little
-    // (golden-ratio sequence), so successive frames take different samples (GUIDE 2.2).
+    // (golden-ratio sequence), so successive frames take different samples (thesis 3.1.2; docs/temporal-cache.md).
     const float turn = glm::radians(float(scene_.setting("cache_rotation_deg")));
     const float jitter = float(scene_.setting("cache_scale_jitter"));
     setup_->patternRotation = std::fmod(float(frameIndex_) * turn, 2.0f * glm::pi<float>());

@@ -2,7 +2,16 @@
 
 #include "shared.h"
 
+#include <cstddef>
+
 namespace ssgi {
+
+vk::VertexInput sceneVertexInput() {
+    return {sizeof(Vertex),
+            {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
+             {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
+             {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)}}};
+}
 
 SceneGpu::SceneGpu(vk::Context& ctx, const Scene& scene) : ctx_(ctx), scene_(scene) {
     for (const Instance& instance : scene.instances)

@@ -11,6 +11,10 @@
 
 namespace ssgi {
 
+// The layout of the scene's vertex buffers (ssgi::Vertex: position, normal, uv at locations 0,
+// 1, 2), for every pipeline that draws them.
+vk::VertexInput sceneVertexInput();
+
 class SceneGpu {
 public:
     SceneGpu(vk::Context& ctx, const Scene& scene);

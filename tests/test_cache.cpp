@@ -1,4 +1,4 @@
-// The temporal cache (GUIDE 2.1-2.3) at frames 1, 16 and 64: convergence, disocclusion, reuse of
+// The temporal cache (thesis 3.1) at frames 1, 16 and 64: convergence, disocclusion, reuse of
 // converged pixels, tiled refresh, and the reset a moved light needs.
 #include "renderer.h"
 #include "scene/camera.h"

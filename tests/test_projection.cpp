@@ -1,4 +1,4 @@
-// Projection and reprojection math (GUIDE 2.1, equations 1-3) against independent geometry.
+// Projection and reprojection math (thesis 3.1.1, equations 1-3) against independent geometry.
 #include "scene/camera.h"
 
 #include <gtest/gtest.h>

@@ -44,7 +44,7 @@ struct PassSetup {
     VkExtent2D rsmSize{};                // the reflective shadow map
     std::vector<vk::Pipeline> pipelines; // destroyed with the renderer
     std::vector<vk::Buffer> buffers;     // likewise (the sky maps' views)
-    // This frame's turn and scale of every sampling pattern (GUIDE 2.2); set by the renderer.
+    // This frame's turn and scale of every sampling pattern (thesis 3.1.2); set by the renderer.
     float patternRotation = 0.0f;
     float patternScale = 1.0f;
     // Where in their radial strata a cached effect's samples lie this frame, in [0, 1): frame

@@ -14,6 +14,7 @@ graph::ImageRef addPeelPass(PassSetup& s, const GBufferAndRsm& in) {
                                                       VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT |
                                                           VK_IMAGE_USAGE_SAMPLED_BIT);
     vk::GraphicsPipelineDesc desc;
+    desc.vertices = sceneVertexInput();
     desc.vertexShader = "gbuffer.vert";
     desc.fragmentShader = "peel.frag";
     desc.colorFormats = {VK_FORMAT_R32G32B32A32_SFLOAT};

@@ -22,6 +22,7 @@ SceneTargets addScenePass(PassSetup& s, const std::string& name, const std::stri
                      VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
 
     vk::GraphicsPipelineDesc desc;
+    desc.vertices = sceneVertexInput();
     desc.vertexShader = shader + ".vert";
     desc.fragmentShader = shader + ".frag";
     desc.colorFormats = {VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_R16G16B16A16_SFLOAT, thirdFormat};

@@ -47,6 +47,7 @@ graph::ImageRef addSkyVisibilityPasses(PassSetup& s, const GBufferAndRsm& in) {
         views.push_back(s.buffers.back().buffer);
     }
     vk::GraphicsPipelineDesc desc;
+    desc.vertices = sceneVertexInput();
     desc.vertexShader = "sky_depth.vert";
     desc.fragmentShader = "sky_depth.frag";
     desc.depthFormat = VK_FORMAT_D32_SFLOAT;

@@ -58,7 +58,7 @@ struct Instance {
     std::string name;
 };
 
-// A moving object (GUIDE: the thesis's stated limit): keys of a translation added to the
+// A moving object (the thesis assumes a static scene): keys of a translation added to the
 // placement of every instance named `object`, interpolated linearly and held beyond the ends.
 struct ObjectKey {
     float time = 0.0f;

@@ -28,8 +28,16 @@ Pipeline createComputePipeline(Context& ctx, const std::string& shader,
                                const std::vector<VkDescriptorType>& bindings,
                                uint32_t pushConstantSize, const Specialization& spec = {});
 
+// The vertex buffer's layout at binding 0: its stride and attributes. The caller's to give
+// (the scene's vertices: scene_gpu.h sceneVertexInput), so this layer knows no vertex type.
+struct VertexInput {
+    uint32_t stride = 0;
+    std::vector<VkVertexInputAttributeDescription> attributes;
+};
+
 struct GraphicsPipelineDesc {
     std::string vertexShader, fragmentShader;
+    VertexInput vertices;
     std::vector<VkFormat> colorFormats;
     VkFormat depthFormat = VK_FORMAT_UNDEFINED;
     std::vector<VkDescriptorType> bindings;                  // set 0, push descriptors
@@ -37,7 +45,7 @@ struct GraphicsPipelineDesc {
     uint32_t pushConstantSize = 0;
 };
 
-// Vertex input is ssgi::Vertex (position, normal, uv); no culling (our surfaces are two-sided).
+// Vertex input as `desc.vertices` says; no culling (our surfaces are two-sided).
 Pipeline createGraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& desc);
 void destroyPipeline(const Context& ctx, Pipeline& pipeline);
 

@@ -55,7 +55,7 @@ struct DrawConstants {
 };
 SSGI_CHECK_SIZE(DrawConstants, 96);
 
-// The temporal cache of one effect (GUIDE 2.1-2.3), as its passes see it each frame.
+// The temporal cache of one effect (thesis 3.1; docs/temporal-cache.md), as its passes see it each frame.
 struct CacheConstants {
     ivec4 state; // x = 1 when last frame's history may be read, y = rotations until a pixel is
                  // converged, z = this frame's refresh tile (-1 = none), w = tile size (pixels)
@@ -73,7 +73,7 @@ SSGI_CHECK_SIZE(CacheConstants, 48);
 // Per-frame values of the screen-space passes (push constants). Structural settings (tap and
 // sample counts, variants) are specialization constants instead. `rotation` turns the
 // sampling pattern each frame and `scale` varies its size, so that successive frames take
-// different samples (GUIDE 2.2).
+// different samples (thesis 3.1.2).
 struct ShadowConstants {
     vec4 pattern; // x = rotation (radians), y = scale, z = normal offset (texels), w = radial
                   // offset (common.glsl radialOffset)
