@@ -163,9 +163,9 @@ Json indirectComparison(vk::Context& ctx, const Scene& scene, const Options& opt
             n += 3;
         }
         const double d = double(std::max<size_t>(n, 1));
-        return Json{{"direct", sums[0] / d},   {"direct_reference", sums[1] / d},
-                    {"bounce", sums[2] / d},   {"bounce_reference", sums[3] / d},
-                    {"sky", sums[4] / d},      {"sky_reference", sums[5] / d}};
+        return Json{{"direct", sums[0] / d}, {"direct_reference", sums[1] / d},
+                    {"bounce", sums[2] / d}, {"bounce_reference", sums[3] / d},
+                    {"sky", sums[4] / d},    {"sky_reference", sums[5] / d}};
     };
     for (size_t m = 0; m < methods.size(); ++m) {
         Json entry = {{"label", methods[m].label},
