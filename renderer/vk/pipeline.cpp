@@ -1,21 +1,33 @@
 #include "vk/pipeline.h"
 
 #include "vk/embedded_shaders.h"
+#include "vk/shader_bindings.h"
 
 #include <algorithm>
 #include <cstddef>
 
 namespace ssgi::vk {
 
-static VkShaderModule loadShader(const Context& ctx, const std::string& name) {
+static const EmbeddedShader& findShader(const std::string& name) {
     const auto& shaders = embeddedShaders();
     const auto found = std::find_if(shaders.begin(), shaders.end(),
                                     [&](const EmbeddedShader& s) { return name == s.name; });
     if (found == shaders.end())
         throw VulkanError("no shader " + name + " in this program (not in shaders/glsl/?)");
+    return *found;
+}
+
+// Set 0's bindings as the shader declares them.
+static std::map<uint32_t, VkDescriptorType> declaredBindings(const std::string& name) {
+    const EmbeddedShader& shader = findShader(name);
+    return shaderBindings(shader.code, shader.bytes / sizeof(uint32_t), 0);
+}
+
+static VkShaderModule loadShader(const Context& ctx, const std::string& name) {
+    const EmbeddedShader& shader = findShader(name);
     VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-    info.codeSize = found->bytes;
-    info.pCode = found->code;
+    info.codeSize = shader.bytes;
+    info.pCode = shader.code;
     VkShaderModule module;
     VK_CHECK(vkCreateShaderModule(ctx.device, &info, nullptr, &module));
     return module;
@@ -46,6 +58,7 @@ static void createLayout(Context& ctx, Pipeline& p, const std::vector<VkDescript
 Pipeline createComputePipeline(Context& ctx, const std::string& shader,
                                const std::vector<VkDescriptorType>& bindings,
                                uint32_t pushConstantSize, const Specialization& spec) {
+    checkBindings(shader, declaredBindings(shader), bindings);
     Pipeline p;
     p.bindPoint = VK_PIPELINE_BIND_POINT_COMPUTE;
     p.stages = VK_SHADER_STAGE_COMPUTE_BIT;
@@ -74,6 +87,9 @@ Pipeline createComputePipeline(Context& ctx, const std::string& shader,
 }
 
 Pipeline createGraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& desc) {
+    std::map<uint32_t, VkDescriptorType> declared = declaredBindings(desc.vertexShader);
+    declared.merge(declaredBindings(desc.fragmentShader)); // a binding both read is the same
+    checkBindings(desc.vertexShader + " + " + desc.fragmentShader, declared, desc.bindings);
     Pipeline p;
     p.bindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
     p.stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;

@@ -1,0 +1,133 @@
+#include "vk/shader_bindings.h"
+
+#include "vk/context.h"
+
+#include <set>
+
+namespace ssgi::vk {
+
+namespace {
+
+// The SPIR-V instructions read here (SPIR-V specification, section 3).
+enum Op : uint32_t {
+    OpTypeImage = 25,
+    OpTypeSampledImage = 27,
+    OpTypeArray = 28,
+    OpTypeRuntimeArray = 29,
+    OpTypePointer = 32,
+    OpVariable = 59,
+    OpDecorate = 71,
+};
+enum Decoration : uint32_t {
+    DecorationBlock = 2,
+    DecorationBufferBlock = 3,
+    Binding = 33,
+    Set = 34
+};
+enum StorageClass : uint32_t { UniformConstant = 0, Uniform = 2, StorageBuffer = 12 };
+
+} // namespace
+
+std::map<uint32_t, VkDescriptorType> shaderBindings(const uint32_t* code, size_t words,
+                                                    uint32_t set) {
+    std::map<uint32_t, uint32_t> bindingOf, setOf;
+    std::set<uint32_t> bufferBlocks;         // structs decorated BufferBlock (old-style SSBOs)
+    std::map<uint32_t, uint32_t> imageUsage; // OpTypeImage id -> Sampled operand (1 or 2)
+    std::set<uint32_t> sampledImages;        // OpTypeSampledImage ids
+    std::map<uint32_t, uint32_t> elementOf;  // array type -> element type
+    std::map<uint32_t, std::pair<uint32_t, uint32_t>> pointers; // id -> storage class, pointee
+    std::vector<std::pair<uint32_t, uint32_t>> variables;       // id, pointer type
+    for (size_t i = 5; i < words;) {
+        const uint32_t count = code[i] >> 16, op = code[i] & 0xffff;
+        if (count == 0 || i + count > words) break;
+        const uint32_t* w = code + i + 1;
+        switch (op) {
+        case OpDecorate:
+            if (w[1] == Binding) bindingOf[w[0]] = w[2];
+            if (w[1] == Set) setOf[w[0]] = w[2];
+            if (w[1] == DecorationBufferBlock) bufferBlocks.insert(w[0]);
+            break;
+        case OpTypeImage:
+            imageUsage[w[0]] = w[6];
+            break;
+        case OpTypeSampledImage:
+            sampledImages.insert(w[0]);
+            break;
+        case OpTypeArray:
+        case OpTypeRuntimeArray:
+            elementOf[w[0]] = w[1];
+            break;
+        case OpTypePointer:
+            pointers[w[0]] = {w[1], w[2]};
+            break;
+        case OpVariable:
+            variables.push_back({w[1], w[0]});
+            break;
+        default:
+            break;
+        }
+        i += count;
+    }
+    std::map<uint32_t, VkDescriptorType> result;
+    for (const auto& [id, pointerType] : variables) {
+        if (!bindingOf.count(id) || (setOf.count(id) ? setOf[id] : 0) != set) continue;
+        const auto pointer = pointers.find(pointerType);
+        if (pointer == pointers.end()) continue;
+        auto [storage, type] = pointer->second;
+        while (elementOf.count(type))
+            type = elementOf[type];
+        VkDescriptorType descriptor;
+        if (storage == Uniform)
+            descriptor = bufferBlocks.count(type) ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER
+                                                  : VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+        else if (storage == StorageBuffer)
+            descriptor = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        else if (storage == UniformConstant && sampledImages.count(type))
+            descriptor = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+        else if (storage == UniformConstant && imageUsage.count(type))
+            descriptor = imageUsage[type] == 2 ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE
+                                               : VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE;
+        else
+            continue;
+        result[bindingOf[id]] = descriptor;
+    }
+    return result;
+}
+
+std::string descriptorTypeName(VkDescriptorType type) {
+    switch (type) {
+    case VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER:
+        return "a uniform buffer";
+    case VK_DESCRIPTOR_TYPE_STORAGE_BUFFER:
+        return "a storage buffer";
+    case VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER:
+        return "a sampled image (sampler2D)";
+    case VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE:
+        return "a sampled image without sampler";
+    case VK_DESCRIPTOR_TYPE_STORAGE_IMAGE:
+        return "a storage image (image2D)";
+    default:
+        return "descriptor type " + std::to_string(int(type));
+    }
+}
+
+void checkBindings(const std::string& shader, const std::map<uint32_t, VkDescriptorType>& declared,
+                   const std::vector<VkDescriptorType>& layout) {
+    for (const auto& [binding, type] : declared) {
+        if (binding >= layout.size())
+            throw VulkanError(shader + " reads binding " + std::to_string(binding) + " (" +
+                              descriptorTypeName(type) + ") of set 0, which the pass's layout (" +
+                              std::to_string(layout.size()) + " bindings) lacks");
+        if (layout[binding] != type)
+            throw VulkanError(shader + " binding " + std::to_string(binding) + " is " +
+                              descriptorTypeName(type) + ", the pass's layout makes it " +
+                              descriptorTypeName(layout[binding]));
+    }
+    for (uint32_t binding = 0; binding < layout.size(); ++binding)
+        if (!declared.count(binding))
+            throw VulkanError("the pass's layout has binding " + std::to_string(binding) + " (" +
+                              descriptorTypeName(layout[binding]) + ") that " + shader +
+                              " never declares");
+}
+
+} // namespace ssgi::vk

@@ -1,0 +1,82 @@
+// The pipelines hold a pass's declared bindings to what its shader declares (vk/shader_bindings):
+// the reflection reads the shader's own layout, and a layout that disagrees is refused at
+// pipeline creation with the shader and the binding named.
+#include "support.h"
+
+#include "vk/embedded_shaders.h"
+#include "vk/pipeline.h"
+#include "vk/shader_bindings.h"
+
+#include <algorithm>
+
+using namespace ssgi;
+
+namespace {
+
+const vk::EmbeddedShader& shader(const std::string& name) {
+    const auto& all = vk::embeddedShaders();
+    auto found =
+        std::find_if(all.begin(), all.end(), [&](const auto& s) { return name == s.name; });
+    if (found == all.end()) throw std::runtime_error("no shader " + name);
+    return *found;
+}
+
+constexpr VkDescriptorType kUniform = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+
+// indirect_reconstruct.comp: the frame's uniforms, five sampler2Ds, two image2Ds.
+const std::vector<VkDescriptorType> kReconstruct = {kUniform, kSampled, kSampled, kSampled,
+                                                    kSampled, kSampled, kStorage, kStorage};
+
+} // namespace
+
+TEST(ShaderBindings, ReflectTheShadersOwnDeclarations) {
+    const vk::EmbeddedShader& s = shader("indirect_reconstruct.comp");
+    const auto bindings = vk::shaderBindings(s.code, s.bytes / 4, 0);
+    ASSERT_EQ(bindings.size(), kReconstruct.size());
+    for (uint32_t b = 0; b < kReconstruct.size(); ++b)
+        EXPECT_EQ(bindings.at(b), kReconstruct[b]) << "binding " << b;
+    EXPECT_TRUE(vk::shaderBindings(s.code, s.bytes / 4, 1).empty()) << "nothing in set 1";
+    // A graphics shader with a texture in set 1: the G-buffer's fragment shader.
+    const vk::EmbeddedShader& g = shader("gbuffer.frag");
+    EXPECT_FALSE(vk::shaderBindings(g.code, g.bytes / 4, 0).empty());
+}
+
+class PipelineTest : public test::VulkanTest {};
+
+TEST_F(PipelineTest, TheShadersOwnLayoutIsAccepted) {
+    vk::Pipeline p = vk::createComputePipeline(test::context(), "indirect_reconstruct.comp",
+                                               kReconstruct, 80, {{4, 8}});
+    EXPECT_NE(p.pipeline, VK_NULL_HANDLE);
+    vk::destroyPipeline(test::context(), p);
+}
+
+TEST_F(PipelineTest, ALayoutThatDisagreesIsRefusedNamingShaderAndBinding) {
+    auto refusal = [](std::vector<VkDescriptorType> layout) {
+        try {
+            vk::Pipeline p =
+                vk::createComputePipeline(test::context(), "indirect_reconstruct.comp", layout, 80);
+            vk::destroyPipeline(test::context(), p);
+        } catch (const vk::VulkanError& e) {
+            return std::string(e.what());
+        }
+        return std::string("accepted");
+    };
+    std::vector<VkDescriptorType> wrongType = kReconstruct;
+    wrongType[5] = kStorage; // the shader samples binding 5
+    const std::string type = refusal(wrongType);
+    EXPECT_NE(type.find("indirect_reconstruct.comp binding 5"), std::string::npos) << type;
+    EXPECT_NE(type.find("sampled image"), std::string::npos) << type;
+
+    std::vector<VkDescriptorType> missing(kReconstruct.begin(), kReconstruct.end() - 1);
+    const std::string lacks = refusal(missing);
+    EXPECT_NE(lacks.find("binding 7"), std::string::npos) << lacks;
+    EXPECT_NE(lacks.find("lacks"), std::string::npos) << lacks;
+
+    std::vector<VkDescriptorType> extra = kReconstruct;
+    extra.push_back(kStorage);
+    const std::string never = refusal(extra);
+    EXPECT_NE(never.find("binding 8"), std::string::npos) << never;
+    EXPECT_NE(never.find("never declares"), std::string::npos) << never;
+}
