@@ -133,7 +133,7 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
         // that into the history, and the consumers read the blended value.
         LightingTerms terms;
         EffectCache* shadowCache = createCache(*setup_, "shadow", "cache_tile_shadow", true);
-        if (shadowCache) shadowCache->motionTest = 2;
+        if (shadowCache) shadowCache->motionTest = MOTION_LIGHT_PATH;
         terms.shadow = addTemporalPass(*setup_, shadowCache,
                                        addShadowPass(*setup_, scenes, shadowCache), scenes);
         // Depth peeling's second layer serves SSDO's occlusion test and the contact shadows'.
@@ -152,7 +152,7 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
         } else if (scene.setting("ao") != 0.0) {
             EffectCache* cache = createCache(*setup_, "ao", "cache_tile_ao", false);
             if (cache) { // the farthest an AO sample reaches, its pattern at its largest
-                cache->motionTest = 1;
+                cache->motionTest = MOTION_NEAR_BOX;
                 cache->motionReach =
                     aoRadius(scene) * (1.0f + float(scene.setting("cache_scale_jitter")));
             }
@@ -341,7 +341,7 @@ void Renderer::setTime(float seconds) {
     setup_->rsmStale = true;
     setup_->skyMapsStale = true;
     for (EffectCache& cache : setup_->caches)
-        if (cache.motionTest == 0) {
+        if (cache.motionTest == MOTION_RESTART_ALL) {
             graph_->resetHistory(cache.value);
             graph_->resetHistory(cache.meta);
         }

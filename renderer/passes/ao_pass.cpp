@@ -32,11 +32,12 @@ graph::ImageRef addAoPass(PassSetup& s, const GBufferAndRsm& in, EffectCache* ca
                             .storageImage(4, pc.image(ao).view)
                             .push(s.ctx, pc.cmd, pipeline);
                         shader::AoConstants constants{};
-                        constants.pattern = {s.patternRotation, s.patternScale, aoRadius(s.model),
-                                             radialOffset(s, cache)};
-                        constants.falloff = {float(s.model.setting("ao_attenuation_a")),
-                                             float(s.model.setting("ao_attenuation_b")), 0.0f,
-                                             0.0f};
+                        constants.rotation = s.patternRotation;
+                        constants.scale = s.patternScale;
+                        constants.radius = aoRadius(s.model);
+                        constants.radialOffset = radialOffset(s, cache);
+                        constants.falloffA = float(s.model.setting("ao_attenuation_a"));
+                        constants.falloffB = float(s.model.setting("ao_attenuation_b"));
                         constants.cache = cacheConstants(s, cache);
                         const VkExtent2D area = cacheDispatch(s, cache, s.size);
                         vk::dispatch(pc.cmd, pipeline, area.width, area.height, constants);

@@ -33,7 +33,7 @@ graph::ImageRef addContactPass(PassSetup& s, const GBufferAndRsm& in, graph::Ima
                             .storageImage(5, pc.image(contact).view)
                             .push(s.ctx, pc.cmd, pipeline);
                         shader::ContactConstants constants{};
-                        constants.params.x = float(s.model.setting("contact_shadow_texels"));
+                        constants.segmentTexels = float(s.model.setting("contact_shadow_texels"));
                         vk::dispatch(pc.cmd, pipeline, s.size.width, s.size.height, constants);
                     });
     return contact;

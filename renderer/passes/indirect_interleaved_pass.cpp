@@ -56,9 +56,14 @@ graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& 
     const graph::ImageRef meta = cacheMetaInput(cache, in.gbuffer.position);
     auto constants = [&s, cache](glm::ivec2 axis) {
         shader::IndirectConstants c{};
-        c.pattern = {s.patternRotation, s.patternScale, float(s.model.setting("indirect_radius")),
-                     radialOffset(s, cache)};
-        c.target = {int(s.size.width), int(s.size.height), axis.x, axis.y};
+        c.rotation = s.patternRotation;
+        c.scale = s.patternScale;
+        c.radius = float(s.model.setting("indirect_radius"));
+        c.radialOffset = radialOffset(s, cache);
+        c.width = int(s.size.width);
+        c.height = int(s.size.height);
+        c.axisX = axis.x;
+        c.axisY = axis.y;
         c.cache = cacheConstants(s, cache);
         return c;
     };

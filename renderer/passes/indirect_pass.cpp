@@ -28,9 +28,12 @@ graph::ImageRef addIndirectPasses(PassSetup& s, const GBufferAndRsm& in, EffectC
     const graph::ImageRef meta = cacheMetaInput(cache, in.gbuffer.position);
     auto constants = [&s, halfSize, cache]() {
         shader::IndirectConstants c{};
-        c.pattern = {s.patternRotation, s.patternScale, float(s.model.setting("indirect_radius")),
-                     radialOffset(s, cache)};
-        c.target = {int(halfSize.width), int(halfSize.height), 0, 0};
+        c.rotation = s.patternRotation;
+        c.scale = s.patternScale;
+        c.radius = float(s.model.setting("indirect_radius"));
+        c.radialOffset = radialOffset(s, cache);
+        c.width = int(halfSize.width);
+        c.height = int(halfSize.height);
         c.cache = cacheConstants(s, cache);
         return c;
     };

@@ -23,9 +23,9 @@ struct EffectCache {
     std::unique_ptr<TileRefresh> refresh;
     int refreshTile = -1;        // this frame's
     bool lightDependent = false; // reset when the light changes
-    // What an object that moved restarts: 0 the whole history; per pixel, 1 those within
-    // `motionReach` of it, 2 those whose path to the light passes near it.
-    int motionTest = 0;
+    // What an object that moved restarts (shared.h MOTION_*): the whole history; per pixel,
+    // those within `motionReach` of it, or those whose path to the light passes near it.
+    int motionTest = MOTION_RESTART_ALL;
     float motionReach = 0.0f;
     // The resampling blur (squared pixels) its history may carry under a moving camera.
     float blurBudget = 0.0f;

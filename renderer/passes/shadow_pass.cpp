@@ -33,9 +33,10 @@ graph::ImageRef addShadowPass(PassSetup& s, const GBufferAndRsm& in, EffectCache
                             .storageImage(5, pc.image(shadow).view)
                             .push(s.ctx, pc.cmd, pipeline);
                         shader::ShadowConstants constants{};
-                        constants.pattern = {s.patternRotation, s.patternScale,
-                                             float(s.model.setting("shadow_bias")),
-                                             radialOffset(s, cache)};
+                        constants.rotation = s.patternRotation;
+                        constants.scale = s.patternScale;
+                        constants.normalOffset = float(s.model.setting("shadow_bias"));
+                        constants.radialOffset = radialOffset(s, cache);
                         constants.cache = cacheConstants(s, cache);
                         const VkExtent2D area = cacheDispatch(s, cache, s.size);
                         vk::dispatch(pc.cmd, pipeline, area.width, area.height, constants);

@@ -93,9 +93,11 @@ graph::ImageRef addSkyVisibilityPasses(PassSetup& s, const GBufferAndRsm& in) {
     // Occluders nearer than the AO's radius are the AO's; with no AO, only a few texels' worth
     // of nearness is left out (the map's own resolution).
     const float texel = 2.0f * radius / float(tileSize);
-    shader::SkyVisibilityConstants constants{view, {}};
+    shader::SkyVisibilityConstants constants{};
+    constants.maps = view;
     const float nearest = m.setting("ao") != 0.0 && m.setting("ssdo") == 0.0 ? aoRadius(m) : 0.0f;
-    constants.params = glm::vec4(std::max(nearest, 3.0f * texel), 1.5f * texel, 0.0f, 0.0f);
+    constants.aoReach = std::max(nearest, 3.0f * texel);
+    constants.normalOffset = 1.5f * texel;
     s.graph.addPass(
         "sky_visibility", graph::PassKind::Compute,
         {{in.gbuffer.position, Use::Sampled},

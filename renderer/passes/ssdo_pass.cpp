@@ -43,8 +43,10 @@ graph::ImageRef addSsdoPass(PassSetup& s, const GBufferAndRsm& in, graph::ImageR
                 .storageImage(7, pc.image(ssdo).view)
                 .push(s.ctx, pc.cmd, pipeline);
             shader::SsdoConstants constants{};
-            constants.pattern = {s.patternRotation, s.patternScale, rMax,
-                                 float(s.model.setting("ssdo_bounce"))};
+            constants.rotation = s.patternRotation;
+            constants.scale = s.patternScale;
+            constants.rMax = rMax;
+            constants.bounceStrength = float(s.model.setting("ssdo_bounce"));
             constants.cache = cacheConstants(s, cache);
             const VkExtent2D area = cacheDispatch(s, cache, s.size);
             vk::dispatch(pc.cmd, pipeline, area.width, area.height, constants);

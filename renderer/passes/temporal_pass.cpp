@@ -31,12 +31,18 @@ graph::ImageRef cacheMetaInput(const EffectCache* cache, graph::ImageRef fallbac
 
 shader::CacheConstants cacheConstants(const PassSetup& s, const EffectCache* cache) {
     shader::CacheConstants c{};
-    if (!cache) return c; // state.x = 0: no history, nothing converges
-    c.state = {s.graph.hasHistory(cache->value) ? 1 : 0, int(s.model.setting("cache_rotations")),
-               cache->refreshTile, cache->refresh ? int(cache->refresh->tileSize()) : 1};
-    c.accumulation = {float(s.model.setting("cache_bias")), float(s.model.setting("cache_epsilon")),
-                      float(s.model.setting("cache_method")), s.settled ? 1.0f : 0.0f};
-    c.invalidation = {float(cache->motionTest), cache->motionReach, cache->blurBudget, 0.0f};
+    if (!cache) return c; // historyValid 0: no history, nothing converges
+    c.historyValid = s.graph.hasHistory(cache->value) ? 1 : 0;
+    c.rotations = int(s.model.setting("cache_rotations"));
+    c.refreshTile = cache->refreshTile;
+    c.tileSize = cache->refresh ? int(cache->refresh->tileSize()) : 1;
+    c.confidenceBias = float(s.model.setting("cache_bias"));
+    c.epsilon = float(s.model.setting("cache_epsilon"));
+    c.runningMean = s.model.setting("cache_method") != 0.0 ? 1 : 0;
+    c.settled = s.settled ? 1 : 0;
+    c.motionTest = cache->motionTest;
+    c.motionReach = cache->motionReach;
+    c.blurBudget = cache->blurBudget;
     return c;
 }
 

@@ -42,9 +42,9 @@ void main() {
         imageStore(aoImage, pixel, vec4(0.0)); // alpha 0: skipped, the cache holds the value
         return;
     }
-    float radius = constants.pattern.z * constants.pattern.y;
+    float radius = constants.radius * constants.scale;
     float radiusPixels = radius * pixelsPerUnit(viewDepth(p));
-    float rotation = pixelRotation(pixel) + constants.pattern.x;
+    float rotation = pixelRotation(pixel) + constants.rotation;
     vec2 center = vec2(pixel) + 0.5;
     float visibility = 1.0;
     if (radiusPixels >= 1.0) {

@@ -8,7 +8,7 @@ float thesisAo(vec2 center, vec3 p, vec3 n, float radius, float radiusPixels, fl
     float far = radiusPixels;
     float near = min(1.0, far);
     // A single frame samples each step's far end, as (8) does; accumulated frames cover it.
-    float stratum = radialOffset(constants.pattern.w, 1.0);
+    float stratum = radialOffset(constants.radialOffset, 1.0);
     float occlusion = 0.0;
     for (int d = 0; d < DIRECTIONS; ++d) {
         float angle = rotation + 2.0 * PI * float(d) / float(DIRECTIONS);
@@ -22,7 +22,7 @@ float thesisAo(vec2 center, vec3 p, vec3 n, float radius, float radiusPixels, fl
             vec3 toSample = q.xyz - p;
             float d = length(toSample) / radius;
             if (d > 1.0 || d < 1e-5) continue;
-            float falloff = 1.0 + constants.falloff.x * d + constants.falloff.y * d * d;
+            float falloff = 1.0 + constants.falloffA * d + constants.falloffB * d * d;
             occlusion += max(dot(n, toSample) / (d * radius), 0.0) / falloff;
         }
     }

@@ -39,7 +39,7 @@ void main() {
     vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     vec3 toLight = frame.lightPosition.xyz - p;
     float texelAtP = length(toLight) * 2.0 * frame.lightFrustum.z / frame.lightFrustum.w;
-    float segment = constants.params.x * texelAtP;
+    float segment = constants.segmentTexels * texelAtP;
     vec3 l = normalize(toLight);
     float footprint = 1.0 / pixelsPerUnit(viewDepth(p));
     vec3 start = p + n * footprint; // off the surface, so it does not find itself

@@ -26,7 +26,7 @@ layout(push_constant) uniform IndirectBlock { IndirectConstants constants; };
 
 void main() {
     ivec2 pixel = cachePixel(gl_GlobalInvocationID.xy, constants.cache, 2);
-    if (any(greaterThanEqual(pixel, constants.target.xy))) return;
+    if (any(greaterThanEqual(pixel, ivec2(constants.width, constants.height)))) return;
     ivec2 source = pixel * 2;
     // Skipped (alpha 0) when every full-resolution pixel of the block is converged.
     bool allConverged = true;
@@ -45,9 +45,9 @@ void main() {
     if (position.w != 0.0) {
         vec3 n = texelFetch(gbufferNormal, source, 0).xyz;
         vec4 unused; // the directional sums serve the interleaved method alone
-        result = gatherIndirect(position.xyz, n, pixelRotation(pixel) + constants.pattern.x,
-                                constants.pattern.y, constants.pattern.z,
-                                radialOffset(constants.pattern.w, 0.5), 0, 1, unused);
+        result = gatherIndirect(position.xyz, n, pixelRotation(pixel) + constants.rotation,
+                                constants.scale, constants.radius,
+                                radialOffset(constants.radialOffset, 0.5), 0, 1, unused);
     }
     imageStore(halfIndirect, pixel, vec4(result, 1.0));
 }

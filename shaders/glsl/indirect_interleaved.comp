@@ -56,12 +56,12 @@ void main() {
     // index), so that over frames every pixel gathers every subset; a single frame keeps its
     // place's own.
     int subsets = INTERLEAVE * INTERLEAVE;
-    int turn = constants.pattern.w < 0.0 ? 0 : int(fract(frame.params.z * 0.618034) * float(subsets));
+    int turn = constants.radialOffset < 0.0 ? 0 : int(fract(frame.params.z * 0.618034) * float(subsets));
     int subset = (vplSubset(pixel.x, pixel.y, INTERLEAVE) + turn) % subsets;
     vec4 directional;
-    vec3 e = gatherIndirect(position.xyz, n, pixelRotation(pixel) + constants.pattern.x,
-                            constants.pattern.y, constants.pattern.z,
-                            radialOffset(constants.pattern.w, 0.5),
+    vec3 e = gatherIndirect(position.xyz, n, pixelRotation(pixel) + constants.rotation,
+                            constants.scale, constants.radius,
+                            radialOffset(constants.radialOffset, 0.5),
                             subset, INTERLEAVE, directional);
     imageStore(interleavedIndirect, pixel, vec4(e, 1.0));
     imageStore(interleavedDirectional, pixel, directional);

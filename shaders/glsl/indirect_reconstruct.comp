@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // The interleaved gather's subsets put back together (Segovia et al. 2006's geometry-aware
-// filter), one axis per dispatch (constants.target.zw: the axis). Each pixel averages the
+// filter), one axis per dispatch (constants.axisX, axisY: the axis). Each pixel averages the
 // estimates of the pixels within RADIUS along the axis (at least INTERLEAVE / 2; when the
 // window's length is a multiple of INTERLEAVE its two end taps weigh half, so every subset
 // weighs the same) that lie on its own surface: within 1.5 pixel footprints of its tangent
@@ -41,7 +41,7 @@ float directionalAt(vec4 sums, vec3 m) {
 }
 
 void main() {
-    ivec2 axis = constants.target.zw;
+    ivec2 axis = ivec2(constants.axisX, constants.axisY);
     int reach = max(RADIUS, INTERLEAVE / 2);
     // The x axis also filters the refresh tile's margin rows, which the y axis reads.
     int margin = axis.x == 1 ? reach : 0;

@@ -58,7 +58,7 @@ void main() {
     // Normal-offset lookup: a surface the light grazes covers less than a texel of the map.
     float texelAngle = 2.0 * frame.lightFrustum.z / shadowMapSize();
     float texelAtP = distance(position.xyz, frame.lightPosition.xyz) * texelAngle;
-    vec3 p = position.xyz + n * (constants.pattern.z * texelAtP);
+    vec3 p = position.xyz + n * (constants.normalOffset * texelAtP);
     vec4 clip = frame.lightViewProjection * vec4(p, 1.0);
     vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
     if (clip.w <= 0.0 || any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) {
@@ -67,8 +67,8 @@ void main() {
     }
     float receiver = clip.w;
     float bias = receiver * texelAngle; // one texel of depth quantisation
-    float rotation = pixelRotation(pixel) + constants.pattern.x;
-    float ring = radialOffset(constants.pattern.w, 0.5);
+    float rotation = pixelRotation(pixel) + constants.rotation;
+    float ring = radialOffset(constants.radialOffset, 0.5);
 
     if (TAPS == 1) {
         float lit = receiver <= occluderDepth(uv) + bias ? 1.0 : 0.0;
@@ -86,7 +86,7 @@ void main() {
     float blockerSum = 0.0;
     int blockers = 0;
     for (int i = 0; i < TAPS; ++i) {
-        vec2 tap = uv + vogelDisk(i, TAPS, rotation, ring) * searchRadius * constants.pattern.y;
+        vec2 tap = uv + vogelDisk(i, TAPS, rotation, ring) * searchRadius * constants.scale;
         float occluder = occluderDepth(tap);
         if (occluder + bias < receiverPlaneDepth(tap, p, n, receiver)) {
             blockerSum += occluder;
@@ -102,7 +102,7 @@ void main() {
     float filterRadius = clamp(penumbra * uvPerUnit, minRadius, maxRadius);
     float lit = 0.0;
     for (int i = 0; i < TAPS; ++i) {
-        vec2 tap = uv + vogelDisk(i, TAPS, rotation, ring) * filterRadius * constants.pattern.y;
+        vec2 tap = uv + vogelDisk(i, TAPS, rotation, ring) * filterRadius * constants.scale;
         lit += occluderDepth(tap) + bias >= receiverPlaneDepth(tap, p, n, receiver) ? 1.0 : 0.0;
     }
     imageStore(shadowImage, pixel, vec4(vec3(lit / float(TAPS)), 1.0));

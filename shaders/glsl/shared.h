@@ -1,6 +1,7 @@
-// Structures shared by C++ and GLSL: one declaration, compiled by both. Members are only vec4,
-// mat4 and ivec4 so that std140 (uniforms) and std430 (push constants) lay them out exactly as
-// C++ does; the static_asserts hold the C++ side to the sizes the shaders expect.
+// Structures shared by C++ and GLSL: one declaration, compiled by both. The uniform block's
+// members are only vec4, mat4 and ivec4, so that std140 lays them out exactly as C++ does; push
+// constants (std430) may also hold int and float scalars. The static_asserts hold the C++ side
+// to the sizes the shaders expect.
 #ifndef SSGI_SHARED_H
 #define SSGI_SHARED_H
 
@@ -55,18 +56,28 @@ struct DrawConstants {
 };
 SSGI_CHECK_SIZE(DrawConstants, 96);
 
-// The temporal cache of one effect (thesis 3.1; docs/temporal-cache.md), as its passes see it each frame.
+// What an object that moved restarts in a cache (CacheConstants.motionTest; EffectCache).
+#define MOTION_RESTART_ALL 0 // the whole history: the renderer resets it
+#define MOTION_NEAR_BOX 1    // the pixels within motionReach of a moved box (occlusion)
+#define MOTION_LIGHT_PATH 2  // the pixels whose path to the light passes within motionReach of one
+
+// The temporal cache of one effect (thesis 3.1; docs/temporal-cache.md), as its passes see it
+// each frame. Push constants (std430) pack these scalars as C++ does.
 struct CacheConstants {
-    ivec4 state; // x = 1 when last frame's history may be read, y = rotations until a pixel is
-                 // converged, z = this frame's refresh tile (-1 = none), w = tile size (pixels)
-    vec4 accumulation; // x = bias of the confidence rule (eq. 4), y = reprojection epsilon in
-                       // pixel footprints (eq. 3), z = 1 for the running mean, w = 1 when the
-                       // whole screen is converged and passes run over the refresh tile alone
-    vec4 invalidation; // what a moved object (FrameUniforms.motion) restarts: x = 0 nothing
-                       // here (the renderer resets the whole history), 1 pixels within y of a
-                       // moved box, 2 pixels whose path to the light passes within y of one;
-                       // z = the resampling blur a cached value may carry (squared pixels):
-                       // beyond it the history's weight is cut and the pixel recomputed
+    int historyValid;     // 1 when last frame's history may be read
+    int rotations;        // rotations until a pixel is converged
+    int refreshTile;      // this frame's refresh tile (-1 = none)
+    int tileSize;         // the refresh tile's side, pixels
+    float confidenceBias; // bias of the thesis's confidence rule (eq. 4)
+    float epsilon;        // reprojection test (eq. 3), in pixel footprints
+    int runningMean;      // 1 for the running mean, 0 for the thesis's rule
+    int settled;          // 1 when the whole screen is converged and passes run over the
+                          // refresh tile alone
+    int motionTest;       // MOTION_*: what a moved object (FrameUniforms.motion) restarts
+    float motionReach;    // scene units
+    float blurBudget;     // the resampling blur (squared pixels) a cached value may carry:
+                          // beyond it the history's weight is cut and the pixel recomputed
+    float unused;
 };
 SSGI_CHECK_SIZE(CacheConstants, 48);
 
@@ -75,15 +86,18 @@ SSGI_CHECK_SIZE(CacheConstants, 48);
 // sampling pattern each frame and `scale` varies its size, so that successive frames take
 // different samples (thesis 3.1.2).
 struct ShadowConstants {
-    vec4 pattern; // x = rotation (radians), y = scale, z = normal offset (texels), w = radial
-                  // offset (common.glsl radialOffset)
+    float rotation;     // the pattern's turn this frame (radians)
+    float scale;        // its size's jitter
+    float normalOffset; // the receiver's offset along its normal (shadow-map texels)
+    float radialOffset; // common.glsl radialOffset
     CacheConstants cache;
 };
 SSGI_CHECK_SIZE(ShadowConstants, 64);
 
 struct AoConstants {
-    vec4 pattern; // x = rotation, y = scale, z = AO radius (scene units), w = radial offset
-    vec4 falloff; // x = a, y = b of D(d) = 1 + a d + b d^2 (d in AO radii)
+    float rotation, scale, radius, radialOffset; // radius: the AO radius (scene units)
+    float falloffA, falloffB; // D(d) = 1 + a d + b d^2 (d in AO radii)
+    float unused[2];
     CacheConstants cache;
 };
 SSGI_CHECK_SIZE(AoConstants, 80);
@@ -104,21 +118,27 @@ SSGI_INLINE int vplSubsetSize(int s, int n, int k) {
 }
 
 struct IndirectConstants {
-    vec4 pattern; // x = rotation, y = scale, z = sampling radius (fraction of the RSM), w = radial
-                  // offset
-    ivec4 target; // xy = size of the half-resolution image
+    float rotation;     // the pattern's turn this frame (radians)
+    float scale;        // its size's jitter (with a sampling radius > 0)
+    float radius;       // the sampling radius, a fraction of the RSM (0: the whole map)
+    float radialOffset; // common.glsl radialOffset
+    int width, height;  // the gather's image (method 0: the half-resolution one)
+    int axisX, axisY;   // the interleaved method's filter: the axis of this pass
     CacheConstants cache;
 };
 SSGI_CHECK_SIZE(IndirectConstants, 80);
 
 struct SsdoConstants {
-    vec4 pattern; // x = rotation, y = scale, z = r_max (scene units), w = bounce strength
+    float rotation, scale;
+    float rMax;           // r_max (scene units)
+    float bounceStrength; // the screen-space bounce's weight
     CacheConstants cache;
 };
 SSGI_CHECK_SIZE(SsdoConstants, 64);
 
 struct ContactConstants {
-    vec4 params; // x = segment length in shadow-map texels at the pixel
+    float segmentTexels; // the march's length in shadow-map texels at the pixel
+    float unused[3];
 };
 SSGI_CHECK_SIZE(ContactConstants, 16);
 
@@ -138,12 +158,14 @@ struct SkyMapView {
 };
 SSGI_CHECK_SIZE(SkyMapView, 32);
 
-// The sky visibility lookup (push constants): the maps as above, and `params`: x = the distance
-// below which an occluder is left to the screen-space AO (its radius; 0 without AO), y = the
-// receiver's offset along its normal, in scene units.
+// The sky visibility lookup (push constants): the maps as above, the distance below which an
+// occluder is left to the screen-space AO (its radius; 0 without AO) and the receiver's offset
+// along its normal, in scene units.
 struct SkyVisibilityConstants {
     SkyMapView maps;
-    vec4 params;
+    float aoReach;
+    float normalOffset;
+    float unused[2];
 };
 SSGI_CHECK_SIZE(SkyVisibilityConstants, 48);
 

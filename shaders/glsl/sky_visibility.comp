@@ -33,7 +33,7 @@ void main() {
     SkyMapView maps = constants.maps;
     float diameter = 2.0 * maps.sphere.w;
     // Off the surface along its normal, so that it does not shadow itself within a texel.
-    vec3 p = position.xyz + n * constants.params.y;
+    vec3 p = position.xyz + n * constants.normalOffset;
     vec3 open = vec3(0.0), arriving = vec3(0.0);
     for (int k = 0; k < maps.tile.y; ++k) {
         vec3 w = skyMapDirection(k, maps.tile.y);
@@ -45,7 +45,7 @@ void main() {
         float occluder = texelFetch(skyMaps, skyMapTexel(q.xy, k, maps.tile.z, maps.tile.w), 0).r;
         // How far toward the sky the nearest surface in this direction lies.
         float distanceToOccluder = (q.z - occluder) * diameter;
-        bool blocked = distanceToOccluder > constants.params.x;
+        bool blocked = distanceToOccluder > constants.aoReach;
         open += weight;
         arriving += blocked ? vec3(0.0) : weight;
     }

@@ -45,11 +45,11 @@ void main() {
         return;
     }
     vec3 albedo = texelFetch(gbufferAlbedo, pixel, 0).rgb;
-    float rMax = constants.pattern.z * constants.pattern.y;
+    float rMax = constants.rMax * constants.scale;
     float patchArea = PI * rMax * rMax / float(SAMPLES);
     float minDistance2 = patchArea / PI;
     mat3 frameToWorld = tangentFrame(n);
-    float rotation = pixelRotation(pixel) + constants.pattern.x;
+    float rotation = pixelRotation(pixel) + constants.rotation;
     // Step lengths are stratified too, offset per pixel so neighbours take different ones.
     float stepOffset = fract(rotation * 0.1591549);
 
@@ -88,6 +88,6 @@ void main() {
         vec3 senderRadiance = texelFetch(directRadiance, senderPixel, 0).rgb;
         bounce += senderRadiance * patchArea * cosS * cosR / max(d2, minDistance2);
     }
-    vec3 radiance = albedo * sky / float(SAMPLES) + albedo / PI * bounce * constants.pattern.w;
+    vec3 radiance = albedo * sky / float(SAMPLES) + albedo / PI * bounce * constants.bounceStrength;
     imageStore(ssdoImage, pixel, vec4(radiance, 1.0));
 }

@@ -85,7 +85,7 @@ void main() {
     Reprojection r = reproject(position.xyz, texelFetch(gbufferNormal, pixel, 0).xyz, cache);
     float spread = 0.0;
     vec4 history = r.valid ? historyAt(r, position.xyz, spread) : vec4(0.0);
-    float budget = cache.invalidation.z;
+    float budget = cache.blurBudget;
     vec3 value;
     float count, blur = 0.0;
     if (now.a < 0.5) { // skipped by the effect: converged, its cache is the value
@@ -98,9 +98,9 @@ void main() {
     } else {
         // The weight of this frame's value, by the rule...
         float fresh;
-        if (cache.accumulation.z == 0.0) {
+        if (cache.runningMean == 0) {
             float confidence = 1.0 - clamp(length(history.rgb - now.rgb), 0.0, 1.0) /
-                                         (1.0 + cache.accumulation.x);
+                                         (1.0 + cache.confidenceBias);
             fresh = 1.0 - confidence;
         } else {
             // Where the camera moved, the history is clamped to this frame's values around the
@@ -111,7 +111,7 @@ void main() {
             // its history cannot be stale (a moved light or object restarts what it changes), so
             // there the clamp, which a noisy frame's neighbourhood makes too tight, is left out.
             // Nor is a converged pixel computed again (the refresh tile).
-            if (r.count < float(cache.state.y) && spread > 0.0) {
+            if (r.count < float(cache.rotations) && spread > 0.0) {
                 vec3 sum = vec3(0.0), sumSquares = vec3(0.0);
                 float n = 0.0;
                 for (int y = -1; y <= 1; ++y)
@@ -144,7 +144,7 @@ void main() {
     }
     // A value that one more frame of this motion would take past the budget is not reused then:
     // its count stays below convergence, so the effect computes it again.
-    float rotations = float(cache.state.y);
+    float rotations = float(cache.rotations);
     if (blur + spread > budget && count >= rotations) count = rotations - 1.0;
     imageStore(newValue, pixel, vec4(value, blur));
     imageStore(newMeta, pixel, vec4(position.xyz, max(min(count, rotations), 1.0)));

@@ -17,19 +17,19 @@ struct Reprojection {
 // light passes within reach of one (shadows; the reach covers the light's disk and the shadow
 // map's filter). Beyond the thesis, which assumes static objects.
 bool movedNearby(vec3 world, CacheConstants cache) {
-    int mode = int(cache.invalidation.x);
-    if (mode == 0) return false;
+    int mode = cache.motionTest;
+    if (mode == MOTION_RESTART_ALL) return false;
     for (int i = 0; i < int(frame.motion.x); ++i) {
         vec3 lo = frame.movedBoxes[2 * i].xyz, hi = frame.movedBoxes[2 * i + 1].xyz;
-        if (mode == 1) {
+        if (mode == MOTION_NEAR_BOX) {
             vec3 outside = max(max(lo - world, world - hi), vec3(0.0));
-            if (length(outside) <= cache.invalidation.y) return true;
+            if (length(outside) <= cache.motionReach) return true;
             continue;
         }
         vec3 light = frame.lightPosition.xyz;
         float texel = distance(light, 0.5 * (lo + hi)) * 2.0 * frame.lightFrustum.z /
                       frame.lightFrustum.w;
-        float reach = cache.invalidation.y + 3.0 * texel;
+        float reach = cache.motionReach + 3.0 * texel;
         lo -= reach;
         hi += reach;
         // Slab test of the segment world -> light against the widened box.
@@ -49,7 +49,7 @@ bool movedNearby(vec3 world, CacheConstants cache) {
 // at a grazing angle, since there neighbouring pixels lie farther apart than one footprint.
 Reprojection reproject(vec3 world, vec3 normal, CacheConstants cache) {
     Reprojection r = Reprojection(false, vec2(0.0), 0.0, 0.0);
-    if (cache.state.x == 0 || movedNearby(world, cache)) return r;
+    if (cache.historyValid == 0 || movedNearby(world, cache)) return r;
     vec4 clip = frame.previousViewProjection * vec4(world, 1.0);
     if (clip.w <= 0.0) return r;
     r.uv = clip.xy / clip.w * 0.5 + 0.5;
@@ -57,7 +57,7 @@ Reprojection reproject(vec3 world, vec3 normal, CacheConstants cache) {
     // Positions do not interpolate across edges: the nearest texel's is compared.
     vec4 meta = texelFetch(historyMeta, ivec2(r.uv * frame.viewport.xy), 0);
     float facing = abs(dot(normal, normalize(frame.cameraPosition.xyz - world)));
-    float epsilon = cache.accumulation.y / (pixelsPerUnit(viewDepth(world)) * max(facing, 0.1));
+    float epsilon = cache.epsilon / (pixelsPerUnit(viewDepth(world)) * max(facing, 0.1));
     r.epsilon = epsilon;
     r.valid = meta.w > 0.0 && distance(meta.xyz, world) <= epsilon;
     r.count = r.valid ? meta.w : 0.0;
@@ -69,17 +69,17 @@ Reprojection reproject(vec3 world, vec3 normal, CacheConstants cache) {
 // temporal passes run over the refresh tile alone, offset to it; `divisor` 2 is for the
 // half-resolution pass.
 ivec2 cachePixel(uvec2 thread, CacheConstants cache, int divisor) {
-    if (cache.accumulation.w == 0.0 || cache.state.z < 0) return ivec2(thread);
-    int tilesX = (int(frame.viewport.x) + cache.state.w - 1) / cache.state.w;
-    ivec2 tile = ivec2(cache.state.z % tilesX, cache.state.z / tilesX);
-    return ivec2(thread) + tile * cache.state.w / divisor;
+    if (cache.settled == 0 || cache.refreshTile < 0) return ivec2(thread);
+    int tilesX = (int(frame.viewport.x) + cache.tileSize - 1) / cache.tileSize;
+    ivec2 tile = ivec2(cache.refreshTile % tilesX, cache.refreshTile / tilesX);
+    return ivec2(thread) + tile * cache.tileSize / divisor;
 }
 
 bool inRefreshTile(ivec2 pixel, CacheConstants cache) {
-    if (cache.state.z < 0) return false;
-    int tilesX = (int(frame.viewport.x) + cache.state.w - 1) / cache.state.w;
-    ivec2 tile = pixel / cache.state.w;
-    return tile.y * tilesX + tile.x == cache.state.z;
+    if (cache.refreshTile < 0) return false;
+    int tilesX = (int(frame.viewport.x) + cache.tileSize - 1) / cache.tileSize;
+    ivec2 tile = pixel / cache.tileSize;
+    return tile.y * tilesX + tile.x == cache.refreshTile;
 }
 
 // The same for a pass whose pixels read their neighbours' values of this frame (the interleaved
@@ -88,26 +88,26 @@ bool inRefreshTile(ivec2 pixel, CacheConstants cache) {
 // (indirect_interleaved_pass.cpp); the threads offset to the widened tile's corner may fall
 // outside the image.
 ivec2 cachePixelAround(uvec2 thread, CacheConstants cache, int margin) {
-    if (cache.accumulation.w == 0.0 || cache.state.z < 0) return ivec2(thread);
-    int tilesX = (int(frame.viewport.x) + cache.state.w - 1) / cache.state.w;
-    ivec2 tile = ivec2(cache.state.z % tilesX, cache.state.z / tilesX);
-    return ivec2(thread) + tile * cache.state.w - margin;
+    if (cache.settled == 0 || cache.refreshTile < 0) return ivec2(thread);
+    int tilesX = (int(frame.viewport.x) + cache.tileSize - 1) / cache.tileSize;
+    ivec2 tile = ivec2(cache.refreshTile % tilesX, cache.refreshTile / tilesX);
+    return ivec2(thread) + tile * cache.tileSize - margin;
 }
 
 bool convergedAround(ivec2 pixel, vec3 world, vec3 normal, CacheConstants cache, int margin) {
     Reprojection r = reproject(world, normal, cache);
-    if (!r.valid || r.count < float(cache.state.y)) return false;
-    if (cache.state.z < 0) return true;
-    int tilesX = (int(frame.viewport.x) + cache.state.w - 1) / cache.state.w;
-    ivec2 corner = ivec2(cache.state.z % tilesX, cache.state.z / tilesX) * cache.state.w;
+    if (!r.valid || r.count < float(cache.rotations)) return false;
+    if (cache.refreshTile < 0) return true;
+    int tilesX = (int(frame.viewport.x) + cache.tileSize - 1) / cache.tileSize;
+    ivec2 corner = ivec2(cache.refreshTile % tilesX, cache.refreshTile / tilesX) * cache.tileSize;
     return any(lessThan(pixel, corner - margin)) ||
-           any(greaterThanEqual(pixel, corner + cache.state.w + margin));
+           any(greaterThanEqual(pixel, corner + cache.tileSize + margin));
 }
 
 // A converged pixel reuses its cached value instead of computing the effect again.
 bool converged(ivec2 pixel, vec3 world, vec3 normal, CacheConstants cache) {
     Reprojection r = reproject(world, normal, cache);
-    return r.valid && r.count >= float(cache.state.y) && !inRefreshTile(pixel, cache);
+    return r.valid && r.count >= float(cache.rotations) && !inRefreshTile(pixel, cache);
 }
 
 #endif

@@ -44,7 +44,7 @@ void main() {
     }
     // A neighbour is compatible within a few pixels' world footprint, on p's plane.
     float footprint = 1.0 / pixelsPerUnit(viewDepth(p));
-    ivec2 halfSize = constants.target.xy; // half-res samples skipped this frame are not used
+    ivec2 halfSize = ivec2(constants.width, constants.height); // half-res samples skipped this frame are not used
     ivec2 base = (pixel - 1) / 2; // half-res samples sit at even full-res pixels
     vec2 f = (vec2(pixel) - vec2(base * 2)) * 0.5;
     vec3 sum = vec3(0.0);
@@ -69,9 +69,9 @@ void main() {
         imageStore(indirectImage, pixel, vec4(sum / weightSum, 1.0));
     } else {
         vec4 unused; // the directional sums serve the interleaved method alone
-        vec3 e = gatherIndirect(p, n, pixelRotation(pixel) + constants.pattern.x,
-                                constants.pattern.y, constants.pattern.z,
-                                radialOffset(constants.pattern.w, 0.5), 0, 1, unused);
+        vec3 e = gatherIndirect(p, n, pixelRotation(pixel) + constants.rotation,
+                                constants.scale, constants.radius,
+                                radialOffset(constants.radialOffset, 0.5), 0, 1, unused);
         imageStore(indirectImage, pixel, vec4(e, 1.0));
     }
 }
