@@ -52,7 +52,8 @@ def load(results_dir):
 def skipped(settings):
     """Passes a configuration records a timestamp for but never runs (the graph writes both
     timestamps of a disabled pass back to back): the half-res gather at full resolution."""
-    return {"indirect"} if settings.get("indirect_half_res", 1) == 0 else set()
+    thesis = settings.get("indirect_method", 0) == 0
+    return {"indirect"} if thesis and settings.get("indirect_half_res", 1) == 0 else set()
 
 
 def compose_times(sweep):
@@ -180,6 +181,9 @@ def value_taps(axis, settings):
         return (1 if taps == 1 else 2 * taps), 0  # blocker search + filter
     if axis == "indirect" and settings.get("indirect"):
         vpls = settings["indirect_vpls"]
+        if settings.get("indirect_method", 0) == 1:  # interleaved: a k x k block shares them
+            k = settings.get("indirect_interleave", 4)
+            vpls = max(1, vpls // (k * k))
         # position, normal and flux of each VPL in the RSM; the visibility march in the G-buffer
         return VISIBILITY_STEPS * vpls * settings["indirect_visibility"], 3 * vpls
     return None
@@ -204,7 +208,8 @@ def ceiling_fractions(sweep):
                                for i, v in enumerate(sweep["axes"]))
             passes = by_label[label]["passes"]
             name = next(p for p in axis["passes"] if p in passes)
-            pixels = geometry * w * h / (4 if name == "indirect" else 1)
+            half = name == "indirect" and value["settings"].get("indirect_method", 0) == 0
+            pixels = geometry * w * h / (4 if half else 1)
             ideal = pixels * (taps[0] / probe["taps_local_per_ms"] +
                               taps[1] / probe["taps_scattered_per_ms"])
             out.append({"what": "%s: %s" % (name, value["label"]), "ms": passes[name],

@@ -6,10 +6,10 @@
 // gathers every VPL.
 //   reads:  gbuffer.position, gbuffer.normal, rsm.position, rsm.normal, rsm.flux, the cache's
 //           meta history (to skip converged pixels)
-//   writes: indirect.interleaved + indirect.directional (each pixel's subset: irradiance / pi,
-//           and the L1 sums of its VPLs' light), indirect.filtered_x + .filtered_x_directional
-//           (after the x axis), indirect (after the y axis; the y pass's directional sums go
-//           back into indirect.directional, unused after)
+//   writes: indirect + indirect.directional (each pixel's subset: irradiance / pi, and the L1
+//           sums of its VPLs' light), indirect.filtered_x + .filtered_x_directional (after the
+//           x axis), indirect again (after the y axis: the result; the y pass's directional
+//           sums go back into indirect.directional, unused after)
 #include "passes/pass_setup.h"
 
 #include "shared.h"
@@ -26,11 +26,13 @@ graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& 
     auto image = [&](const char* name) {
         return s.graph.createImage(name, VK_FORMAT_R16G16B16A16_SFLOAT, s.size, usage);
     };
-    const graph::ImageRef subsets = image("indirect.interleaved");
+    // Four full-resolution images: the subsets' estimates go into `indirect`, which the y axis
+    // overwrites with the result once the x axis has read them.
+    const graph::ImageRef subsets = image("indirect");
     const graph::ImageRef subsetsDirectional = image("indirect.directional");
     const graph::ImageRef across = image("indirect.filtered_x");
     const graph::ImageRef acrossDirectional = image("indirect.filtered_x_directional");
-    const graph::ImageRef full = image("indirect");
+    const graph::ImageRef full = subsets;
     // k^2 subsets of at least one VPL each: k at most the square root of the VPL count.
     const int vpls = int(s.model.setting("indirect_vpls"));
     const int k =
@@ -68,7 +70,7 @@ graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& 
         return c;
     };
 
-    addKeepPass(s, cache, {subsets, subsetsDirectional, across, acrossDirectional, full});
+    addKeepPass(s, cache, {subsets, subsetsDirectional, across, acrossDirectional});
     using graph::Use;
     s.graph.addPass("indirect", graph::PassKind::Compute,
                     {{in.gbuffer.position, Use::Sampled},
