@@ -16,6 +16,13 @@
 #include "common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
+// Once the camera holds still, a converged history that motion resampled with more than
+// RESTART_BLUR (squared pixels) starts its accumulation over; one with more than
+// REACCUMULATE_BLUR keeps being computed and blended until its blur falls below it. After a
+// restart a history's blur falls to 2 / (n + 1) of what it was within the n = 36 frames to
+// convergence, so a budget up to 4 px^2 restarts once.
+const float RESTART_BLUR = 0.25;
+const float REACCUMULATE_BLUR = 0.05;
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
 layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
@@ -86,6 +93,7 @@ void main() {
     float spread = 0.0;
     vec4 history = r.valid ? historyAt(r, position.xyz, spread) : vec4(0.0);
     float budget = cache.blurBudget;
+    float rotations = float(cache.rotations);
     vec3 value;
     float count, blur = 0.0;
     if (now.a < 0.5) { // skipped by the effect: converged, its cache is the value
@@ -131,6 +139,17 @@ void main() {
             fresh = 1.0 / (r.count + 1.0);
         }
         count = r.count + 1.0;
+        // Re-convergence after motion: once the camera holds still (spread 0), a history that
+        // motion resampled (and, with the running mean, clamped to a moving frame's noisy
+        // neighbourhood) starts its accumulation over, keeping what it holds as one sample, so
+        // that it settles where a fresh start does; while it still carries blur, each frame
+        // weighs at least as in a running mean (the confidence rule alone would keep it).
+        if (spread == 0.0 && history.a > RESTART_BLUR && r.count >= rotations - 1.0) {
+            fresh = 0.5;
+            count = 2.0;
+        } else if (spread == 0.0 && history.a > 0.0) {
+            fresh = max(fresh, 1.0 / (r.count + 1.0));
+        }
         // ...and at least enough that the blended value's blur stays within the budget. Where
         // that cuts the history's weight, the count becomes the blend's effective number of
         // samples, 1 / ((1 - w)^2 / n + w^2), so the pixel accumulates again before it is reused.
@@ -143,9 +162,11 @@ void main() {
         blur = (1.0 - fresh) * history.a;
     }
     // A value that one more frame of this motion would take past the budget is not reused then:
-    // its count stays below convergence, so the effect computes it again.
-    float rotations = float(cache.rotations);
+    // its count stays below convergence, so the effect computes it again; so is a converged
+    // value motion blurred, once the camera holds still, so that it accumulates again.
     if (blur + spread > budget && count >= rotations) count = rotations - 1.0;
+    if (spread == 0.0 && blur > REACCUMULATE_BLUR && count >= rotations) count = rotations - 1.0;
+    if (blur < 1e-3) blur = 0.0; // below a thirtieth of a pixel: gone
     imageStore(newValue, pixel, vec4(value, blur));
     imageStore(newMeta, pixel, vec4(position.xyz, max(min(count, rotations), 1.0)));
 }
