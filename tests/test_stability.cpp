@@ -27,10 +27,11 @@ const CaseResult& result(const std::string& name) {
         it = results.emplace(name, runCase(test::context(), findCase(name), quick())).first;
         const CaseResult& r = it->second;
         std::printf("%s: region %zu px, NaN/Inf %zu, still flicker %.2g, recovery %d, settled "
-                    "%.3g / elsewhere %.3g, over fresh %.3gx, AO kept %.3f, stale %.3g\n",
+                    "%.3g / elsewhere %.3g (a fresh start %.3g), over fresh %.3gx, AO kept %.3f, "
+                    "stale %.3g\n",
                     name.c_str(), r.regionPixels, r.nonFinite, r.stillFlicker, r.recoveryFrames,
-                    r.convergedError, r.restError, r.excessOverFresh + 1.0, r.reusedAtChange,
-                    r.staleAfter);
+                    r.convergedError, r.restError, r.freshSettledError, r.excessOverFresh + 1.0,
+                    r.reusedAtChange, r.staleAfter);
     }
     return it->second;
 }
@@ -59,15 +60,18 @@ TEST_F(StabilityTest, ADisocclusionRecoversWithinFiveFrames) {
     const CaseResult& r = result("pillar");
     EXPECT_EQ(r.nonFinite, 0u);
     EXPECT_GT(r.regionPixels, 200u) << "the pan must reveal something"; // measured 470
-    // Measured: 1 frame after the camera stopped until the revealed wall's error stays within
-    // twice that of the pixels that kept their history (12 before the history was filtered
-    // over same-surface texels only: the bilinear fetch carried the pillar's lit edge into the
-    // revealed wall, and the thesis's rule barely lets a small difference through).
-    EXPECT_GE(r.recoveryFrames, 1);
-    EXPECT_LE(r.recoveryFrames, 5);
-    // Measured: it settles at 0.3x the error of the pixels that never lost their history
-    // (1.3x with the plain bilinear fetch).
-    EXPECT_LT(r.convergedError, 1.0 * r.restError);
+    // Frames after the camera stopped until the revealed wall's error stays within twice that
+    // of the pixels that kept their history or of a fresh start at the same age (12 before the
+    // history was filtered over same-surface texels only: the bilinear fetch carried the
+    // pillar's lit edge into the revealed wall, and the thesis's rule barely lets a small
+    // difference through). Issue 20's targets: recovered within 8 frames, at most 1.5x a fresh
+    // start's error over the first 8 frames (measured 0.39x), and settled within 2x where a
+    // fresh start settles (measured 1.27x; `stability --quick`'s pillar went from 3.2x to 0.3x
+    // when histories that motion blurred began to accumulate again once the camera stopped).
+    EXPECT_GE(r.recoveryFrames, 0);
+    EXPECT_LE(r.recoveryFrames, 8);
+    EXPECT_LT(r.excessOverFresh, 0.5);
+    EXPECT_LT(r.convergedError, 2.0 * r.freshSettledError);
     // Measured 0.9e-4 to 1.4e-4: the refresh tile's fresh samples are the only change on a
     // still camera.
     EXPECT_LT(r.stillFlicker, 5e-4);

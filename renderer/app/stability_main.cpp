@@ -113,7 +113,8 @@ void writeStrip(const std::string& path, const CaseResult& r) {
 std::string table(const std::vector<CaseResult>& results) {
     std::ostringstream md;
     md << "| case | region (pixels) | NaN/Inf | flicker, still | change per frame, moving | "
-          "recovery (frames) | settled error: region / elsewhere | region error over a fresh "
+          "recovery (frames) | settled error: region / elsewhere (fresh start) | region error "
+          "over a fresh "
           "start's | AO history kept | stale light | truth: start / fresh / tested (elsewhere) |\n"
        << "|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const CaseResult& r : results)
@@ -121,11 +122,11 @@ std::string table(const std::vector<CaseResult>& results) {
            << ") | " << r.nonFinite << " | " << number(r.stillFlicker, 2) << " | "
            << number(r.pathFlicker, 2) << " | "
            << (r.recoveryFrames < 0 ? std::string("never") : std::to_string(r.recoveryFrames))
-           << " | " << number(r.convergedError, 2) << " / " << number(r.restError, 2) << " | "
-           << number(r.excessOverFresh + 1.0, 3) << "× | " << number(r.reusedAtChange, 2) << " | "
-           << number(r.staleAfter, 2) << " | " << number(r.truthStart, 3) << " / "
-           << number(r.truthFresh, 3) << " / " << number(r.truthEnd, 3) << " ("
-           << number(r.truthRest, 3) << ") |\n";
+           << " | " << number(r.convergedError, 2) << " / " << number(r.restError, 2) << " ("
+           << number(r.freshSettledError, 2) << ") | " << number(r.excessOverFresh + 1.0, 3)
+           << "× | " << number(r.reusedAtChange, 2) << " | " << number(r.staleAfter, 2) << " | "
+           << number(r.truthStart, 3) << " / " << number(r.truthFresh, 3) << " / "
+           << number(r.truthEnd, 3) << " (" << number(r.truthRest, 3) << ") |\n";
     return md.str();
 }
 
@@ -155,6 +156,7 @@ nlohmann::json toJson(const CaseResult& r) {
             {"flicker_moving", finite(r.pathFlicker)},
             {"error_settled", finite(r.convergedError)},
             {"error_elsewhere", finite(r.restError)},
+            {"error_settled_fresh", finite(r.freshSettledError)},
             {"ghost_left", finite(r.ghostLeft)},
             {"tolerance", finite(r.tolerance)},
             {"recovery_frames", r.recoveryFrames},

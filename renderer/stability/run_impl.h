@@ -231,14 +231,20 @@ inline CaseResult runCase(vk::Context& ctx, const Case& c, const RunOptions& o,
     res.restError = mean(rests, rests.size() - std::min<size_t>(4, rests.size()), rests.size());
     res.ghostLeft = res.convergedError / res.restError;
     // Recovered: the region's error within twice that of the rest of the same frame, whose
-    // history the change left alone (so motion's own damage is not charged to the region);
-    // where the region is the whole image, within twice where a fresh start settles.
+    // history the change left alone (so motion's own damage is not charged to the region), or
+    // within twice a fresh start's at the same age, whichever is larger (once the camera holds
+    // still the rest accumulates again too, and a region as good as a fresh start has nothing
+    // left to recover); where the region is the whole image, within twice where a fresh start
+    // settles.
     const double freshSettled =
         mean(freshErrors, freshFrames.size() - std::min<size_t>(4, freshFrames.size()),
              freshFrames.size());
+    res.freshSettledError = freshSettled;
     std::vector<double> relative;
     for (size_t k = 0; k < errors.size(); ++k) {
-        const double tolerance = 2.0 * (std::isfinite(rests[k]) ? rests[k] : freshSettled);
+        double tolerance = 2.0 * (std::isfinite(rests[k]) ? rests[k] : freshSettled);
+        if (std::isfinite(rests[k]) && std::isfinite(freshErrors[k]))
+            tolerance = std::max(tolerance, 2.0 * freshErrors[k]);
         relative.push_back(errors[k] / tolerance);
     }
     res.tolerance = 2.0 * (std::isfinite(res.restError) ? res.restError : freshSettled);
