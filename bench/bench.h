@@ -3,6 +3,7 @@
 // walkthroughs. Each part returns JSON that bench/report.py turns into charts and tables.
 #pragma once
 
+#include "reference/integrator.h"
 #include "renderer.h"
 #include "scene/scene.h"
 #include "vk/context.h"
@@ -89,6 +90,9 @@ struct Reference {
     double noise = 0.0;
 };
 Reference fullReference(const Scene& scene, const Camera& camera, const Options& options);
+// The same for one of the reference's other modes (the bounce alone, the direct light, the sky).
+Reference modeReference(const Scene& scene, const Camera& camera, const Options& options,
+                        reference::Mode mode);
 // relMSE and SSIM of the renderer's "hdr" against the reference over the pixels with geometry.
 struct Error {
     double relMse = 0.0, ssim = 0.0;

@@ -7,7 +7,6 @@
 #include "bench.h"
 
 #include "metrics/metrics.h"
-#include "reference/cache.h"
 
 #include <algorithm>
 #include <cmath>
@@ -115,21 +114,13 @@ Json indirectComparison(vk::Context& ctx, const Scene& scene, const Options& opt
     const Reference reference = fullReference(scene, scene.camera, options);
     const VkExtent2D errorSize{options.errorWidth, options.errorHeight};
     const metrics::Image truth{errorSize.width, errorSize.height, reference.rgba};
-    // The bounce alone (outgoing radiance of one bounce, no sky), for the term's own error.
-    reference::ReferenceOptions bounceOptions;
-    bounceOptions.mode = reference::Mode::Indirect;
-    bounceOptions.width = errorSize.width;
-    bounceOptions.height = errorSize.height;
-    bounceOptions.spp = options.referenceSpp;
-    bounceOptions.noiseTarget = options.referenceNoise;
-    const metrics::Image bounceTruth{errorSize.width, errorSize.height,
-                                     reference::cachedReference(scene, bounceOptions).rgba};
-    // The direct light and the sky light alone, for where the whole image's error comes from.
+    // The bounce alone (outgoing radiance of one bounce, no sky), for the term's own error, and
+    // the direct light and the sky light alone, for where the whole image's error comes from.
     auto referenceOf = [&](reference::Mode mode) {
-        reference::ReferenceOptions o = bounceOptions;
-        o.mode = mode;
-        return reference::cachedReference(scene, o).rgba;
+        return modeReference(scene, scene.camera, options, mode).rgba;
     };
+    const metrics::Image bounceTruth{errorSize.width, errorSize.height,
+                                     referenceOf(reference::Mode::Indirect)};
     const std::vector<float> directTruth = referenceOf(reference::Mode::Direct);
     const std::vector<float> skyTruth = referenceOf(reference::Mode::Sky);
     // The renderer's bounce (irradiance / pi) times the albedo: outgoing radiance, as the

@@ -98,8 +98,13 @@ void interleaved(vk::Context& ctx, const std::vector<Scene>& scenes, VkExtent2D 
 }
 
 Reference fullReference(const Scene& scene, const Camera& camera, const Options& options) {
+    return modeReference(scene, camera, options, reference::Mode::Full);
+}
+
+Reference modeReference(const Scene& scene, const Camera& camera, const Options& options,
+                        reference::Mode mode) {
     reference::ReferenceOptions ro;
-    ro.mode = reference::Mode::Full;
+    ro.mode = mode;
     ro.width = options.errorWidth;
     ro.height = options.errorHeight;
     ro.spp = options.referenceSpp;
