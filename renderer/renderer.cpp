@@ -279,6 +279,7 @@ bool Renderer::startsAfresh(const Camera& camera) const {
 void Renderer::renderFrame(const Camera& camera) {
     if (startsAfresh(camera)) {
         graph_->resetHistory();
+        stillFrames_ = 0; // nor is the screen settled: every pixel is computed again
         ++cuts_;
     }
     cutRequested_ = false;

@@ -43,6 +43,18 @@ TEST_F(CameraCutTest, AnExplicitCutRestartsEveryHistory) {
     EXPECT_GT(continued(r), 0.9) << "and the next frame accumulates again";
 }
 
+// The same once the still camera has settled (the passes then run over the refresh tile
+// alone, and the rest of each history is carried over): a cut ends that state too.
+TEST_F(CameraCutTest, ACutAfterTheScreenSettledRestartsEveryHistory) {
+    Renderer r(test::context(), scene, {32, 32});
+    for (int i = 0; i < 40; ++i) // cache_rotations (36) still frames and a few more
+        r.renderFrame(scene.camera);
+    EXPECT_GT(continued(r), 0.9);
+    r.cut();
+    r.renderFrame(scene.camera);
+    EXPECT_EQ(continued(r), 0.0) << "a settled screen keeps no history past a cut either";
+}
+
 TEST_F(CameraCutTest, ALargeTurnOrJumpIsACutAndASmallStepIsNot) {
     Renderer r(test::context(), scene, {32, 32});
     Camera camera = scene.camera;
