@@ -72,72 +72,9 @@ struct CaseResult {
     std::vector<Pixels> panels;
 };
 
-// Every image of the last frame (a history pair's written side), counted for NaN/Inf. The
-// light-view images change only when the light moves, so `withRsm` says whether to read them.
-inline size_t countNonFiniteImages(Renderer& r, bool withRsm, std::set<std::string>& offenders) {
-    std::set<std::string> names;
-    for (const auto& [name, bytes] : r.frameGraph().imageMemory()) {
-        std::string n = name;
-        if (n.ends_with(" A") || n.ends_with(" B")) n.resize(n.size() - 2);
-        if (withRsm || !n.starts_with("rsm.")) names.insert(n);
-    }
-    size_t total = 0;
-    for (const std::string& name : names) {
-        const size_t bad = countNonFinite(r.readImage(name));
-        if (bad) offenders.insert(name);
-        total += bad;
-    }
-    return total;
-}
-
-inline View readView(Renderer& r, const Camera& camera) {
-    View v{r.size().width,
-           r.size().height,
-           camera,
-           r.readImage("hdr"),
-           r.readImage("gbuffer.position"),
-           r.readImage("gbuffer.normal"),
-           r.readImage("gbuffer.albedo")};
-    return v;
-}
-
-// `start`: the view at the end of the warm-up; `before`: the view just before the last change.
-inline Mask regionMask(const Case& c, const View& start, const View& before, const View& end,
-                       const Scene& scene) {
-    const Pixels& oldHdr = start.hdr;
-    switch (c.region) {
-    case Region::Disoccluded:
-        return disoccludedMask(start, end);
-    case Region::Carried:
-        return subtract(geometryMask(end), unseenMask(before, end));
-    case Region::Thin:
-        return thinMask(end, 3, 1.15f, 1);
-    case Region::NearOccluder:
-        return nearBoxMask(end, c.occluder, aoRadius(scene));
-    case Region::LightChanged:
-    case Region::ObjectChanged:
-        return changedMask(oldHdr, end.hdr, geometryMask(end), 0.2);
-    case Region::Grazing:
-        return grazingMask(end, 0.2f);
-    case Region::DepthEdges:
-        return depthEdgeMask(end, 1.2f, 2);
-    case Region::Geometry:
-        return geometryMask(end);
-    }
-    return {};
-}
-
-inline double mean(const std::vector<double>& v, size_t from, size_t to) {
-    double sum = 0.0;
-    size_t n = 0;
-    for (size_t i = from; i < std::min(to, v.size()); ++i)
-        if (std::isfinite(v[i])) sum += v[i], ++n;
-    return n ? sum / double(n) : kNaN;
-}
-
+// Runs one case: the tested renderer along its timeline, a fresh one at the final camera and
+// light, the converged image and (with truth samples) the path tracer (stability/run.cpp).
 CaseResult runCase(vk::Context& ctx, const Case& c, const RunOptions& o,
                    const std::function<void(const std::string&)>& log = {});
 
 } // namespace ssgi::stability
-
-#include "stability/run_impl.h"

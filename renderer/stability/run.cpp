@@ -1,11 +1,73 @@
 // runCase() of run.h: the timeline, the two renderers, and the figures drawn from them.
-#pragma once
 
 #include "stability/run.h"
 
 namespace ssgi::stability {
 
 namespace detail {
+
+// Every image of the last frame (a history pair's written side), counted for NaN/Inf. The
+// light-view images change only when the light moves, so `withRsm` says whether to read them.
+size_t countNonFiniteImages(Renderer& r, bool withRsm, std::set<std::string>& offenders) {
+    std::set<std::string> names;
+    for (const auto& [name, bytes] : r.frameGraph().imageMemory()) {
+        std::string n = name;
+        if (n.ends_with(" A") || n.ends_with(" B")) n.resize(n.size() - 2);
+        if (withRsm || !n.starts_with("rsm.")) names.insert(n);
+    }
+    size_t total = 0;
+    for (const std::string& name : names) {
+        const size_t bad = countNonFinite(r.readImage(name));
+        if (bad) offenders.insert(name);
+        total += bad;
+    }
+    return total;
+}
+
+View readView(Renderer& r, const Camera& camera) {
+    View v{r.size().width,
+           r.size().height,
+           camera,
+           r.readImage("hdr"),
+           r.readImage("gbuffer.position"),
+           r.readImage("gbuffer.normal"),
+           r.readImage("gbuffer.albedo")};
+    return v;
+}
+
+// `start`: the view at the end of the warm-up; `before`: the view just before the last change.
+Mask regionMask(const Case& c, const View& start, const View& before, const View& end,
+                const Scene& scene) {
+    const Pixels& oldHdr = start.hdr;
+    switch (c.region) {
+    case Region::Disoccluded:
+        return disoccludedMask(start, end);
+    case Region::Carried:
+        return subtract(geometryMask(end), unseenMask(before, end));
+    case Region::Thin:
+        return thinMask(end, 3, 1.15f, 1);
+    case Region::NearOccluder:
+        return nearBoxMask(end, c.occluder, aoRadius(scene));
+    case Region::LightChanged:
+    case Region::ObjectChanged:
+        return changedMask(oldHdr, end.hdr, geometryMask(end), 0.2);
+    case Region::Grazing:
+        return grazingMask(end, 0.2f);
+    case Region::DepthEdges:
+        return depthEdgeMask(end, 1.2f, 2);
+    case Region::Geometry:
+        return geometryMask(end);
+    }
+    return {};
+}
+
+double mean(const std::vector<double>& v, size_t from, size_t to) {
+    double sum = 0.0;
+    size_t n = 0;
+    for (size_t i = from; i < std::min(to, v.size()); ++i)
+        if (std::isfinite(v[i])) sum += v[i], ++n;
+    return n ? sum / double(n) : kNaN;
+}
 
 struct Step {
     const char* phase;
@@ -15,17 +77,17 @@ struct Step {
     float time; // along the camera and object paths
 };
 
-inline bool sameLight(const SpotLight& a, const SpotLight& b) {
+bool sameLight(const SpotLight& a, const SpotLight& b) {
     return a.position == b.position && a.direction == b.direction;
 }
 
-inline bool sameStep(const Step& a, const Step& b, const Scene& scene) {
+bool sameStep(const Step& a, const Step& b, const Scene& scene) {
     return a.camera.position == b.camera.position && a.camera.orientation == b.camera.orientation &&
            sameLight(a.light, b.light) && a.width == b.width && a.height == b.height &&
            instanceTransformsAt(scene, a.time) == instanceTransformsAt(scene, b.time);
 }
 
-inline std::vector<Step> timeline(const Case& c, const Scene& scene, const RunOptions& o) {
+std::vector<Step> timeline(const Case& c, const Scene& scene, const RunOptions& o) {
     const CameraPath& path = scene.cameraPath;
     const float duration = path.keys.back().time - path.keys.front().time;
     const float start = path.keys.front().time;
@@ -54,7 +116,7 @@ inline std::vector<Step> timeline(const Case& c, const Scene& scene, const RunOp
 
 // Fraction of geometry pixels whose AO (or SSDO) history continued this frame: rotation count
 // above 1. The light does not reset these, so they show what the camera alone does.
-inline double aoReused(Renderer& r, const View& v, Mask* kept = nullptr) {
+double aoReused(Renderer& r, const View& v, Mask* kept = nullptr) {
     const char* name = r.frameGraph().find("ao.meta A").valid()     ? "ao.meta"
                        : r.frameGraph().find("ssdo.meta A").valid() ? "ssdo.meta"
                                                                     : nullptr;
@@ -73,7 +135,7 @@ inline double aoReused(Renderer& r, const View& v, Mask* kept = nullptr) {
 }
 
 // Linear radiance as the composite pass shows it: exposure, Narkowicz's ACES fit, sRGB.
-inline Pixels tonemapped(const Pixels& hdr, float exposure) {
+Pixels tonemapped(const Pixels& hdr, float exposure) {
     Pixels out(hdr.size(), 1.0f);
     for (size_t i = 0; i < hdr.size(); i += 4)
         for (size_t c = 0; c < 3; ++c) {
@@ -86,7 +148,7 @@ inline Pixels tonemapped(const Pixels& hdr, float exposure) {
 }
 
 // An AO image (R) as display grey, its occlusion tripled so that a faint one shows.
-inline Pixels grey(const Pixels& ao) {
+Pixels grey(const Pixels& ao) {
     Pixels out(ao.size(), 1.0f);
     for (size_t i = 0; i < ao.size(); i += 4)
         out[i] = out[i + 1] = out[i + 2] = std::clamp(1.0f - 3.0f * (1.0f - ao[i]), 0.0f, 1.0f);
@@ -95,8 +157,8 @@ inline Pixels grey(const Pixels& ao) {
 
 } // namespace detail
 
-inline CaseResult runCase(vk::Context& ctx, const Case& c, const RunOptions& o,
-                          const std::function<void(const std::string&)>& log) {
+CaseResult runCase(vk::Context& ctx, const Case& c, const RunOptions& o,
+                   const std::function<void(const std::string&)>& log) {
     using namespace detail;
     Scene scene = loadScene(o.repository + "/" + c.scene);
     for (const auto& [key, value] : o.settings)
