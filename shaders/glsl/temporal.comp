@@ -119,7 +119,7 @@ void main() {
             // its history cannot be stale (a moved light or object restarts what it changes), so
             // there the clamp, which a noisy frame's neighbourhood makes too tight, is left out.
             // Nor is a converged pixel computed again (the refresh tile).
-            if (r.count < float(cache.rotations) && spread > 0.0) {
+            if (r.count < rotations && spread > 0.0) {
                 vec3 sum = vec3(0.0), sumSquares = vec3(0.0);
                 float n = 0.0;
                 for (int y = -1; y <= 1; ++y)

@@ -64,22 +64,19 @@ Reprojection reproject(vec3 world, vec3 normal, CacheConstants cache) {
     return r;
 }
 
+// The top-left pixel of this frame's refresh tile (cache.refreshTile >= 0).
+ivec2 refreshTileCorner(CacheConstants cache) {
+    int tilesX = (int(frame.viewport.x) + cache.tileSize - 1) / cache.tileSize;
+    return ivec2(cache.refreshTile % tilesX, cache.refreshTile / tilesX) * cache.tileSize;
+}
+
 // Where a thread's pixel lies. Once the whole screen is settled (camera and light unchanged for
 // as many frames as a pixel needs rotations, so every pixel is converged), the effect and
 // temporal passes run over the refresh tile alone, offset to it; `divisor` 2 is for the
 // half-resolution pass.
 ivec2 cachePixel(uvec2 thread, CacheConstants cache, int divisor) {
     if (cache.settled == 0 || cache.refreshTile < 0) return ivec2(thread);
-    int tilesX = (int(frame.viewport.x) + cache.tileSize - 1) / cache.tileSize;
-    ivec2 tile = ivec2(cache.refreshTile % tilesX, cache.refreshTile / tilesX);
-    return ivec2(thread) + tile * cache.tileSize / divisor;
-}
-
-bool inRefreshTile(ivec2 pixel, CacheConstants cache) {
-    if (cache.refreshTile < 0) return false;
-    int tilesX = (int(frame.viewport.x) + cache.tileSize - 1) / cache.tileSize;
-    ivec2 tile = pixel / cache.tileSize;
-    return tile.y * tilesX + tile.x == cache.refreshTile;
+    return ivec2(thread) + refreshTileCorner(cache) / divisor;
 }
 
 // The same for a pass whose pixels read their neighbours' values of this frame (the interleaved
@@ -89,25 +86,22 @@ bool inRefreshTile(ivec2 pixel, CacheConstants cache) {
 // outside the image.
 ivec2 cachePixelAround(uvec2 thread, CacheConstants cache, int margin) {
     if (cache.settled == 0 || cache.refreshTile < 0) return ivec2(thread);
-    int tilesX = (int(frame.viewport.x) + cache.tileSize - 1) / cache.tileSize;
-    ivec2 tile = ivec2(cache.refreshTile % tilesX, cache.refreshTile / tilesX);
-    return ivec2(thread) + tile * cache.tileSize - margin;
+    return ivec2(thread) + refreshTileCorner(cache) - margin;
 }
 
+// A converged pixel reuses its cached value instead of computing the effect again; the refresh
+// tile, widened by `margin` pixels on every side, is computed although converged.
 bool convergedAround(ivec2 pixel, vec3 world, vec3 normal, CacheConstants cache, int margin) {
     Reprojection r = reproject(world, normal, cache);
     if (!r.valid || r.count < float(cache.rotations)) return false;
     if (cache.refreshTile < 0) return true;
-    int tilesX = (int(frame.viewport.x) + cache.tileSize - 1) / cache.tileSize;
-    ivec2 corner = ivec2(cache.refreshTile % tilesX, cache.refreshTile / tilesX) * cache.tileSize;
+    ivec2 corner = refreshTileCorner(cache);
     return any(lessThan(pixel, corner - margin)) ||
            any(greaterThanEqual(pixel, corner + cache.tileSize + margin));
 }
 
-// A converged pixel reuses its cached value instead of computing the effect again.
 bool converged(ivec2 pixel, vec3 world, vec3 normal, CacheConstants cache) {
-    Reprojection r = reproject(world, normal, cache);
-    return r.valid && r.count >= float(cache.rotations) && !inRefreshTile(pixel, cache);
+    return convergedAround(pixel, world, normal, cache, 0);
 }
 
 #endif
