@@ -6,6 +6,7 @@
 // and how far one frame lies from its own converged image (the noise a viewer sees).
 #include "bench.h"
 
+#include "app/cli.h"
 #include "metrics/metrics.h"
 
 #include <algorithm>
@@ -29,11 +30,6 @@ std::vector<Method> methodsOf(const Options& options) {
     for (const auto& [label, settings] : options.methods)
         methods.push_back({label, settings});
     return methods;
-}
-
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v.empty() ? 0.0 : v[v.size() / 2];
 }
 
 // Pixels within `band` pixels (chessboard distance) of a depth edge: neighbours whose distances
@@ -107,7 +103,7 @@ Json indirectComparison(vk::Context& ctx, const Scene& scene, const Options& opt
         return std::vector<double>(all.begin() + std::min<size_t>(options.warmup, all.size()),
                                    all.end());
     };
-    const double off = median(timed(logs[0].totals));
+    const double off = cli::median(timed(logs[0].totals));
 
     // The error: reference, then each method's one frame and converged image.
     progress.step("reference");
@@ -162,12 +158,12 @@ Json indirectComparison(vk::Context& ctx, const Scene& scene, const Options& opt
         Json entry = {{"label", methods[m].label},
                       {"settings", settingsJson(methods[m].settings)},
                       {"frames", logs[m].json()}};
-        const double total = median(timed(logs[m].totals));
+        const double total = cli::median(timed(logs[m].totals));
         entry["frame_ms"] = total;
         entry["cost_relative"] = m == 0 ? 0.0 : (total - off) / off;
         Json passes = Json::object();
         for (const auto& [name, times] : logs[m].passes)
-            passes[name] = median(timed(times));
+            passes[name] = cli::median(timed(times));
         entry["pass_ms"] = passes;
 
         progress.step(methods[m].label + ": one frame");

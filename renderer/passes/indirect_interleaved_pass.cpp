@@ -1,15 +1,15 @@
-// indirect + indirect.reconstruct: one-bounce indirect light from the RSM's virtual point lights
-// with interleaved sampling (indirect_method 1): each pixel gathers 1/k^2 of the VPLs at full
-// resolution (indirect_interleaved.comp), then a geometry-aware filter, one axis a pass
-// (indirect_reconstruct.comp), gives every pixel the whole set's estimate many times over
+// indirect + indirect.filter_x + indirect.filter_y: one-bounce indirect light from the RSM's
+// virtual point lights with interleaved sampling (indirect_method 1): each pixel gathers 1/k^2 of
+// the VPLs at full resolution (indirect_interleaved.comp), then a geometry-aware filter, one axis a
+// pass (indirect_reconstruct.comp), gives every pixel the whole set's estimate many times over
 // (Keller and Heidrich 2001; Segovia et al. 2006). No upsampling, so no staircase, and no pixel
 // gathers every VPL.
 //   reads:  gbuffer.position, gbuffer.normal, rsm.position, rsm.normal, rsm.flux, the cache's
 //           meta history (to skip converged pixels)
 //   writes: indirect + indirect.directional (each pixel's subset: irradiance / pi, and the L1
 //           sums of its VPLs' light), indirect.filtered_x + .filtered_x_directional (after the
-//           x axis), indirect again (after the y axis: the result; the y pass's directional
-//           sums go back into indirect.directional, unused after)
+//           x axis), indirect again (after the y axis: the result; the y pass binds
+//           indirect.directional, unused by then, as its directional target and writes none)
 #include "passes/pass_setup.h"
 
 #include "shared.h"
@@ -27,12 +27,11 @@ graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& 
         return s.graph.createImage(name, VK_FORMAT_R16G16B16A16_SFLOAT, s.size, usage);
     };
     // Four full-resolution images: the subsets' estimates go into `indirect`, which the y axis
-    // overwrites with the result once the x axis has read them.
+    // overwrites with the result once the x axis has read them (`result` below).
     const graph::ImageRef subsets = image("indirect");
     const graph::ImageRef subsetsDirectional = image("indirect.directional");
     const graph::ImageRef across = image("indirect.filtered_x");
     const graph::ImageRef acrossDirectional = image("indirect.filtered_x_directional");
-    const graph::ImageRef full = subsets;
     // k^2 subsets of at least one VPL each: k at most the square root of the VPL count.
     const int vpls = int(s.model.setting("indirect_vpls"));
     const int k =
@@ -105,7 +104,7 @@ graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& 
     };
     const Axis axes[] = {
         {"indirect.filter_x", {1, 0}, subsets, subsetsDirectional, across, acrossDirectional},
-        {"indirect.filter_y", {0, 1}, across, acrossDirectional, full, subsetsDirectional}};
+        {"indirect.filter_y", {0, 1}, across, acrossDirectional, subsets, subsetsDirectional}};
     for (const Axis& a : axes) {
         s.graph.addPass(
             a.pass, graph::PassKind::Compute,
@@ -132,7 +131,7 @@ graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& 
                 vk::dispatch(pc.cmd, filter, area.width, area.height, constants(a.axis));
             });
     }
-    return full;
+    return subsets; // the y axis's result
 }
 
 } // namespace ssgi

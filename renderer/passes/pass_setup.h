@@ -130,11 +130,13 @@ graph::ImageRef addAoPass(PassSetup& setup, const GBufferAndRsm& inputs, EffectC
 graph::ImageRef addTemporalPass(PassSetup& setup, EffectCache* cache, graph::ImageRef raw,
                                 const GBufferAndRsm& inputs);
 
-// indirect (half resolution) + upsample, indirect_method 0: one-bounce irradiance / pi from the RSM's VPLs.
+// indirect (half resolution) + upsample, indirect_method 0: one-bounce irradiance / pi from
+// the RSM's VPLs.
 graph::ImageRef addIndirectPasses(PassSetup& setup, const GBufferAndRsm& inputs,
                                   EffectCache* cache);
 
-// indirect (interleaved VPL subsets) + indirect.reconstruct: the same light, indirect_method 1.
+// indirect (interleaved VPL subsets) + indirect.filter_x + indirect.filter_y: the same light,
+// indirect_method 1.
 graph::ImageRef addInterleavedIndirectPasses(PassSetup& setup, const GBufferAndRsm& inputs,
                                              EffectCache* cache);
 

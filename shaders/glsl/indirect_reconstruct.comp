@@ -42,6 +42,7 @@ float directionalAt(vec4 sums, vec3 m) {
 
 void main() {
     ivec2 axis = ivec2(constants.axisX, constants.axisY);
+    // Only the x axis's directional sums are read (by the y axis); the y axis writes none.
     int reach = max(RADIUS, INTERLEAVE / 2);
     // The x axis also filters the refresh tile's margin rows, which the y axis reads.
     int margin = axis.x == 1 ? reach : 0;
@@ -51,14 +52,14 @@ void main() {
     vec4 position = texelFetch(gbufferPosition, pixel, 0);
     if (position.w == 0.0) {
         imageStore(filtered, pixel, vec4(0.0, 0.0, 0.0, 1.0));
-        imageStore(filteredDirectional, pixel, vec4(0.0));
+        if (axis.x == 1) imageStore(filteredDirectional, pixel, vec4(0.0));
         return;
     }
     vec3 p = position.xyz;
     vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     if (convergedAround(pixel, p, n, constants.cache, margin)) {
         imageStore(filtered, pixel, vec4(0.0));
-        imageStore(filteredDirectional, pixel, vec4(0.0));
+        if (axis.x == 1) imageStore(filteredDirectional, pixel, vec4(0.0));
         return;
     }
     float footprint = 1.0 / pixelsPerUnit(viewDepth(p));
@@ -84,5 +85,5 @@ void main() {
     }
     // The pixel's own estimate is always kept, so weightSum > 0.
     imageStore(filtered, pixel, vec4(sum / max(weightSum, 1e-6), 1.0));
-    imageStore(filteredDirectional, pixel, directionalSum / max(weightSum, 1e-6));
+    if (axis.x == 1) imageStore(filteredDirectional, pixel, directionalSum / max(weightSum, 1e-6));
 }
