@@ -21,7 +21,6 @@
 namespace ssgi::bench {
 
 using Json = nlohmann::json;
-using Settings = std::map<std::string, double>;
 using PassTimes = std::map<std::string, double>; // pass name -> milliseconds
 
 // What one benchmark run is asked to do.
@@ -38,7 +37,7 @@ struct Options {
                                   // 3 + running mean with cheap frames
     // Walkthrough: the configurations compared along the path (label, settings); empty: the
     // default ones (cache off, the thesis rule, the running mean with cheap frames).
-    std::vector<std::pair<std::string, Settings>> methods;
+    std::vector<std::pair<std::string, SettingOverrides>> methods;
 };
 
 // A progress bar on stderr (a line per step when stderr is not a terminal).
@@ -57,8 +56,8 @@ private:
 };
 
 // The scene with `overrides` applied over its own settings, each checked.
-Scene withSettings(const Scene& scene, const Settings& overrides);
-Json settingsJson(const Settings& settings);
+Scene withSettings(const Scene& scene, const SettingOverrides& overrides);
+Json settingsJson(const SettingOverrides& settings);
 
 // The last frame's pass timings.
 PassTimes lastTimings(const Renderer& renderer);

@@ -47,11 +47,11 @@ struct Args {
 };
 
 // "LABEL: key=value key=value ..." (a walkthrough configuration).
-std::pair<std::string, bench::Settings> parseMethod(const std::string& text) {
+std::pair<std::string, SettingOverrides> parseMethod(const std::string& text) {
     const size_t colon = text.find(':');
     if (colon == std::string::npos || colon == 0)
         throw InputError("--method '" + text + "': expected LABEL: key=value ...");
-    std::pair<std::string, bench::Settings> method{text.substr(0, colon), {}};
+    std::pair<std::string, SettingOverrides> method{text.substr(0, colon), {}};
     std::istringstream words(text.substr(colon + 1));
     for (std::string word; words >> word;)
         method.second.insert(cli::parseSetting("--method", word));
@@ -133,7 +133,7 @@ int run(int argc, char** argv) {
                      {"error_height", o.errorHeight},
                      {"warmup", o.warmup},
                      {"frames", o.frames},
-                     {"scene_settings", bench::settingsJson(scene.settings)}};
+                     {"scene_settings", bench::settingsJson(settingValues(scene.settings))}};
     if (args.command == "sweep") {
         j["series_frames"] = o.series ? o.seriesFrames : 0;
         j.update(bench::sweep(ctx, scene, o));

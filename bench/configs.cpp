@@ -72,8 +72,8 @@ size_t indexOf(const Axis& axis, const std::string& label) {
     throw std::logic_error("no value '" + label + "' on axis " + axis.name);
 }
 
-Settings settingsOf(const std::vector<Axis>& axes, const Index& index) {
-    Settings s = {{"cache", 0}};
+SettingOverrides settingsOf(const std::vector<Axis>& axes, const Index& index) {
+    SettingOverrides s = {{"cache", 0}};
     for (size_t a = 0; a < axes.size(); ++a)
         for (const auto& [key, value] : axes[a].values[index[a]].settings)
             s[key] = value;

@@ -10,7 +10,7 @@ namespace ssgi::bench {
 
 struct AxisValue {
     std::string label;
-    Settings settings;
+    SettingOverrides settings;
 };
 
 struct Axis {
@@ -25,7 +25,7 @@ using Index = std::vector<size_t>; // one value per axis
 
 std::vector<Axis> makeAxes();
 size_t indexOf(const Axis& axis, const std::string& label);
-Settings settingsOf(const std::vector<Axis>& axes, const Index& index);
+SettingOverrides settingsOf(const std::vector<Axis>& axes, const Index& index);
 std::string labelOf(const std::vector<Axis>& axes, const Index& index);
 
 struct Config {

@@ -18,7 +18,7 @@ namespace {
 
 struct Method {
     std::string label;
-    Settings settings;
+    SettingOverrides settings;
 };
 
 std::vector<Method> methodsOf(const Options& options) {
@@ -89,9 +89,8 @@ Json indirectComparison(vk::Context& ctx, const Scene& scene, const Options& opt
     // The cost, cache off, frames interleaved.
     std::vector<Scene> scenes;
     for (const Method& m : methods) {
-        Settings s = m.settings;
-        s["cache"] = 0;
-        scenes.push_back(withSettings(scene, s));
+        scenes.push_back(withSettings(scene, m.settings));
+        scenes.back().settings.cache = false;
     }
     std::vector<FrameLog> logs(methods.size());
     interleaved(
@@ -167,9 +166,9 @@ Json indirectComparison(vk::Context& ctx, const Scene& scene, const Options& opt
         entry["pass_ms"] = passes;
 
         progress.step(methods[m].label + ": one frame");
-        Settings once = methods[m].settings;
-        once["cache"] = 0;
-        const Scene onceScene = withSettings(scene, once); // the renderer keeps a reference
+        Scene onceScene =
+            withSettings(scene, methods[m].settings); // the renderer keeps a reference
+        onceScene.settings.cache = false;
         Renderer single(ctx, onceScene, RenderOptions{errorSize.width, errorSize.height, "final"});
         single.renderFrame(scene.camera);
         if (geometry.empty()) {
@@ -184,9 +183,8 @@ Json indirectComparison(vk::Context& ctx, const Scene& scene, const Options& opt
         const metrics::Image one{errorSize.width, errorSize.height, single.readImage("hdr")};
 
         progress.step(methods[m].label + ": converged");
-        Settings cached = methods[m].settings;
-        cached["cache"] = 1;
-        const Scene cachedScene = withSettings(scene, cached);
+        Scene cachedScene = withSettings(scene, methods[m].settings);
+        cachedScene.settings.cache = true;
         Renderer still(ctx, cachedScene, RenderOptions{errorSize.width, errorSize.height, "final"});
         for (uint32_t f = 0; f < convergedFrames; ++f)
             still.renderFrame(scene.camera);

@@ -36,14 +36,13 @@ void Progress::done() {
                  done_, seconds());
 }
 
-Scene withSettings(const Scene& scene, const Settings& overrides) {
+Scene withSettings(const Scene& scene, const SettingOverrides& overrides) {
     Scene s = scene;
-    for (const auto& [key, value] : overrides)
-        s.settings[key] = checkSetting("benchmark", key, value);
+    s.settings = withOverrides(s.settings, overrides, "benchmark");
     return s;
 }
 
-Json settingsJson(const Settings& settings) {
+Json settingsJson(const SettingOverrides& settings) {
     Json j = Json::object();
     for (const auto& [key, value] : settings)
         j[key] = value;

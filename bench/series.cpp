@@ -13,7 +13,7 @@ namespace {
 
 struct Method {
     std::string label;
-    Settings settings;
+    SettingOverrides settings;
 };
 
 // The cache with few samples a frame, which only its accumulation over frames can afford (the

@@ -100,7 +100,7 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
                          std::to_string(limit) + " (this device's largest 2D image)");
     checkImageMemory(ctx, options.width, options.height);
     const int view = viewIndex(options.view);
-    const uint32_t rsmSize = uint32_t(scene.setting("shadow_map_size"));
+    const uint32_t rsmSize = uint32_t(scene.settings.shadow_map_size);
     if (rsmSize == 0 || rsmSize > limit)
         throw InputError("shadow_map_size " + std::to_string(rsmSize) + " is outside 1.." +
                          std::to_string(limit));
@@ -123,58 +123,8 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
         setup_->size = {options.width, options.height};
         setup_->rsmSize = {rsmSize, rsmSize};
 
-        // The frame, in order: rasterise the camera's and the light's views; the shadow term and
-        // the direct light; ambient occlusion (or SSDO in its place); the indirect light at half
-        // resolution and its upsampling; composite and tonemap.
-        GBufferAndRsm scenes;
-        scenes.gbuffer = addGBufferPass(*setup_);
-        scenes.rsm = addRsmPass(*setup_);
-        // Each cached effect: its pass computes what is not converged, its temporal pass blends
-        // that into the history, and the consumers read the blended value.
-        LightingTerms terms;
-        EffectCache* shadowCache = createCache(*setup_, "shadow", "cache_tile_shadow", true);
-        if (shadowCache) shadowCache->motionTest = MOTION_LIGHT_PATH;
-        terms.shadow = addTemporalPass(*setup_, shadowCache,
-                                       addShadowPass(*setup_, scenes, shadowCache), scenes);
-        // Depth peeling's second layer serves SSDO's occlusion test and the contact shadows'.
-        const bool contact = scene.setting("contact_shadows") != 0.0;
-        const bool ssdo = scene.setting("ssdo") != 0.0;
-        if (scene.setting("depth_peeling") != 0.0 && (ssdo || contact))
-            terms.secondLayer = addPeelPass(*setup_, scenes);
-        if (contact)
-            terms.shadow = addContactPass(*setup_, scenes, terms.shadow, terms.secondLayer);
-        terms.direct = addDirectPass(*setup_, scenes, terms.shadow);
-        if (ssdo) {
-            EffectCache* cache = createCache(*setup_, "ssdo", "cache_tile_ssdo", true);
-            terms.ssdo = addTemporalPass(
-                *setup_, cache,
-                addSsdoPass(*setup_, scenes, terms.direct, terms.secondLayer, cache), scenes);
-        } else if (scene.setting("ao") != 0.0) {
-            EffectCache* cache = createCache(*setup_, "ao", "cache_tile_ao", false);
-            if (cache) { // the farthest an AO sample reaches, its pattern at its largest
-                cache->motionTest = MOTION_NEAR_BOX;
-                cache->motionReach =
-                    aoRadius(scene) * (1.0f + float(scene.setting("cache_scale_jitter")));
-            }
-            terms.ao = addTemporalPass(*setup_, cache, addAoPass(*setup_, scenes, cache), scenes);
-        }
-        if (scene.setting("indirect") != 0.0) {
-            EffectCache* cache = createCache(*setup_, "indirect", "cache_tile_indirect", true);
-            const graph::ImageRef indirect =
-                scene.setting("indirect_method") == 1.0
-                    ? addInterleavedIndirectPasses(*setup_, scenes, cache)
-                    : addIndirectPasses(*setup_, scenes, cache);
-            terms.indirect = addTemporalPass(*setup_, cache, indirect, scenes);
-        }
-        // The sky's visibility beyond the screen, for the sky term beside the AO (none to see
-        // under a black sky, as in the Cornell boxes).
-        const bool blackSky = scene.sky.zenith == glm::vec3(0.0f) &&
-                              scene.sky.horizon == glm::vec3(0.0f) &&
-                              scene.sky.ground == glm::vec3(0.0f);
-        if (scene.setting("sky_visibility") != 0.0 && !ssdo && !blackSky)
-            terms.skyVisibility = addSkyVisibilityPasses(*setup_, scenes);
         setup_->view = view;
-        addCompositePass(*setup_, scenes, terms);
+        addFramePasses(*setup_);
     } catch (...) {
         release();
         throw;
@@ -224,7 +174,7 @@ void Renderer::updateUniforms(const Camera& worldCamera) {
     stillFrames_ = frameIndex_ > 0 && u.viewProjection == previousViewProjection_ && moved_.empty()
                        ? stillFrames_ + 1
                        : 0;
-    setup_->settled = stillFrames_ >= uint32_t(scene_.setting("cache_rotations"));
+    setup_->settled = stillFrames_ >= uint32_t(scene_.settings.cache_rotations);
     setup_->cameraStill = stillFrames_ > 0;
     u.lightViewProjection = light.viewProjection;
     u.inverseLightViewProjection = glm::inverse(light.viewProjection);
@@ -250,8 +200,8 @@ void Renderer::updateUniforms(const Camera& worldCamera) {
     u.skyHorizon = glm::vec4(scene_.sky.horizon / scale, 0.0f);
     u.skyGround = glm::vec4(scene_.sky.ground / scale, 0.0f);
     u.viewport = glm::vec4(size.width, size.height, 1.0f / size.width, 1.0f / size.height);
-    u.params = glm::vec4(scene_.setting("exposure"), scene_.setting("shadow_bias"),
-                         float(frameIndex_), glm::length(scene_.bounds.size()));
+    u.params = glm::vec4(scene_.settings.exposure, scene_.settings.shadow_bias, float(frameIndex_),
+                         glm::length(scene_.bounds.size()));
     for (size_t i = 0; i < moved_.size(); ++i) {
         u.movedBoxes[2 * i] = glm::vec4(moved(moved_[i].min, origin_), 0.0f);
         u.movedBoxes[2 * i + 1] = glm::vec4(moved(moved_[i].max, origin_), 0.0f);
@@ -272,8 +222,8 @@ bool Renderer::startsAfresh(const Camera& camera) const {
     const glm::vec3 now = camera.orientation * glm::vec3(0.0f, 0.0f, -1.0f);
     const float turn = std::acos(std::clamp(glm::dot(before, now), -1.0f, 1.0f));
     const float jump = glm::distance(previousCamera_.position, camera.position);
-    return turn > glm::radians(float(scene_.setting("cache_cut_angle_deg"))) ||
-           jump > float(scene_.setting("cache_cut_distance")) * glm::length(scene_.bounds.size());
+    return turn > glm::radians(float(scene_.settings.cache_cut_angle_deg)) ||
+           jump > float(scene_.settings.cache_cut_distance) * glm::length(scene_.bounds.size());
 }
 
 void Renderer::renderFrame(const Camera& camera) {
@@ -285,9 +235,10 @@ void Renderer::renderFrame(const Camera& camera) {
     cutRequested_ = false;
     previousCamera_ = camera;
     // Every frame turns the sampling patterns by a fixed angle and varies their size a little
-    // (golden-ratio sequence), so successive frames take different samples (thesis 3.1.2; docs/temporal-cache.md).
-    const float turn = glm::radians(float(scene_.setting("cache_rotation_deg")));
-    const float jitter = float(scene_.setting("cache_scale_jitter"));
+    // (golden-ratio sequence), so successive frames take different samples (thesis 3.1.2;
+    // docs/temporal-cache.md).
+    const float turn = glm::radians(float(scene_.settings.cache_rotation_deg));
+    const float jitter = float(scene_.settings.cache_scale_jitter);
     setup_->patternRotation = std::fmod(float(frameIndex_) * turn, 2.0f * glm::pi<float>());
     setup_->patternScale =
         1.0f + jitter * (2.0f * std::fmod(float(frameIndex_) * 0.618034f, 1.0f) - 1.0f);

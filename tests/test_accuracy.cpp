@@ -77,8 +77,8 @@ Measured measure(const Scene& scene) {
     // whole image's indirect part, against the reference's direct + one bounce + sky.
     {
         Scene s = scene;
-        s.settings["ssdo"] = 1;
-        s.settings["indirect"] = 0;
+        s.settings.ssdo = true;
+        s.settings.indirect = false;
         m.ssdo =
             relMseOnGeometry(converged(s)->readImage("hdr"), ref(reference::Mode::Full), position);
     }
@@ -86,9 +86,9 @@ Measured measure(const Scene& scene) {
     const std::vector<float> referenceAo = ref(reference::Mode::Ao);
     for (int variant = 0; variant < 3; ++variant) {
         Scene s = scene;
-        s.settings["ao_variant"] = variant;
-        s.settings["ao_attenuation_a"] = 0.0;
-        s.settings["indirect"] = 0;
+        s.settings.ao_variant = variant;
+        s.settings.ao_attenuation_a = 0.0;
+        s.settings.indirect = false;
         m.ao[variant] = aoError(converged(s)->readImage("ao.history"), referenceAo, position);
     }
     return m;
@@ -159,8 +159,8 @@ TEST_F(AccuracyTest, GradientSkyIrradianceOnASphereMatchesTheReference) {
 TEST_F(AccuracyTest, SkyVisibilityBeyondTheScreenMatchesTheReferenceSkyLight) {
     Scene scene = loadScene(test::sourcePath("scenes/sponza.json"));
     scene.light.intensity = 0.0f;
-    scene.settings["indirect"] = 0;
-    scene.settings["cache"] = 0;
+    scene.settings.indirect = false;
+    scene.settings.cache = false;
     reference::ReferenceOptions options;
     options.width = options.height = kSize;
     options.spp = 256;
@@ -168,7 +168,7 @@ TEST_F(AccuracyTest, SkyVisibilityBeyondTheScreenMatchesTheReferenceSkyLight) {
     const std::vector<float> truth = reference::cachedReference(scene, options).rgba;
     double error[2];
     for (int on = 0; on < 2; ++on) {
-        scene.settings["sky_visibility"] = on;
+        scene.settings.sky_visibility = on;
         Renderer renderer(test::context(), scene, RenderOptions{kSize, kSize, "final"});
         renderer.renderFrame(scene.camera);
         error[on] = relMseOnGeometry(renderer.readImage("hdr"), truth,

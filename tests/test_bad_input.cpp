@@ -536,7 +536,7 @@ TEST_F(BadInputOnDevice, BeyondTheDeviceLimits) {
     Scene scene = loadScene(test::sourcePath("tests/scenes/empty-box.json"));
     const uint32_t limit = test::context().properties.limits.maxImageDimension2D;
     EXPECT_THROW(Renderer(test::context(), scene, {1, limit + 1, "final"}), InputError);
-    scene.settings["shadow_map_size"] = limit + 1.0; // past checkSetting, as a caller could
+    scene.settings.shadow_map_size = limit + 1.0; // past checkSetting, as a caller could
     EXPECT_THROW(Renderer(test::context(), scene, {16, 16, "final"}), InputError);
 }
 // An image size the device allows in each dimension but whose images its memory cannot hold

@@ -49,17 +49,17 @@ double rmse(const std::vector<float>& a, const std::vector<float>& b) {
 
 // With few samples a frame, the cached AO approaches a many-sample AO frame by frame.
 TEST_F(CacheTest, AccumulatedAoConvergesTowardsAManySampleImage) {
-    scene.settings["indirect"] = 0;
-    scene.settings["ao_variant"] = 2;
-    scene.settings["cache_scale_jitter"] = 0; // the same estimator every frame, only turned
+    scene.settings.indirect = false;
+    scene.settings.ao_variant = 2;
+    scene.settings.cache_scale_jitter = 0; // the same estimator every frame, only turned
     // The limit of 2 directions turned 10 degrees a frame: 36 directions, 10 degrees apart.
     Scene reference = scene;
-    reference.settings["cache"] = 0;
-    reference.settings["ao_directions"] = 36;
+    reference.settings.cache = false;
+    reference.settings.ao_directions = 36;
     const std::vector<float> truth = test::render(reference, 96, 96).ao;
-    scene.settings["ao_directions"] = 2;
+    scene.settings.ao_directions = 2;
     for (int method : {0, 1}) {
-        scene.settings["cache_method"] = method;
+        scene.settings.cache_method = method;
         Renderer renderer(test::context(), scene, {96, 96, "final"});
         std::map<int, double> error;
         for (int frame = 1; frame <= 64; ++frame) {
@@ -80,8 +80,8 @@ TEST_F(CacheTest, AccumulatedAoConvergesTowardsAManySampleImage) {
 // Once converged, pixels are reused: the AO pass computes only the refresh tile each frame, and
 // over a round of frames the refresh tile visits every tile once.
 TEST_F(CacheTest, ConvergedPixelsAreSkippedAndTheRefreshTileVisitsEveryTile) {
-    scene.settings["indirect"] = 0;
-    scene.settings["cache_tile_ao"] = 32; // 4 x 4 tiles at 128 x 128
+    scene.settings.indirect = false;
+    scene.settings.cache_tile_ao = 32; // 4 x 4 tiles at 128 x 128
     Renderer renderer(test::context(), scene, {128, 128, "final"});
     double firstFrame = 0.0;
     std::set<int> refreshed;
@@ -113,7 +113,7 @@ TEST_F(CacheTest, ConvergedPixelsAreSkippedAndTheRefreshTileVisitsEveryTile) {
 // scratch (count 1), the rest continue their accumulation. Disocclusion is found independently
 // by projecting each pixel's surface into the previous view.
 TEST_F(CacheTest, DisoccludedPixelsStartOverAndTheRestContinue) {
-    scene.settings["indirect"] = 0;
+    scene.settings.indirect = false;
     const uint32_t size = 128;
     Renderer renderer(test::context(), scene, {size, size, "final"});
     Camera before = scene.camera;

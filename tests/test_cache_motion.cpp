@@ -31,7 +31,7 @@ protected:
         for (int f = 0; f < frames; ++f)
             renderer.renderFrame(panned(f));
         if (position) *position = renderer.readImage("gbuffer.position");
-        return renderer.readImage(s.setting("cache") != 0 ? "shadow.history" : "shadow");
+        return renderer.readImage(s.settings.cache ? "shadow.history" : "shadow");
     }
 };
 
@@ -50,8 +50,8 @@ double rmse(const std::vector<float>& a, const std::vector<float>& b,
 // Along the pan, no history value carries more blur than its effect's budget, one frame of
 // resampling aside (at most half a squared pixel); on a still camera none gathers any.
 TEST_F(CacheMotionTest, HistoriesCarryNoMoreBlurThanTheirBudget) {
-    scene.settings["cache_blur_ao"] = 1.0;
-    scene.settings["cache_blur_indirect"] = 2.0;
+    scene.settings.cache_blur_ao = 1.0;
+    scene.settings.cache_blur_indirect = 2.0;
     Renderer renderer(test::context(), scene, {kSize, kSize, "final"});
     const std::vector<float> position = [&] {
         for (int f = 0; f < 48; ++f)
@@ -89,19 +89,19 @@ TEST_F(CacheMotionTest, HistoriesCarryNoMoreBlurThanTheirBudget) {
 // moving radial offset), while an unbounded history drifts away from it (blurred edges).
 // Measured at 96x96: unbounded 0.0677, budget 0 0.0065.
 TEST_F(CacheMotionTest, ABlurBudgetKeepsAPannedShadowSharp) {
-    scene.settings["indirect"] = 0;
-    scene.settings["ao"] = 0;
+    scene.settings.indirect = false;
+    scene.settings.ao = false;
     const int frames = 40;
     std::vector<float> position;
     Scene fresh = scene;
-    fresh.settings["cache"] = 0;
+    fresh.settings.cache = false;
     const std::vector<float> truth = shadowAfterPan(fresh, frames, &position);
     Scene unbounded = scene;
-    unbounded.settings["cache_blur_shadow"] = 1e6;
-    unbounded.settings["cache_method"] = 1;
+    unbounded.settings.cache_blur_shadow = 1e6;
+    unbounded.settings.cache_method = 1;
     const double unboundedError = rmse(shadowAfterPan(unbounded, frames), truth, position);
     Scene bounded = unbounded;
-    bounded.settings["cache_blur_shadow"] = 0.0;
+    bounded.settings.cache_blur_shadow = 0.0;
     const double boundedError = rmse(shadowAfterPan(bounded, frames), truth, position);
     std::printf("shadow RMSE to a fresh shadow after a %d-frame pan: unbounded %.4f, budget 0 "
                 "%.4f\n",

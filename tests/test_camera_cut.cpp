@@ -76,8 +76,8 @@ TEST_F(CameraCutTest, ALargeTurnOrJumpIsACutAndASmallStepIsNot) {
     EXPECT_EQ(r.cuts(), 2u);
     // Turned off: 180 degrees and a huge distance never cut.
     Scene never = scene;
-    never.settings["cache_cut_angle_deg"] = 180;
-    never.settings["cache_cut_distance"] = 1e9;
+    never.settings.cache_cut_angle_deg = 180;
+    never.settings.cache_cut_distance = 1e9;
     Renderer n(test::context(), never, {32, 32});
     n.renderFrame(scene.camera);
     n.renderFrame(camera);
@@ -114,8 +114,7 @@ TEST_F(CameraCutTest, APathKeyMarkedCutRestartsWhenSetTimeCrossesIt) {
     r.renderFrame(cameraAt(s.cameraPath, 1.5f));
     EXPECT_EQ(r.cuts(), 1u) << "once";
     // A cut that is not a boolean is bad input naming the key.
-    std::ofstream(path)
-        << R"({ "materials": { "white": { "albedo": [0.8, 0.8, 0.8] } },
+    std::ofstream(path) << R"({ "materials": { "white": { "albedo": [0.8, 0.8, 0.8] } },
       "objects": [ { "type": "box", "material": "white", "center": [0, 0, 0], "size": [1, 1, 1] } ],
       "camera_path": [ { "time": 0, "position": [0, 1, 4], "target": [0, 0, 0], "cut": 1 } ] })";
     try {

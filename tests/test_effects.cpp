@@ -22,9 +22,9 @@ glm::vec3 mean(const std::vector<glm::vec3>& values) {
 // the indirect light on, and not with it off.
 TEST_F(EffectTest, IndirectLightBleedsTheWallsColourOntoTheFloor) {
     Scene scene = loadScene(test::sourcePath("scenes/cornell-box.json"));
-    scene.settings["indirect_vpls"] = 512;
+    scene.settings.indirect_vpls = 512;
     auto floorColour = [&](bool indirect, bool nearRed) {
-        scene.settings["indirect"] = indirect ? 1 : 0;
+        scene.settings.indirect = indirect;
         test::Frame f = test::render(scene, 128, 128);
         std::vector<glm::vec3> values;
         for (size_t i = 0; i < f.pixels(); ++i) {
@@ -84,9 +84,9 @@ class LeakTest : public test::VulkanTest, public ::testing::WithParamInterface<i
 
 TEST_P(LeakTest, VisibilityTestStopsIndirectLightLeakingThroughAWall) {
     Scene scene = loadScene(test::sourcePath("tests/scenes/light-leak.json"));
-    scene.settings["indirect_method"] = GetParam();
+    scene.settings.indirect_method = GetParam();
     auto leftFloorIndirect = [&](int visibility) {
-        scene.settings["indirect_visibility"] = visibility;
+        scene.settings.indirect_visibility = visibility;
         test::Frame f = test::render(scene, 160, 120);
         double sum = 0.0;
         size_t count = 0;
@@ -118,9 +118,9 @@ INSTANTIATE_TEST_SUITE_P(Methods, LeakTest, ::testing::Values(0, 1), [](const au
 // sky visibility maps, which are per colour too, are off here: the AO alone is tested).
 TEST_F(EffectTest, SsdoCastsColouredShadowsWhereAoCastsGreyOnes) {
     Scene scene = loadScene(test::sourcePath("tests/scenes/coloured-sky.json"));
-    scene.settings["sky_visibility"] = 0;
+    scene.settings.sky_visibility = false;
     auto blueness = [&](bool ssdo) {
-        scene.settings["ssdo"] = ssdo ? 1 : 0;
+        scene.settings.ssdo = ssdo;
         test::Frame f = test::render(scene, 160, 120);
         std::vector<glm::vec3> near, far;
         for (size_t i = 0; i < f.pixels(); ++i) {
@@ -146,7 +146,7 @@ TEST_F(EffectTest, SsdoCastsColouredShadowsWhereAoCastsGreyOnes) {
 // Every AO variant darkens the floor where the bunny touches it.
 TEST_F(EffectTest, AoDarkensTheFloorUnderTheBunny) {
     Scene scene = loadScene(test::sourcePath("scenes/bunny.json"));
-    scene.settings["indirect"] = 0;
+    scene.settings.indirect = false;
     // The bunny's vertices near its base, to measure each floor pixel's distance to contact.
     std::vector<glm::vec2> base;
     for (const Instance& inst : scene.instances)
@@ -156,7 +156,7 @@ TEST_F(EffectTest, AoDarkensTheFloorUnderTheBunny) {
         }
     ASSERT_GT(base.size(), 20u);
     for (int variant = 0; variant < 3; ++variant) {
-        scene.settings["ao_variant"] = variant;
+        scene.settings.ao_variant = variant;
         test::Frame f = test::render(scene, 160, 120);
         double nearSum = 0.0, farSum = 0.0;
         size_t nearCount = 0, farCount = 0;

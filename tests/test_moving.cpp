@@ -107,7 +107,7 @@ TEST_F(MovingObjectTest, AMovedObjectRestartsWhatItChangesAndLeavesNoStaleShadow
     const Aabb now = instanceBounds(scene, block, instanceTransformsAt(scene, 1.0f)[block]);
     moved.extend(now.min);
     moved.extend(now.max);
-    const float reach = aoRadius(scene) * (1.0f + float(scene.setting("cache_scale_jitter")));
+    const float reach = aoRadius(scene) * (1.0f + float(scene.settings.cache_scale_jitter));
     size_t geometry = 0, nearAo = 0, nearRestarted = 0, farAo = 0, farKept = 0;
     size_t shadowChanged = 0, shadowRestarted = 0, shadowKept = 0, indirectKept = 0;
     for (size_t i = 0; i < size_t(w) * h; ++i) {

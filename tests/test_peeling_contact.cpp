@@ -25,7 +25,7 @@ TEST_F(SsdoFixesTest, DepthPeelingRemovesTheHaloBehindAThinPillar) {
     options.spp = 256;
     const std::vector<float> truth = reference::cachedReference(scene, options).rgba;
     auto floorError = [&](int peeling) {
-        scene.settings["depth_peeling"] = peeling;
+        scene.settings.depth_peeling = peeling;
         Renderer renderer(test::context(), scene, {w, h, "final"});
         for (int frame = 0; frame < 40; ++frame)
             renderer.renderFrame(scene.camera);
@@ -88,10 +88,10 @@ TEST_F(SsdoFixesTest, ContactShadowsLowerTheErrorWhereTheBunnyTouchesTheFloor) {
     ASSERT_GT(feet.size(), 10u);
 
     test::Frame without = test::render(scene, w, h, 40);
-    scene.settings["contact_shadows"] = 1;
-    scene.settings["depth_peeling"] = 1;
+    scene.settings.contact_shadows = true;
+    scene.settings.depth_peeling = true;
     test::Frame with = test::render(scene, w, h, 40);
-    scene.settings["depth_peeling"] = 0;
+    scene.settings.depth_peeling = false;
     test::Frame oneLayer = test::render(scene, w, h, 40);
     size_t darkened = 0, openFloorChanged = 0, near = 0;
     double errorWithout = 0.0, errorWith = 0.0, errorOneLayer = 0.0;

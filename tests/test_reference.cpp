@@ -195,7 +195,7 @@ TEST(Reference, DiskLightIrradianceBelowItsCentre) {
 TEST(Reference, AoOfAnOpenPlaneAndBesideAWall) {
     Scene scene = testScene("ref-ao-wall.json");
     const double radius = 1.0;
-    scene.settings["ao_radius"] = radius;
+    scene.settings.ao_radius = radius;
     const RayScene rays(scene);
     for (glm::vec3 p : {glm::vec3(0, 0, -1.5f), glm::vec3(2, 0, -3), glm::vec3(-4, 0, -1.01f)})
         EXPECT_EQ(estimateIrradiance(scene, rays, Mode::Ao, p, glm::vec3(0, 1, 0), 4096).x, 1.0f)
@@ -325,7 +325,7 @@ class ReferenceAgainstRealTime : public test::VulkanTest {};
 TEST_F(ReferenceAgainstRealTime, DirectLightOfAPointLight) {
     Scene scene = loadScene(test::sourcePath("scenes/cornell-box.json"));
     scene.light.radius = 0.0f;
-    scene.settings["shadow_taps"] = 1; // the hard shadow-map test, no filtering
+    scene.settings.shadow_taps = 1; // the hard shadow-map test, no filtering
     const uint32_t size = 128;
     Renderer renderer(test::context(), scene, {size, size, "final"});
     renderer.renderFrame(scene.camera);

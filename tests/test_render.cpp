@@ -58,7 +58,7 @@ TEST_F(RenderTest, LightFallsWhereTheSpotPoints) {
 // segment to the light crosses a block, up to the pixels along the shadow's edge.
 TEST_F(RenderTest, ShadowOfTheBlocksLiesWhereTheLightsGeometryPutsIt) {
     Scene scene = loadScene(test::sourcePath("scenes/cornell-box.json"));
-    scene.settings["shadow_taps"] = 1; // the hard shadow test
+    scene.settings.shadow_taps = 1; // the hard shadow test
     test::Frame f = test::render(scene, 192, 192);
     size_t floor = 0, agree = 0, expectedShadow = 0, renderedShadow = 0;
     for (size_t i = 0; i < size_t(f.width) * f.height; ++i) {
@@ -181,7 +181,7 @@ Scene scaledScene(Scene s, float k) {
     s.bounds.min *= k, s.bounds.max *= k;
     s.light.position *= k, s.light.radius *= k, s.light.intensity *= k * k;
     s.camera.position *= k, s.camera.znear *= k, s.camera.zfar *= k;
-    s.settings["ao_radius"] = aoRadius(s) * k;
+    s.settings.ao_radius = aoRadius(s) * k;
     return s;
 }
 

@@ -204,7 +204,7 @@ TEST_F(Viewer, ScriptedPathWithResizeShowsSceneAndPanel) {
     // The same camera (the path's end) rendered headless: the scene's part of the window is
     // that image, up to the noise of different histories.
     Scene scene = loadScene(scenePath);
-    scene.settings["indirect_vpls"] = 128;
+    scene.settings.indirect_vpls = 128;
     const uint32_t accumulated = kFrames - resizedAt;
     Renderer renderer(test::context(), scene, {sceneWidth, shot.height, "final"});
     const Camera camera = cameraAt(scene.cameraPath, scene.cameraPath.keys.back().time);

@@ -114,10 +114,10 @@ void finishCommonArgs(CommonArgs& a) {
 }
 
 Scene loadSceneWithSettings(const CommonArgs& args) {
-    std::map<std::string, double> settings;
-    for (const auto& [key, value] : args.settings)
-        settings[key] = checkSetting("--set", key, value);
-    return loadScene(args.scene, settings);
+    SettingOverrides overrides;
+    for (const auto& [name, value] : args.settings)
+        overrides[name] = checkSetting("--set", name, value);
+    return loadScene(args.scene, overrides);
 }
 
 int guardedMain(int argc, char** argv, int (*run)(int, char**)) {

@@ -169,7 +169,7 @@ int run(int argc, char** argv) {
     std::vector<float> shown;
     if (!args.png.empty()) {
         shown = image.rgba;
-        const float exposure = float(scene.setting("exposure", 1.0));
+        const float exposure = float(scene.settings.exposure);
         for (size_t i = 0; i < shown.size(); ++i) {
             if (i % 4 == 3)
                 shown[i] = 1.0f;

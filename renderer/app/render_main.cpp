@@ -35,6 +35,8 @@ const char* kUsage = R"(usage: render [SCENE] [options]
                         every frame, warm-up ones marked (open in ui.perfetto.dev)
   --warmup W            frames left out of the timings (default 1 when more than one frame is
                         rendered: the first compiles shader variants and starts the caches)
+  --list-settings       print every method setting (type, default, range, meaning) as the
+                        table in docs/settings.md, and exit
 )";
 
 struct Args {
@@ -52,6 +54,9 @@ Args parseArgs(int argc, char** argv) {
         const std::string arg = argv[i];
         if (arg == "--help" || arg == "-h") {
             std::cout << kUsage << cli::kCommonUsage;
+            std::exit(0);
+        } else if (arg == "--list-settings") {
+            std::cout << settingsMarkdown();
             std::exit(0);
         } else if (arg == "--frames") {
             a.frames = cli::parsePositiveCount(arg, cli::optionValue(argc, argv, i));

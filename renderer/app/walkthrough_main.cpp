@@ -148,7 +148,7 @@ int run(int argc, char** argv) {
                                 {"width", common.width},
                                 {"height", common.height},
                                 {"frames", args.frames},
-                                {"cache", scene.setting("cache")},
+                                {"cache", scene.settings.cache},
                                 {"still", args.still},
                                 {"total_ms", totals},
                                 {"host_ms", host},
@@ -161,8 +161,7 @@ int run(int argc, char** argv) {
     if (!args.profileTrace.empty())
         cli::writeTextAtomically(args.profileTrace, log.traceJson("walkthrough", device));
     std::printf("walkthrough of %s: %u frames at %ux%u, cache %s\n", common.scene.c_str(),
-                args.frames, common.width, common.height,
-                scene.setting("cache") != 0.0 ? "on" : "off");
+                args.frames, common.width, common.height, scene.settings.cache ? "on" : "off");
     std::printf("%s", log.table(device).c_str());
     return cli::validationStatus(ctx.validationMessageCount());
 }

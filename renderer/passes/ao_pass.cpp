@@ -10,10 +10,9 @@ graph::ImageRef addAoPass(PassSetup& s, const GBufferAndRsm& in, EffectCache* ca
         "ao", VK_FORMAT_R16G16B16A16_SFLOAT, s.size,
         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
     const Scene& m = s.model;
-    const vk::Pipeline pipeline =
-        s.computePipeline("ao.comp", 3, 1, sizeof(shader::AoConstants),
-                          {{int(m.setting("ao_variant")), int(m.setting("ao_directions")),
-                            int(m.setting("ao_steps"))}});
+    const vk::Pipeline pipeline = s.computePipeline(
+        "ao.comp", 3, 1, sizeof(shader::AoConstants),
+        {{int(m.settings.ao_variant), int(m.settings.ao_directions), int(m.settings.ao_steps)}});
     const graph::ImageRef meta = cacheMetaInput(cache, in.gbuffer.position);
 
     addKeepPass(s, cache, {ao});
@@ -36,8 +35,8 @@ graph::ImageRef addAoPass(PassSetup& s, const GBufferAndRsm& in, EffectCache* ca
                         constants.scale = s.patternScale;
                         constants.radius = aoRadius(s.model);
                         constants.radialOffset = radialOffset(s, cache);
-                        constants.falloffA = float(s.model.setting("ao_attenuation_a"));
-                        constants.falloffB = float(s.model.setting("ao_attenuation_b"));
+                        constants.falloffA = float(s.model.settings.ao_attenuation_a);
+                        constants.falloffB = float(s.model.settings.ao_attenuation_b);
                         constants.cache = cacheConstants(s, cache);
                         const VkExtent2D area = cacheDispatch(s, cache, s.size);
                         vk::dispatch(pc.cmd, pipeline, area.width, area.height, constants);

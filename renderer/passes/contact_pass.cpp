@@ -13,7 +13,7 @@ graph::ImageRef addContactPass(PassSetup& s, const GBufferAndRsm& in, graph::Ima
                             VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
     const vk::Pipeline pipeline = s.computePipeline(
         "contact.comp", 4, 1, sizeof(shader::ContactConstants),
-        {{int(s.model.setting("contact_shadow_steps")), secondLayer.valid() ? 1 : 0}});
+        {{int(s.model.settings.contact_shadow_steps), secondLayer.valid() ? 1 : 0}});
     // Without the second layer the shader never reads binding 4; the shadow term stands in.
     const graph::ImageRef back = secondLayer.valid() ? secondLayer : shadow;
     using graph::Use;
@@ -33,7 +33,7 @@ graph::ImageRef addContactPass(PassSetup& s, const GBufferAndRsm& in, graph::Ima
                             .storageImage(5, pc.image(contact).view)
                             .push(s.ctx, pc.cmd, pipeline);
                         shader::ContactConstants constants{};
-                        constants.segmentTexels = float(s.model.setting("contact_shadow_texels"));
+                        constants.segmentTexels = float(s.model.settings.contact_shadow_texels);
                         vk::dispatch(pc.cmd, pipeline, s.size.width, s.size.height, constants);
                     });
     return contact;

@@ -33,10 +33,10 @@ graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& 
     const graph::ImageRef across = image("indirect.filtered_x");
     const graph::ImageRef acrossDirectional = image("indirect.filtered_x_directional");
     // k^2 subsets of at least one VPL each: k at most the square root of the VPL count.
-    const int vpls = int(s.model.setting("indirect_vpls"));
+    const int vpls = int(s.model.settings.indirect_vpls);
     const int k =
-        std::min(int(s.model.setting("indirect_interleave")), int(std::sqrt(double(vpls)) + 1e-9));
-    const int radius = int(s.model.setting("indirect_filter_radius"));
+        std::min(int(s.model.settings.indirect_interleave), int(std::sqrt(double(vpls)) + 1e-9));
+    const int radius = int(s.model.settings.indirect_filter_radius);
     // On settled frames the refresh tile's pixels need their neighbours: the gather and the x
     // axis run over the tile widened by the filter's reach (temporal.glsl cachePixelAround).
     const uint32_t margin = uint32_t(std::max(radius, k / 2));
@@ -48,8 +48,8 @@ graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& 
     };
     const vk::Pipeline gather = s.computePipeline(
         "indirect_interleaved.comp", 6, 2, sizeof(shader::IndirectConstants),
-        vk::Specialization{{vpls, int(s.model.setting("indirect_visibility")),
-                            int(s.model.setting("indirect_visibility_steps")), k, radius}});
+        vk::Specialization{{vpls, int(s.model.settings.indirect_visibility),
+                            int(s.model.settings.indirect_visibility_steps), k, radius}});
     const vk::Pipeline filter =
         s.computePipeline("indirect_reconstruct.comp", 5, 2, sizeof(shader::IndirectConstants),
                           vk::Specialization{{k, radius}});
@@ -59,7 +59,7 @@ graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& 
         shader::IndirectConstants c{};
         c.rotation = s.patternRotation;
         c.scale = s.patternScale;
-        c.radius = float(s.model.setting("indirect_radius"));
+        c.radius = float(s.model.settings.indirect_radius);
         c.radialOffset = radialOffset(s, cache);
         c.width = int(s.size.width);
         c.height = int(s.size.height);

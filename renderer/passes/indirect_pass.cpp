@@ -15,11 +15,10 @@ graph::ImageRef addIndirectPasses(PassSetup& s, const GBufferAndRsm& in, EffectC
         s.graph.createImage("indirect.half", VK_FORMAT_R16G16B16A16_SFLOAT, halfSize, usage);
     graph::ImageRef full =
         s.graph.createImage("indirect", VK_FORMAT_R16G16B16A16_SFLOAT, s.size, usage);
-    const vk::Specialization spec{{int(s.model.setting("indirect_vpls")),
-                                   int(s.model.setting("indirect_visibility")),
-                                   int(s.model.setting("indirect_visibility_steps")),
-                                   int(s.model.setting("indirect_half_res"))}};
-    const bool halfRes = s.model.setting("indirect_half_res") != 0.0;
+    const vk::Specialization spec{
+        {int(s.model.settings.indirect_vpls), int(s.model.settings.indirect_visibility),
+         int(s.model.settings.indirect_visibility_steps), int(s.model.settings.indirect_half_res)}};
+    const bool halfRes = s.model.settings.indirect_half_res;
     const vk::Pipeline gather =
         s.computePipeline("indirect.comp", 6, 1, sizeof(shader::IndirectConstants), spec);
     const vk::Pipeline upsample =
@@ -30,7 +29,7 @@ graph::ImageRef addIndirectPasses(PassSetup& s, const GBufferAndRsm& in, EffectC
         shader::IndirectConstants c{};
         c.rotation = s.patternRotation;
         c.scale = s.patternScale;
-        c.radius = float(s.model.setting("indirect_radius"));
+        c.radius = float(s.model.settings.indirect_radius);
         c.radialOffset = radialOffset(s, cache);
         c.width = int(halfSize.width);
         c.height = int(halfSize.height);

@@ -82,9 +82,16 @@ SceneTargets addScenePass(PassSetup& setup, const std::string& name, const std::
                           VkExtent2D extent, VkFormat thirdFormat,
                           std::function<bool()> enabled = {});
 
+// What the settings say of one effect's cache (cache_<effect>, cache_tile_<effect>,
+// cache_blur_<effect>).
+struct EffectCacheSettings {
+    bool cached;
+    int tileSize;      // of its tiled refresh
+    double blurBudget; // squared pixels
+};
 // The temporal cache of an effect, when caching is on (nullptr otherwise).
-EffectCache* createCache(PassSetup& setup, const std::string& name, const std::string& tileSetting,
-                         bool lightDependent);
+EffectCache* createCache(PassSetup& setup, const std::string& name,
+                         const EffectCacheSettings& settings, bool lightDependent);
 // What an effect pass binds as its "historyMeta" input: last frame's meta of its cache, or
 // `fallback` (any image the pass reads anyway) without one.
 graph::ImageRef cacheMetaInput(const EffectCache* cache, graph::ImageRef fallback);
@@ -162,5 +169,8 @@ struct CompositeOutputs {
 // composite: HDR radiance, tonemapped sRGB image, or the debug view PassSetup::view names.
 CompositeOutputs addCompositePass(PassSetup& setup, const GBufferAndRsm& inputs,
                                   const LightingTerms& terms);
+
+// The whole frame, every pass above in order, as the scene's settings ask (frame.cpp).
+void addFramePasses(PassSetup& setup);
 
 } // namespace ssgi

@@ -8,7 +8,7 @@ SceneTargets addRsmPass(PassSetup& s) {
     // A static light sees the same scene every frame: with the cache on, its map is drawn once
     // and again only after the light moves.
     std::function<bool()> enabled;
-    if (s.model.setting("cache") != 0.0) enabled = [&s] { return s.rsmStale; };
+    if (s.model.settings.cache) enabled = [&s] { return s.rsmStale; };
     // The flux in 32-bit floats: a texel's flux is its intensity times a solid angle of about
     // 1e-6 sr, which in 16-bit floats lost 6% of the bunny's bounce and all of it for the same
     // scene in centimetres (issue 18).

@@ -10,7 +10,7 @@ graph::ImageRef addShadowPass(PassSetup& s, const GBufferAndRsm& in, EffectCache
     graph::ImageRef shadow = s.graph.createImage(
         "shadow", VK_FORMAT_R16G16B16A16_SFLOAT, s.size,
         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
-    const int taps = int(s.model.setting("shadow_taps"));
+    const int taps = int(s.model.settings.shadow_taps);
     const vk::Pipeline pipeline =
         s.computePipeline("shadow.comp", 4, 1, sizeof(shader::ShadowConstants), {{taps}});
 
@@ -35,7 +35,7 @@ graph::ImageRef addShadowPass(PassSetup& s, const GBufferAndRsm& in, EffectCache
                         shader::ShadowConstants constants{};
                         constants.rotation = s.patternRotation;
                         constants.scale = s.patternScale;
-                        constants.normalOffset = float(s.model.setting("shadow_bias"));
+                        constants.normalOffset = float(s.model.settings.shadow_bias);
                         constants.radialOffset = radialOffset(s, cache);
                         constants.cache = cacheConstants(s, cache);
                         const VkExtent2D area = cacheDispatch(s, cache, s.size);

@@ -15,8 +15,8 @@ namespace ssgi {
 
 graph::ImageRef addSkyVisibilityPasses(PassSetup& s, const GBufferAndRsm& in) {
     const Scene& m = s.model;
-    const int count = int(m.setting("sky_visibility_directions"));
-    const int tileSize = int(m.setting("sky_visibility_map_size"));
+    const int count = int(m.settings.sky_visibility_directions);
+    const int tileSize = int(m.settings.sky_visibility_map_size);
     const int perRow = int(std::ceil(std::sqrt(double(count))));
     const VkExtent2D atlas{uint32_t(perRow * tileSize),
                            uint32_t(((count + perRow - 1) / perRow) * tileSize)};
@@ -95,7 +95,7 @@ graph::ImageRef addSkyVisibilityPasses(PassSetup& s, const GBufferAndRsm& in) {
     const float texel = 2.0f * radius / float(tileSize);
     shader::SkyVisibilityConstants constants{};
     constants.maps = view;
-    const float nearest = m.setting("ao") != 0.0 && m.setting("ssdo") == 0.0 ? aoRadius(m) : 0.0f;
+    const float nearest = m.settings.ao && !m.settings.ssdo ? aoRadius(m) : 0.0f;
     constants.aoReach = std::max(nearest, 3.0f * texel);
     constants.normalOffset = 1.5f * texel;
     s.graph.addPass(

@@ -13,10 +13,10 @@ graph::ImageRef addSsdoPass(PassSetup& s, const GBufferAndRsm& in, graph::ImageR
         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
     const vk::Pipeline pipeline =
         s.computePipeline("ssdo.comp", 6, 1, sizeof(shader::SsdoConstants),
-                          {{int(s.model.setting("ssdo_samples")), secondLayer.valid() ? 1 : 0}});
+                          {{int(s.model.settings.ssdo_samples), secondLayer.valid() ? 1 : 0}});
     // Without peeling the shader never reads its second-layer binding: any valid image will do.
     const graph::ImageRef back = secondLayer.valid() ? secondLayer : in.gbuffer.position;
-    const double radius = s.model.setting("ssdo_radius");
+    const double radius = s.model.settings.ssdo_radius;
     const float rMax = radius > 0.0 ? float(radius) : aoRadius(s.model);
 
     const graph::ImageRef meta = cacheMetaInput(cache, in.gbuffer.position);
@@ -46,7 +46,7 @@ graph::ImageRef addSsdoPass(PassSetup& s, const GBufferAndRsm& in, graph::ImageR
             constants.rotation = s.patternRotation;
             constants.scale = s.patternScale;
             constants.rMax = rMax;
-            constants.bounceStrength = float(s.model.setting("ssdo_bounce"));
+            constants.bounceStrength = float(s.model.settings.ssdo_bounce);
             constants.cache = cacheConstants(s, cache);
             const VkExtent2D area = cacheDispatch(s, cache, s.size);
             vk::dispatch(pc.cmd, pipeline, area.width, area.height, constants);

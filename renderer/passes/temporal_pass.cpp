@@ -7,21 +7,20 @@
 
 namespace ssgi {
 
-EffectCache* createCache(PassSetup& s, const std::string& name, const std::string& tileSetting,
+EffectCache* createCache(PassSetup& s, const std::string& name, const EffectCacheSettings& settings,
                          bool lightDependent) {
-    if (s.model.setting("cache") == 0.0 || s.model.setting("cache_" + name) == 0.0) return nullptr;
+    if (!s.model.settings.cache || !settings.cached) return nullptr;
     const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     EffectCache& c = s.caches.emplace_back();
     c.name = name;
     c.value =
         s.graph.createHistory(name + ".history", VK_FORMAT_R16G16B16A16_SFLOAT, s.size, usage);
     c.meta = s.graph.createHistory(name + ".meta", VK_FORMAT_R32G32B32A32_SFLOAT, s.size, usage);
-    if (s.model.setting("cache_refresh") != 0.0)
-        c.refresh = std::make_unique<TileRefresh>(s.size.width, s.size.height,
-                                                  uint32_t(s.model.setting(tileSetting)),
-                                                  uint32_t(s.caches.size()));
+    if (s.model.settings.cache_refresh)
+        c.refresh = std::make_unique<TileRefresh>(
+            s.size.width, s.size.height, uint32_t(settings.tileSize), uint32_t(s.caches.size()));
     c.lightDependent = lightDependent;
-    c.blurBudget = float(s.model.setting("cache_blur_" + name));
+    c.blurBudget = float(settings.blurBudget);
     return &c;
 }
 
@@ -33,12 +32,12 @@ shader::CacheConstants cacheConstants(const PassSetup& s, const EffectCache* cac
     shader::CacheConstants c{};
     if (!cache) return c; // historyValid 0: no history, nothing converges
     c.historyValid = s.graph.hasHistory(cache->value) ? 1 : 0;
-    c.rotations = int(s.model.setting("cache_rotations"));
+    c.rotations = int(s.model.settings.cache_rotations);
     c.refreshTile = cache->refreshTile;
     c.tileSize = cache->refresh ? int(cache->refresh->tileSize()) : 1;
-    c.confidenceBias = float(s.model.setting("cache_bias"));
-    c.epsilon = float(s.model.setting("cache_epsilon"));
-    c.runningMean = s.model.setting("cache_method") != 0.0 ? 1 : 0;
+    c.confidenceBias = float(s.model.settings.cache_bias);
+    c.epsilon = float(s.model.settings.cache_epsilon);
+    c.runningMean = s.model.settings.cache_method != 0 ? 1 : 0;
     c.settled = s.settled ? 1 : 0;
     c.motionTest = cache->motionTest;
     c.motionReach = cache->motionReach;

@@ -6,6 +6,8 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "scene/settings.h"
+
 #include <cstdint>
 #include <map>
 #include <stdexcept>
@@ -137,40 +139,18 @@ struct Scene {
     Camera camera;
     CameraPath cameraPath;
     std::vector<ObjectPath> objectPaths;
-    Aabb bounds; // world space, over all instances, wherever their paths take them
-    // Method settings by name (numbers only), already checked against the known keys.
-    std::map<std::string, double> settings;
-
-    double setting(const std::string& key, double fallback) const {
-        auto it = settings.find(key);
-        return it == settings.end() ? fallback : it->second;
-    }
-    // A setting's value, or its default from settingSpecs().
-    double setting(const std::string& key) const;
+    Aabb bounds;       // world space, over all instances, wherever their paths take them
+    Settings settings; // the method settings (settings.h), defaults where nothing set them
 };
 
 // Loads a scene description file (.json) or a bare glTF (.gltf/.glb, staged with a camera,
-// light, daylight sky and ground plane derived from its bounds: bare_model.h). `settings`
-// (already checked, e.g. `render --set`) override the file's and are seen while loading, as
-// "ground_plane" must be. Throws InputError naming the file and the problem.
-Scene loadScene(const std::string& path, const std::map<std::string, double>& settings = {});
+// light, daylight sky and ground plane derived from its bounds: bare_model.h). `overrides`
+// (e.g. `render --set`) override the file's settings and are seen while loading, as
+// ground_plane must be. Throws InputError naming the file and the problem.
+Scene loadScene(const std::string& path, const SettingOverrides& overrides = {});
 
-// The ambient-occlusion radius in scene units: the "ao_radius" setting when > 0, else 5% of the
+// The ambient-occlusion radius in scene units: the ao_radius setting when > 0, else 5% of the
 // scene's bounding-box diagonal. The real-time AO and the reference's AO use the same value.
 float aoRadius(const Scene& scene);
-
-// A method setting a scene file (or `render --set`) may name: its default, its range, and
-// whether it must be a whole number. An unknown key is an error.
-struct SettingSpec {
-    double defaultValue;
-    double min, max;
-    bool whole;
-    const char* meaning;
-};
-const std::map<std::string, SettingSpec>& settingSpecs();
-
-// Checks `value` for setting `key`; throws InputError "<where>: ..." naming the key and the
-// allowed range (or the known keys).
-double checkSetting(const std::string& where, const std::string& key, double value);
 
 } // namespace ssgi

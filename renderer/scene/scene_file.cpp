@@ -188,21 +188,18 @@ void addObjects(const SceneDescription& description, const std::string& file, Sc
     }
 }
 
-// The ground plane is asked for by the "ground_plane" setting (the command line's, else the
-// scene file's); a bare glTF gets one unless told otherwise, a scene file only when it says so,
-// so scene files written before the setting render as they did.
-bool wantsGround(const std::map<std::string, double>& settings, bool bare) {
-    auto it = settings.find("ground_plane");
-    return it != settings.end() ? it->second != 0.0 : bare;
+// The ground plane is asked for by the ground_plane setting (the command line's, else the scene
+// file's); by default (-1) a bare glTF gets one and a scene file does not, so scene files written
+// before the setting render as they did.
+bool wantsGround(const Settings& settings, bool bare) {
+    return settings.ground_plane < 0 ? bare : settings.ground_plane == 1;
 }
 
 Scene buildScene(const std::string& path, const SceneDescription& description, bool bare,
-                 const std::map<std::string, double>& settings) {
+                 const SettingOverrides& overrides) {
     Scene scene;
     scene.sourcePath = path;
-    scene.settings = description.settings;
-    for (const auto& [key, value] : settings)
-        scene.settings[key] = value;
+    scene.settings = withOverrides(withOverrides({}, description.settings, path), overrides, path);
     GltfViewpoint viewpoint;
     for (const std::string& gltfPath : description.gltfPaths) {
         GltfViewpoint found;
@@ -235,7 +232,8 @@ Scene buildScene(const std::string& path, const SceneDescription& description, b
         for (const Vertex& vertex : scene.meshes.back().vertices)
             scene.bounds.extend(vertex.position);
         // The AO radius stays the model's, not 5% of the far larger ground's diagonal.
-        scene.settings.try_emplace("ao_radius", 0.05 * glm::length(model.size()));
+        if (scene.settings.ao_radius == 0.0)
+            scene.settings.ao_radius = 0.05 * glm::length(model.size());
     }
 
     // Path keys refine the scene camera as written, before its clip planes are derived, so a
@@ -260,7 +258,7 @@ Scene buildScene(const std::string& path, const SceneDescription& description, b
 
 } // namespace
 
-Scene loadScene(const std::string& path, const std::map<std::string, double>& settings) {
+Scene loadScene(const std::string& path, const SettingOverrides& overrides) {
     std::string extension = std::filesystem::path(path).extension().string();
     std::transform(extension.begin(), extension.end(), extension.begin(),
                    [](unsigned char c) { return char(std::tolower(c)); });
@@ -274,7 +272,7 @@ Scene loadScene(const std::string& path, const std::map<std::string, double>& se
     } else {
         fail(path, "unsupported file type '" + extension + "' (expected .json, .gltf or .glb)");
     }
-    return buildScene(path, description, bare, settings);
+    return buildScene(path, description, bare, overrides);
 }
 
 } // namespace ssgi

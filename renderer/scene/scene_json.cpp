@@ -245,8 +245,8 @@ ObjectPath readObjectPath(const JsonObject& in) {
     return path;
 }
 
-std::map<std::string, double> readSettings(const JsonObject& in) {
-    std::map<std::string, double> settings;
+SettingOverrides readSettings(const JsonObject& in) {
+    SettingOverrides settings;
     for (const auto& item : in.value().items()) {
         const std::string& key = item.key();
         if (!item.value().is_number())

@@ -47,7 +47,7 @@ struct SceneDescription {
     std::optional<CameraSpec> camera;
     std::vector<std::pair<float, CameraSpec>> cameraPath; // (time, key), sorted by time
     std::vector<ObjectPath> objectPaths;                  // instances not yet resolved
-    std::map<std::string, double> settings;
+    SettingOverrides settings;                            // checked, not yet applied
 };
 
 // Reads and checks a scene file; InputError naming the file and the key on any problem.

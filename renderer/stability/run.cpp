@@ -161,8 +161,7 @@ CaseResult runCase(vk::Context& ctx, const Case& c, const RunOptions& o,
                    const std::function<void(const std::string&)>& log) {
     using namespace detail;
     Scene scene = loadScene(o.repository + "/" + c.scene);
-    for (const auto& [key, value] : o.settings)
-        scene.settings[key] = checkSetting(c.scene, key, value);
+    scene.settings = withOverrides(scene.settings, {o.settings.begin(), o.settings.end()}, c.scene);
     if (scene.cameraPath.empty()) throw InputError(c.scene + ": the case has no camera_path");
     const std::vector<Step> steps = timeline(c, scene, o);
     size_t lastChange = 0;
@@ -238,12 +237,12 @@ CaseResult runCase(vk::Context& ctx, const Case& c, const RunOptions& o,
     // keeps much of its first frame's noise. Nor would the tested settings: the same frames
     // of the same settings are the same images, and a fresh start would be its own reference.
     Scene meanScene = scene;
-    meanScene.settings["cache_method"] = 1;
-    auto twice = [&](const char* key, double most) {
-        meanScene.settings[key] = std::min(2.0 * scene.setting(key), most);
-    };
-    twice("ao_directions", 32), twice("indirect_vpls", 1024), twice("ssdo_samples", 64);
-    twice("shadow_taps", 64);
+    meanScene.settings.cache_method = 1;
+    Settings& twice = meanScene.settings;
+    twice.ao_directions = std::min(2 * scene.settings.ao_directions, 32);
+    twice.indirect_vpls = std::min(2 * scene.settings.indirect_vpls, 1024);
+    twice.ssdo_samples = std::min(2 * scene.settings.ssdo_samples, 64);
+    twice.shadow_taps = std::min(2 * scene.settings.shadow_taps, 64);
     Renderer r(ctx, meanScene, {last.width, last.height});
     r.setLight(last.light);
     r.setTime(last.time);
@@ -360,7 +359,7 @@ CaseResult runCase(vk::Context& ctx, const Case& c, const RunOptions& o,
         }
         if (log) log(c.name + ": ground truth compared");
         if (!truthAo) {
-            res.panels.push_back(tonemapped(truth, float(scene.setting("exposure"))));
+            res.panels.push_back(tonemapped(truth, float(scene.settings.exposure)));
             res.panelNames.push_back("path-traced");
         } else {
             res.panels = {grey(startAo), grey(truth0), grey(referenceAo), grey(endAo), grey(truth)};

@@ -37,16 +37,6 @@ void TimingHistory::clear() {
 namespace {
 
 // Settings grouped by what they belong to, in the order a reader meets the passes.
-const char* groupOf(const std::string& key) {
-    static const std::pair<const char*, const char*> prefixes[] = {
-        {"shadow", "Shadow"},       {"contact", "Shadow"},     {"ao", "Ambient occlusion"},
-        {"ssdo", "SSDO"},           {"depth_peeling", "SSDO"}, {"indirect", "Indirect light"},
-        {"cache", "Temporal cache"}};
-    for (const auto& [prefix, group] : prefixes)
-        if (key.rfind(prefix, 0) == 0) return group;
-    return "Image";
-}
-
 void plot(const char* id, const std::deque<float>& values, ImVec2 size) {
     std::vector<float> v(values.begin(), values.end());
     // ImGui 1.86 draws nothing for a plot sized "to the edge" (negative width): give it the width.
@@ -54,32 +44,33 @@ void plot(const char* id, const std::deque<float>& values, ImVec2 size) {
     ImGui::PlotLines(id, v.data(), int(v.size()), 0, nullptr, 0.0f, FLT_MAX, size);
 }
 
-// One setting's widget: a checkbox for on/off, integer or float drags within the spec's range.
+// One setting's widget: a checkbox for on/off, integer or float drags within the row's range.
 // Drags apply on release (a change rebuilds the renderer, which restarts its caches).
-bool settingWidget(const std::string& key, const SettingSpec& spec, double& value) {
+bool settingWidget(const SettingRow& row, Settings& settings) {
     bool changed = false;
-    if (spec.whole && spec.min == 0.0 && spec.max == 1.0) {
+    const double value = row.get(settings);
+    double edited = value;
+    if (std::string(row.type) == "bool") {
         bool on = value != 0.0;
-        if (ImGui::Checkbox(key.c_str(), &on)) {
-            value = on ? 1.0 : 0.0;
-            changed = true;
-        }
-    } else if (spec.whole) {
+        changed = ImGui::Checkbox(row.name, &on);
+        edited = on ? 1.0 : 0.0;
+    } else if (row.whole()) {
         int v = int(value);
-        const int hi = int(std::min(spec.max, 1e6));
-        ImGui::DragInt(key.c_str(), &v, std::max(1.0f, float(hi - spec.min) / 400.0f),
-                       int(spec.min), hi, "%d", ImGuiSliderFlags_AlwaysClamp);
-        value = std::clamp(double(v), spec.min, spec.max);
+        const int hi = int(std::min(row.max, 1e6));
+        ImGui::DragInt(row.name, &v, std::max(1.0f, float(hi - row.min) / 400.0f), int(row.min), hi,
+                       "%d", ImGuiSliderFlags_AlwaysClamp);
+        edited = std::clamp(double(v), row.min, row.max);
         changed = ImGui::IsItemDeactivatedAfterEdit();
     } else {
         float v = float(value);
-        const float span = float(std::min(spec.max, 1e3) - spec.min);
-        ImGui::DragFloat(key.c_str(), &v, std::max(span / 1000.0f, 1e-4f), float(spec.min),
-                         float(std::min(spec.max, 1e9)), "%.4g", ImGuiSliderFlags_AlwaysClamp);
-        value = std::clamp(double(v), spec.min, spec.max);
+        const float span = float(std::min(row.max, 1e3) - row.min);
+        ImGui::DragFloat(row.name, &v, std::max(span / 1000.0f, 1e-4f), float(row.min),
+                         float(std::min(row.max, 1e9)), "%.4g", ImGuiSliderFlags_AlwaysClamp);
+        edited = std::clamp(double(v), row.min, row.max);
         changed = ImGui::IsItemDeactivatedAfterEdit();
     }
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", spec.meaning);
+    if (edited != value) row.set(settings, edited);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", row.meaning);
     return changed;
 }
 
@@ -202,13 +193,17 @@ void lightSection(PanelState& s) {
 void settingsSection(PanelState& s) {
     if (!ImGui::CollapsingHeader("Settings", ImGuiTreeNodeFlags_DefaultOpen)) return;
     ImGui::TextDisabled("a change rebuilds the frame (caches restart)");
-    for (const char* group :
-         {"Image", "Shadow", "Ambient occlusion", "SSDO", "Indirect light", "Temporal cache"}) {
-        if (!ImGui::TreeNode(group)) continue;
-        for (const auto& [key, spec] : settingSpecs())
-            if (std::string(groupOf(key)) == group)
-                s.settingsChanged |= settingWidget(key, spec, s.settings[key]);
-        ImGui::TreePop();
+    const std::span<const SettingRow> rows = settingTable();
+    for (size_t first = 0; first < rows.size();) { // the table's groups, in its order
+        size_t end = first;
+        while (end < rows.size() && std::string(rows[end].group) == rows[first].group)
+            ++end;
+        if (ImGui::TreeNode(rows[first].group)) {
+            for (size_t i = first; i < end; ++i)
+                s.settingsChanged |= settingWidget(rows[i], s.settings);
+            ImGui::TreePop();
+        }
+        first = end;
     }
 }
 

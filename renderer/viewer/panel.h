@@ -37,7 +37,7 @@ struct PanelState {
     bool cacheAvailable = false;
 
     // Edited live.
-    std::map<std::string, double> settings; // every key of settingSpecs(), current values
+    Settings settings; // the scene's, as edited
     SpotLight light;
     int view = 0;       // index into viewNames()
     int cacheView = -1; // index into cacheViews(), -1: the composite's view

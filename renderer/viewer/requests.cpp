@@ -57,17 +57,14 @@ void Viewer::applyPanelRequests() {
         p.viewChanged = false;
     }
     if (p.settingsChanged) {
-        const auto previous = scene_.settings;
-        for (const auto& [key, value] : p.settings)
-            scene_.settings[key] = value;
+        const Settings previous = scene_.settings;
+        scene_.settings = p.settings;
         try {
             rebuildRenderer();
             p.message.clear();
         } catch (const InputError& e) {
             p.message = e.what();
-            scene_.settings = previous;
-            for (const auto& [key, spec] : settingSpecs())
-                p.settings[key] = scene_.setting(key);
+            scene_.settings = p.settings = previous;
             rebuildRenderer();
         }
         p.settingsChanged = p.viewChanged = false;
@@ -113,7 +110,7 @@ void Viewer::recordReport(bool rebuilt) {
     const FrameProfile profile = renderer_->lastFrameProfile();
     f["gpu_ms"] = profile.passSumMs();
     f["host_ms"] = profile.hostMs;
-    const uint32_t rotations = uint32_t(scene_.setting("cache_rotations"));
+    const uint32_t rotations = uint32_t(scene_.settings.cache_rotations);
     for (const std::string& effect : renderer_->cachedEffects()) {
         const CacheSummary s = summariseCache(*renderer_, effect, rotations);
         f["history_max_count"][effect] = s.maxCount;

@@ -82,9 +82,7 @@ void Viewer::loadScene(const std::string& path) {
     panel_.sceneFile = scene_.sourcePath;
     copyText(panel_.scenePath, sizeof panel_.scenePath, scene_.sourcePath);
     copyText(panel_.savePathTo, sizeof panel_.savePathTo, scene_.sourcePath);
-    panel_.settings.clear();
-    for (const auto& [key, spec] : settingSpecs())
-        panel_.settings[key] = scene_.setting(key);
+    panel_.settings = scene_.settings;
     panel_.light = scene_.light;
     panel_.pathLength = pathDuration(scene_.cameraPath);
     panel_.pathTime = 0.0f;
@@ -161,7 +159,7 @@ void Viewer::drawFrame(bool scriptedScreenshot) {
     if (panel_.cacheView >= 0 && panel_.cacheAvailable) {
         cacheView = makeCacheView(*renderer_, cacheViews()[size_t(panel_.cacheView)].view,
                                   panel_.cachedEffects[size_t(panel_.cacheEffect)],
-                                  uint32_t(scene_.setting("cache_rotations")));
+                                  uint32_t(scene_.settings.cache_rotations));
         source.pixels = &cacheView;
     }
     const bool wantShot = scriptedScreenshot || panel_.screenshot;

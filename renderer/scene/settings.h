@@ -1,0 +1,153 @@
+// The method settings, each declared once in SSGI_SETTINGS: its name (also its member of
+// Settings), type, default, range, group and one-line meaning. The typed struct, the checks of
+// scene files and `--set`, the viewer's panel and the table in docs/settings.md all follow from
+// that one list; the renderer reads the struct's members. Adding a setting is one row here plus
+// its use (docs/settings.md: "Adding a setting").
+#pragma once
+
+#include <map>
+#include <span>
+#include <string>
+
+namespace ssgi {
+
+// X(name, type, default, min, max, group, meaning). Types: bool (on/off), int (a whole number),
+// double. Lengths whose default is 0 are derived from the scene's own size, so a scene file
+// names only what differs and one default serves every scale.
+#define SSGI_SETTINGS(X)                                                                           \
+    X(exposure, double, 1.0, 1e-6, 1e6, "Image", "multiplies radiance before tonemapping")         \
+    X(ground_plane, int, -1, -1, 1, "Image",                                                       \
+      "a ground plane under a model without a floor of its own: 1 yes, 0 no, -1 only under a "     \
+      "bare glTF (read while loading; docs/bare-models.md)")                                       \
+    X(shadow_map_size, int, 1024, 16, 8192, "Shadow", "RSM resolution, texels per side")           \
+    X(shadow_bias, double, 1.5, 0, 100, "Shadow", "normal offset of the shadow lookup, in texels") \
+    X(shadow_taps, int, 49, 1, 64, "Shadow",                                                       \
+      "PCF taps (1 = hard shadow; thesis: 49, or 9 + cache)")                                      \
+    X(contact_shadows, bool, false, 0, 1, "Shadow",                                                \
+      "screen-space contact shadows on the shadow term")                                           \
+    X(contact_shadow_steps, int, 8, 1, 64, "Shadow", "samples along the contact-shadow segment")   \
+    X(contact_shadow_texels, double, 6, 0, 1e3, "Shadow",                                          \
+      "length of the contact-shadow segment, in shadow-map texels")                                \
+    X(ao, bool, true, 0, 1, "Ambient occlusion", "ambient occlusion on or off")                    \
+    X(ao_variant, int, 0, 0, 2, "Ambient occlusion",                                               \
+      "0 thesis (eq. 6-8), 1 Crytek/Mittring, 2 horizon (GTAO)")                                   \
+    X(ao_radius, double, 0, 0, 1e9, "Ambient occlusion",                                           \
+      "AO radius in scene units; 0 = 5% of the scene's diagonal (a bare glTF's: of the model's)")  \
+    X(ao_directions, int, 8, 1, 32, "Ambient occlusion", "AO sampling directions per pixel")       \
+    X(ao_steps, int, 4, 1, 32, "Ambient occlusion",                                                \
+      "AO samples per direction (log-spaced, eq. 8)")                                              \
+    X(ao_attenuation_a, double, 1.0, 0, 1e3, "Ambient occlusion",                                  \
+      "a in D(d) = 1 + a d + b d^2, d in AO radii")                                                \
+    X(ao_attenuation_b, double, 0.0, 0, 1e3, "Ambient occlusion",                                  \
+      "b in D(d) = 1 + a d + b d^2, d in AO radii")                                                \
+    X(sky_visibility, bool, true, 0, 1, "Ambient occlusion",                                       \
+      "the sky occluded beyond the AO radius, from depth maps of the scene over the sky; with "    \
+      "AO, not SSDO (docs/effects.md)")                                                            \
+    X(sky_visibility_directions, int, 64, 1, 1024, "Ambient occlusion",                            \
+      "directions (depth maps) of the sky visibility, over the whole sphere")                      \
+    X(sky_visibility_map_size, int, 256, 16, 4096, "Ambient occlusion",                            \
+      "texels per side of each sky visibility depth map")                                          \
+    X(ssdo, bool, false, 0, 1, "SSDO", "SSDO replaces AO: directional sky occlusion + one bounce") \
+    X(ssdo_samples, int, 16, 1, 64, "SSDO", "SSDO hemisphere samples per pixel")                   \
+    X(ssdo_radius, double, 0, 0, 1e9, "SSDO", "SSDO r_max in scene units; 0 = the AO radius")      \
+    X(ssdo_bounce, double, 1.0, 0, 1e3, "SSDO",                                                    \
+      "SSDO one-bounce strength (the paper's user factor)")                                        \
+    X(depth_peeling, bool, false, 0, 1, "SSDO",                                                    \
+      "SSDO's and the contact shadows' occlusion test between two depth layers")                   \
+    X(indirect, bool, true, 0, 1, "Indirect light",                                                \
+      "one-bounce indirect light from the RSM on or off")                                          \
+    X(indirect_method, int, 1, 0, 1, "Indirect light",                                             \
+      "0 the thesis's gather: every VPL per half-resolution pixel, upsampled; 1 interleaved: "     \
+      "each pixel of a k x k block gathers 1/k^2 of the VPLs, then a geometry-aware filter")       \
+    X(indirect_vpls, int, 512, 1, 1024, "Indirect light",                                          \
+      "VPLs of the pattern: method 0, gathered by every pixel; method 1, split among each block")  \
+    X(indirect_interleave, int, 4, 1, 8, "Indirect light",                                         \
+      "method 1: k, the block side: k^2 subsets (lowered to the square root of indirect_vpls)")    \
+    X(indirect_filter_radius, int, 8, 1, 32, "Indirect light",                                     \
+      "method 1: reach in pixels of the geometry-aware filter, per axis")                          \
+    X(indirect_radius, double, 0.0, 0, 2, "Indirect light",                                        \
+      "VPL sampling radius in RSM uv; 0 = reach the whole map")                                    \
+    X(indirect_visibility, bool, true, 0, 1, "Indirect light",                                     \
+      "screen-space visibility test of each VPL")                                                  \
+    X(indirect_visibility_steps, int, 6, 1, 32, "Indirect light",                                  \
+      "log-spaced steps of the visibility test")                                                   \
+    X(indirect_half_res, bool, true, 0, 1, "Indirect light",                                       \
+      "method 0: gather at half resolution and upsample (1), or every pixel at full (0)")          \
+    X(cache, bool, true, 0, 1, "Temporal cache",                                                   \
+      "the temporal cache of shadow, AO, SSDO and indirect light")                                 \
+    X(cache_method, int, 0, 0, 1, "Temporal cache",                                                \
+      "0 the thesis's confidence rule (eq. 4-5), 1 running mean")                                  \
+    X(cache_bias, double, 0.0, 0, 1e3, "Temporal cache", "bias of the confidence rule (eq. 4)")    \
+    X(cache_epsilon, double, 2.0, 0, 1e3, "Temporal cache",                                        \
+      "reprojection test (eq. 3), in pixel footprints")                                            \
+    X(cache_rotations, int, 36, 1, 1e6, "Temporal cache",                                          \
+      "pattern rotations until a pixel is converged")                                              \
+    X(cache_rotation_deg, double, 10.0, -360, 360, "Temporal cache",                               \
+      "turn of every sampling pattern a frame")                                                    \
+    X(cache_scale_jitter, double, 0.1, 0, 0.9, "Temporal cache",                                   \
+      "relative change of pattern size a frame")                                                   \
+    X(cache_refresh, bool, true, 0, 1, "Temporal cache",                                           \
+      "tiled refresh: one tile a frame computed anew")                                             \
+    X(cache_cut_angle_deg, double, 45.0, 0, 180, "Temporal cache",                                 \
+      "a camera turn beyond this between two frames is a cut: every history restarts (180: "       \
+      "never)")                                                                                    \
+    X(cache_cut_distance, double, 0.2, 0, 1e9, "Temporal cache",                                   \
+      "a camera jump beyond this x the scene's diagonal between two frames is a cut")              \
+    X(cache_shadow, bool, true, 0, 1, "Temporal cache",                                            \
+      "the shadow term cached (1), or computed anew every frame")                                  \
+    X(cache_ao, bool, true, 0, 1, "Temporal cache", "the AO cached (1), or computed anew")         \
+    X(cache_ssdo, bool, true, 0, 1, "Temporal cache", "SSDO cached (1), or computed anew")         \
+    X(cache_indirect, bool, true, 0, 1, "Temporal cache",                                          \
+      "the indirect light cached (1), or computed anew")                                           \
+    X(cache_tile_shadow, int, 64, 1, 4096, "Temporal cache",                                       \
+      "refresh tile size of the shadow (pixels)")                                                  \
+    X(cache_tile_ao, int, 64, 1, 4096, "Temporal cache", "refresh tile size of the AO (pixels)")   \
+    X(cache_tile_ssdo, int, 64, 1, 4096, "Temporal cache", "refresh tile size of SSDO (pixels)")   \
+    X(cache_tile_indirect, int, 16, 1, 4096, "Temporal cache",                                     \
+      "refresh tile size of the indirect light (pixels)")                                          \
+    X(cache_blur_shadow, double, 0.0, 0, 1e6, "Temporal cache",                                    \
+      "resampling blur (pixels^2) a moving camera may leave in the shadow's history before its "   \
+      "weight is cut")                                                                             \
+    X(cache_blur_ao, double, 2.0, 0, 1e6, "Temporal cache",                                        \
+      "the same for the AO's history (pixels^2)")                                                  \
+    X(cache_blur_ssdo, double, 2.0, 0, 1e6, "Temporal cache",                                      \
+      "the same for SSDO's history (pixels^2)")                                                    \
+    X(cache_blur_indirect, double, 4.0, 0, 1e6, "Temporal cache",                                  \
+      "the same for the indirect light's history (pixels^2)")
+
+struct Settings {
+#define SSGI_SETTING_MEMBER(name, type, value, lo, hi, group, meaning) type name = value;
+    SSGI_SETTINGS(SSGI_SETTING_MEMBER)
+#undef SSGI_SETTING_MEMBER
+};
+
+// One row of the table, for code that goes over every setting or finds one by its name.
+struct SettingRow {
+    const char* name;
+    const char* type; // "bool", "int" or "double"
+    double defaultValue, min, max;
+    const char* group;
+    const char* meaning;
+    double (*get)(const Settings&);
+    void (*set)(Settings&, double); // the value already checked
+    bool whole() const { return type[0] != 'd'; }
+};
+std::span<const SettingRow> settingTable();
+
+// Settings by name, as a scene file or `--set` gives them, already checked.
+using SettingOverrides = std::map<std::string, double>;
+
+// Checks `value` for setting `name`; throws InputError "<where>: ..." naming the setting and its
+// range (or, for an unknown name, the known ones).
+double checkSetting(const std::string& where, const std::string& name, double value);
+// `settings` with each of `overrides` checked and applied.
+Settings withOverrides(Settings settings, const SettingOverrides& overrides,
+                       const std::string& where);
+// Every setting's value by name (what a benchmark records beside its figures).
+SettingOverrides settingValues(const Settings& settings);
+
+// The table as docs/settings.md shows it (`render --list-settings` prints it; a test checks that
+// the docs hold it).
+std::string settingsMarkdown();
+
+} // namespace ssgi
