@@ -9,6 +9,7 @@
 #include <cstring>
 #include <glm/gtx/component_wise.hpp>
 #include <limits>
+#include <stdexcept>
 
 namespace ssgi {
 
@@ -255,6 +256,46 @@ void Renderer::renderFrame(const Camera& camera) {
     setup_->skyMapsStale = false;
     moved_.clear();
     ++frameIndex_;
+}
+
+void Renderer::continueFrom(Renderer& previous) {
+    if (&previous.scene_ != &scene_ || frameIndex_ != 0)
+        throw std::logic_error("continueFrom: a new renderer of the same scene only");
+    light_ = previous.light_;
+    time_ = previous.time_;
+    transforms_ = previous.transforms_;
+    moved_ = previous.moved_;
+    uploadTransforms();
+    previousViewProjection_ = previous.previousViewProjection_;
+    previousCamera_ = previous.previousCamera_;
+    cutRequested_ = previous.cutRequested_;
+    cuts_ = previous.cuts_;
+    frameIndex_ = previous.frameIndex_;
+    if (!scene_.settings.cache_resize || frameIndex_ == 0) return;
+    for (const EffectCache& from : previous.setup_->caches) {
+        if (!previous.graph_->hasHistory(from.value)) continue;
+        for (const EffectCache& to : setup_->caches) {
+            if (to.name != from.name) continue;
+            // After its last frame the pair has swapped: what it wrote is the previous side.
+            using graph::FrameGraph;
+            graph_->carryHistory(to.value, previous.size(),
+                                 previous.graph_->readTexels(FrameGraph::previous(from.value)));
+            // Each pixel's history counts as one sample (rotation count 1): screen-space effects
+            // converge to another value at another size (their samples snap to other pixels),
+            // and a history converged at the old size would hold the new one off for dozens of
+            // frames (docs/temporal-cache.md, "Resize"). The shadow, which allows no blur, starts
+            // over; the others blend the new frames into the resampled image.
+            std::vector<uint8_t> meta =
+                previous.graph_->readTexels(FrameGraph::previous(from.meta));
+            for (size_t i = 12; i + 4 <= meta.size(); i += 16) { // RGBA32F: count in alpha
+                float count = 0.0f;
+                std::memcpy(&count, &meta[i], 4);
+                count = std::min(count, 1.0f);
+                std::memcpy(&meta[i], &count, 4);
+            }
+            graph_->carryHistory(to.meta, previous.size(), meta);
+        }
+    }
 }
 
 FrameProfile Renderer::lastFrameProfile() const {

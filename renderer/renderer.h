@@ -42,6 +42,11 @@ public:
     // camera that turns or jumps beyond the cache_cut_* settings between two frames, and by
     // setTime() when the camera path's keys marked "cut" are crossed.
     void cut() { cutRequested_ = true; }
+    // A resize: this renderer, new and of another size, goes on from where `previous` (of the
+    // same scene) stopped: its camera, light, objects and pattern sequence, and, with the
+    // cache_resize setting on, every cached effect's history, which the first frame reprojects
+    // at its old size as it reprojects any last frame (temporal.glsl). Before the first frame.
+    void continueFrom(Renderer& previous);
     // Cuts so far, requested or automatic (for tests and the programs' reports).
     uint32_t cuts() const { return cuts_; }
     // Shows another view (see viewNames()) from the next frame on; the caches are untouched.

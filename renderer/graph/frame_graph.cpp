@@ -3,6 +3,7 @@
 #include <glm/gtc/packing.hpp>
 
 #include <cstring>
+#include <stdexcept>
 
 namespace ssgi::graph {
 
@@ -46,6 +47,7 @@ uint32_t FrameGraph::createHistory(const std::string& name, VkFormat format, VkE
     History h;
     // Histories may be copied into (a settled frame carries the last one over whole).
     usage |= VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    h.usage = usage;
     h.resources[0] = addResource(name + " A", format, extent, usage, false);
     h.resources[1] = addResource(name + " B", format, extent, usage, false);
     histories_.push_back(h);
@@ -63,8 +65,10 @@ uint32_t FrameGraph::resolve(ImageRef ref) const {
         return ref.index;
     case ImageRef::Kind::HistoryCurrent:
         return histories_[ref.index].resources[histories_[ref.index].currentSlot];
-    case ImageRef::Kind::HistoryPrevious:
-        return histories_[ref.index].resources[1 - histories_[ref.index].currentSlot];
+    case ImageRef::Kind::HistoryPrevious: {
+        const History& h = histories_[ref.index];
+        return h.carried ? *h.carried : h.resources[1 - h.currentSlot];
+    }
     }
     return ref.index;
 }
@@ -82,7 +86,7 @@ ImageRef FrameGraph::find(const std::string& name) const {
 std::vector<std::pair<std::string, VkDeviceSize>> FrameGraph::imageMemory() const {
     std::vector<std::pair<std::string, VkDeviceSize>> list;
     for (const Resource& r : resources_)
-        list.push_back({r.image.name, r.image.memorySize});
+        if (r.image.image) list.push_back({r.image.name, r.image.memorySize}); // not released
     return list;
 }
 
@@ -193,6 +197,10 @@ void FrameGraph::endFrame() {
     for (History& h : histories_) {
         h.currentSlot = 1 - h.currentSlot;
         h.valid = true;
+        if (h.carried) { // read by this frame, needed no more (the frame has completed)
+            vk::destroyImage(ctx_, resources_[*h.carried].image);
+            h.carried.reset();
+        }
     }
 }
 
@@ -208,13 +216,12 @@ const vk::Image& FrameGraph::prepareTransferSource(VkCommandBuffer cmd, ImageRef
     return r.image;
 }
 
-std::vector<float> FrameGraph::download(ImageRef ref) {
-    const uint32_t id = resolve(ref);
-    Resource& r = resources_[id];
+std::vector<uint8_t> FrameGraph::readTexels(ImageRef ref) {
+    Resource& r = resources_[resolve(ref)];
     const VkExtent2D e = r.image.extent;
-    const uint32_t texel = vk::formatTexelSize(r.image.format);
-    vk::Buffer staging = vk::createBuffer(ctx_, VkDeviceSize(e.width) * e.height * texel,
-                                          VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+    const VkDeviceSize size =
+        VkDeviceSize(e.width) * e.height * vk::formatTexelSize(r.image.format);
+    vk::Buffer staging = vk::createBuffer(ctx_, size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     ctx_.submitAndWait([&](VkCommandBuffer cmd) {
         prepareTransferSource(cmd, ref);
         VkBufferImageCopy region{};
@@ -223,13 +230,57 @@ std::vector<float> FrameGraph::download(ImageRef ref) {
         vkCmdCopyImageToBuffer(cmd, r.image.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                                staging.buffer, 1, &region);
     });
+    const auto* bytes = static_cast<const uint8_t*>(staging.mapped);
+    std::vector<uint8_t> texels(bytes, bytes + size);
+    vk::destroyBuffer(ctx_, staging);
+    return texels;
+}
 
+void FrameGraph::carryHistory(uint32_t history, VkExtent2D extent,
+                              const std::vector<uint8_t>& texels) {
+    History& h = histories_[history];
+    const vk::Image& pair = resources_[h.resources[0]].image;
+    const VkDeviceSize size =
+        VkDeviceSize(extent.width) * extent.height * vk::formatTexelSize(pair.format);
+    if (texels.size() != size)
+        throw std::logic_error("carryHistory: " + pair.name + " at " +
+                               std::to_string(extent.width) + "x" + std::to_string(extent.height) +
+                               " takes " + std::to_string(size) + " bytes, not " +
+                               std::to_string(texels.size()));
+    const std::string name = pair.name.substr(0, pair.name.size() - 2) + " carried";
+    const uint32_t id = addResource(name, pair.format, extent, h.usage, false);
+    Resource& r = resources_[id];
+    vk::Buffer staging = vk::createBuffer(ctx_, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+    std::memcpy(staging.mapped, texels.data(), size);
+    ctx_.submitAndWait([&](VkCommandBuffer cmd) {
+        if (auto b = transition(r.state, Use::TransferDst, PassKind::Transfer, true, r.image.image,
+                                r.image.aspect)) {
+            VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+            dep.imageMemoryBarrierCount = 1;
+            dep.pImageMemoryBarriers = &*b;
+            vkCmdPipelineBarrier2(cmd, &dep);
+        }
+        VkBufferImageCopy region{};
+        region.imageSubresource = {r.image.aspect, 0, 0, 1};
+        region.imageExtent = {extent.width, extent.height, 1};
+        vkCmdCopyBufferToImage(cmd, staging.buffer, r.image.image,
+                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+    });
+    vk::destroyBuffer(ctx_, staging);
+    h.carried = id;
+    h.valid = true;
+}
+
+std::vector<float> FrameGraph::download(ImageRef ref) {
+    const vk::Image& image = resources_[resolve(ref)].image;
+    const VkExtent2D e = image.extent;
+    const std::vector<uint8_t> texels = readTexels(ref);
+    const uint8_t* bytes = texels.data();
     const size_t count = size_t(e.width) * e.height;
     std::vector<float> rgba(count * 4, 0.0f);
-    const auto* bytes = static_cast<const uint8_t*>(staging.mapped);
     for (size_t i = 0; i < count; ++i) {
         float* out = &rgba[4 * i];
-        switch (r.image.format) {
+        switch (image.format) {
         case VK_FORMAT_R32G32B32A32_SFLOAT:
             std::memcpy(out, bytes + 16 * i, 16);
             break;
@@ -251,10 +302,9 @@ std::vector<float> FrameGraph::download(ImageRef ref) {
             out[3] = 1.0f;
             break;
         default:
-            throw vk::VulkanError("download: unsupported format for " + r.image.name);
+            throw vk::VulkanError("download: unsupported format for " + image.name);
         }
     }
-    vk::destroyBuffer(ctx_, staging);
     return rgba;
 }
 

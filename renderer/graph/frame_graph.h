@@ -9,6 +9,7 @@
 #include "vk/resources.h"
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -111,6 +112,13 @@ public:
     const vk::Image& image(ImageRef ref) const;
     // Copies an image to the host as RGBA float (depth: R = depth), after the last frame.
     std::vector<float> download(ImageRef ref);
+    // Copies an image to the host as its texels lie (its own format, rows tightly packed).
+    std::vector<uint8_t> readTexels(ImageRef ref);
+    // For the next frame only, previous(history) is an image of `extent` holding `texels` (the
+    // pair's format, rows tightly packed), and the pair counts as valid: a renderer of another
+    // size hands its last frame over (Renderer::continueFrom). The frame's passes read it as any
+    // last frame, at its own size; after the frame it is released and the pair is as before.
+    void carryHistory(uint32_t history, VkExtent2D extent, const std::vector<uint8_t>& texels);
     // Records into cmd (submitted after the last frame) the barrier that makes the image a
     // transfer source, keeping the graph's record of its state (the viewer copies the frame out).
     const vk::Image& prepareTransferSource(VkCommandBuffer cmd, ImageRef ref);
@@ -128,6 +136,8 @@ private:
         uint32_t resources[2];
         uint32_t currentSlot = 0;
         bool valid = false;
+        VkImageUsageFlags usage = 0;
+        std::optional<uint32_t> carried; // carryHistory()'s image, read in place of previous()
     };
     struct Pass {
         std::string name;

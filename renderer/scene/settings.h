@@ -93,6 +93,8 @@ namespace ssgi {
       "never)")                                                                                    \
     X(cache_cut_distance, double, 0.2, 0, 1e9, "Temporal cache",                                   \
       "a camera jump beyond this x the scene's diagonal between two frames is a cut")              \
+    X(cache_resize, bool, true, 0, 1, "Temporal cache",                                            \
+      "a resize resamples every history to the new size (1) or drops it (0)")                      \
     X(cache_shadow, bool, true, 0, 1, "Temporal cache",                                            \
       "the shadow term cached (1), or computed anew every frame")                                  \
     X(cache_ao, bool, true, 0, 1, "Temporal cache", "the AO cached (1), or computed anew")         \

@@ -68,8 +68,9 @@ std::vector<Case> suite() {
     add("cut", "cut.json",
         "a camera cut: history survives only where reprojection proves the same surface",
         Region::Carried);
-    Case* resize = add("resize", "resize.json",
-                       "a window resize mid-path: every history is lost at once", Region::Geometry);
+    Case* resize =
+        add("resize", "resize.json",
+            "a window resize as the camera stops: every history at another size", Region::Geometry);
     resize->resizeScale = 0.75f;
     return cases;
 }

@@ -41,7 +41,8 @@ struct Case {
     // `lightTo`, aimed at `lightAim` all the way.
     bool movesLight = false;
     glm::vec3 lightTo{0.0f}, lightAim{0.0f};
-    // A window resize halfway along the path: a new renderer, `resizeScale` times the size.
+    // A window resize as the camera stops (the hold's first frame): a renderer `resizeScale`
+    // times the size that goes on from the old one (Renderer::continueFrom).
     float resizeScale = 0.0f;
     Aabb occluder; // for Region::NearOccluder
 };

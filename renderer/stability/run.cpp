@@ -102,12 +102,14 @@ std::vector<Step> timeline(const Case& c, const Scene& scene, const RunOptions& 
             light.position = glm::mix(scene.light.position, c.lightTo, s);
             light.direction = glm::normalize(glm::mix(scene.light.direction, finalDirection, s));
         }
-        if (c.resizeScale > 0.0f && p == c.pathFrames / 2 + 1) {
-            width = std::max(1u, uint32_t(std::lround(o.width * c.resizeScale)));
-            height = std::max(1u, uint32_t(std::lround(o.height * c.resizeScale)));
-        }
         const float time = start + duration * s;
         steps.push_back({"path", cameraAt(path, time), light, width, height, time});
+    }
+    // A resize as the camera comes to rest: the hold's first frame is the new size, so the change
+    // the case measures from is the resize alone.
+    if (c.resizeScale > 0.0f) {
+        width = std::max(1u, uint32_t(std::lround(o.width * c.resizeScale)));
+        height = std::max(1u, uint32_t(std::lround(o.height * c.resizeScale)));
     }
     for (uint32_t i = 0; i < o.hold; ++i)
         steps.push_back({"hold", steps.back().camera, light, width, height, steps.back().time});
@@ -182,7 +184,11 @@ CaseResult runCase(vk::Context& ctx, const Case& c, const RunOptions& o,
     for (size_t i = 0; i < steps.size(); ++i) {
         const Step& s = steps[i];
         const bool fresh = !a || a->size().width != s.width || a->size().height != s.height;
-        if (fresh) a = std::make_unique<Renderer>(ctx, scene, RenderOptions{s.width, s.height});
+        if (fresh) { // the first frame, or a resize: the new size goes on from the old
+            auto next = std::make_unique<Renderer>(ctx, scene, RenderOptions{s.width, s.height});
+            if (a) next->continueFrom(*a);
+            a = std::move(next);
+        }
         const bool lightMoved = !sameLight(a->light(), s.light);
         if (lightMoved) a->setLight(s.light);
         a->setTime(s.time);

@@ -100,7 +100,9 @@ VkRect2D Viewer::sceneRect() const {
     return {{int32_t(panel), 0}, {std::max(1u, window.width - panel), std::max(1u, window.height)}};
 }
 
-void Viewer::rebuildRenderer() {
+void Viewer::rebuildRenderer(bool resized) {
+    // A resize keeps the caches (resampled to the new size); anything else starts them over.
+    std::unique_ptr<Renderer> previous = resized ? std::move(renderer_) : nullptr;
     renderer_.reset();
     const VkRect2D rect = sceneRect();
     renderSize_ = {std::max(1u, uint32_t(std::lround(rect.extent.width * options_.renderScale))),
@@ -109,6 +111,8 @@ void Viewer::rebuildRenderer() {
     renderer_ = std::make_unique<Renderer>(
         *ctx_, scene_,
         RenderOptions{renderSize_.width, renderSize_.height, viewNames()[size_t(panel_.view)]});
+    if (previous) renderer_->continueFrom(*previous);
+    previous.reset();
     panel_.cachedEffects = renderer_->cachedEffects();
     panel_.cacheAvailable = !panel_.cachedEffects.empty();
     auto effect =
@@ -226,7 +230,7 @@ int Viewer::run() {
         if (!sameExtent({uint32_t(std::lround(rect.extent.width * options_.renderScale)),
                          uint32_t(std::lround(rect.extent.height * options_.renderScale))},
                         renderSize_))
-            rebuildRenderer();
+            rebuildRenderer(true);
 
         const Camera camera = nextCamera(seconds);
         dragLight();

@@ -51,7 +51,7 @@ public:
 
 private:
     void loadScene(const std::string& path);
-    void rebuildRenderer();
+    void rebuildRenderer(bool resized = false);
     VkRect2D sceneRect() const;
     Camera nextCamera(float seconds);
     void dragLight();

@@ -43,12 +43,15 @@ layout(push_constant) uniform TemporalBlock { TemporalConstants constants; };
 // Alpha: the resampling blur the result carries, in squared pixels: the texels' own (stored in
 // the history's alpha) plus the spread of the filter around the point, sum w_i |x_i - x|^2.
 // Each frame of motion adds up to half a pixel^2; a still camera samples texel centres and adds
-// nothing.
+// nothing. The distances are in this frame's pixels: after a resize the history's texels are of
+// another size (Renderer::continueFrom), and what resampling them blurs counts the same.
 vec4 historyAt(Reprojection r, vec3 world, out float spread) {
-    vec2 texel = r.uv * frame.viewport.xy - 0.5;
+    vec2 size = vec2(textureSize(historyValue, 0));
+    vec2 toPixels = frame.viewport.xy / size;
+    vec2 texel = r.uv * size - 0.5;
     ivec2 base = ivec2(floor(texel));
     vec2 f = texel - vec2(base);
-    ivec2 last = ivec2(frame.viewport.xy) - 1;
+    ivec2 last = ivec2(size) - 1;
     vec4 sum = vec4(0.0);
     float weights = 0.0;
     spread = 0.0;
@@ -58,7 +61,7 @@ vec4 historyAt(Reprojection r, vec3 world, out float spread) {
         vec4 meta = texelFetch(historyMeta, q, 0);
         if (meta.w == 0.0 || distance(meta.xyz, world) > r.epsilon) continue;
         float w = (offset.x == 1 ? f.x : 1.0 - f.x) * (offset.y == 1 ? f.y : 1.0 - f.y);
-        vec2 d = vec2(offset) - f;
+        vec2 d = (vec2(offset) - f) * toPixels;
         vec4 v = texelFetch(historyValue, q, 0);
         sum += w * v;
         spread += w * dot(d, d);
@@ -69,9 +72,9 @@ vec4 historyAt(Reprojection r, vec3 world, out float spread) {
         v = sum / weights;
         spread /= weights;
     } else { // no texel around passed: the nearest one, which did
-        vec2 d = fract(r.uv * frame.viewport.xy) - 0.5;
+        vec2 d = (fract(r.uv * size) - 0.5) * toPixels;
         spread = dot(d, d);
-        v = texelFetch(historyValue, ivec2(r.uv * frame.viewport.xy), 0);
+        v = texelFetch(historyValue, ivec2(r.uv * size), 0);
     }
     // Offsets below a thirtieth of a pixel are rounding (a still camera): no blur.
     if (spread < 1e-3) spread = 0.0;

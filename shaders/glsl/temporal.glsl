@@ -54,8 +54,9 @@ Reprojection reproject(vec3 world, vec3 normal, CacheConstants cache) {
     if (clip.w <= 0.0) return r;
     r.uv = clip.xy / clip.w * 0.5 + 0.5;
     if (any(lessThan(r.uv, vec2(0.0))) || any(greaterThanEqual(r.uv, vec2(1.0)))) return r;
-    // Positions do not interpolate across edges: the nearest texel's is compared.
-    vec4 meta = texelFetch(historyMeta, ivec2(r.uv * frame.viewport.xy), 0);
+    // Positions do not interpolate across edges: the nearest texel's is compared. The history
+    // has the frame's size, except in the first frame after a resize (Renderer::continueFrom).
+    vec4 meta = texelFetch(historyMeta, ivec2(r.uv * vec2(textureSize(historyMeta, 0))), 0);
     float facing = abs(dot(normal, normalize(frame.cameraPosition.xyz - world)));
     float epsilon = cache.epsilon / (pixelsPerUnit(viewDepth(world)) * max(facing, 0.1));
     r.epsilon = epsilon;
