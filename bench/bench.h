@@ -101,7 +101,7 @@ Error hdrError(Renderer& renderer, const Reference& reference);
 // The device and driver, for every result file.
 Json deviceJson(const vk::Context& ctx);
 // Every image of the frame graph with its bytes.
-Json memoryJson(const vk::Context& ctx, const Renderer& renderer);
+Json memoryJson(const Renderer& renderer);
 
 // Texel fetches and bytes the device moves per millisecond in trivial kernels, sampled in
 // every round of timed frames so that it sees the same load as the passes.

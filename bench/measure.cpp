@@ -137,19 +137,11 @@ Json deviceJson(const vk::Context& ctx) {
             {"cpu_device", p.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU}};
 }
 
-Json memoryJson(const vk::Context& ctx, const Renderer& renderer) {
+Json memoryJson(const Renderer& renderer) {
     const graph::FrameGraph& graph = renderer.frameGraph();
     Json list = Json::array();
-    for (auto [name, bytes] : graph.imageMemory()) {
-        // Where the graph reports no size, the image's own memory requirements say it.
-        if (bytes == 0) {
-            const graph::ImageRef ref = graph.find(name);
-            VkMemoryRequirements req{};
-            if (ref.valid()) vkGetImageMemoryRequirements(ctx.device, graph.image(ref).image, &req);
-            bytes = req.size;
-        }
+    for (const auto& [name, bytes] : graph.imageMemory())
         list.push_back({{"image", name}, {"bytes", bytes}});
-    }
     return list;
 }
 

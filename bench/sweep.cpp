@@ -94,7 +94,7 @@ Json sweep(vk::Context& ctx, const Scene& scene, const Options& options) {
                             VkExtent2D{1920, 1080}}) {
         Renderer renderer(ctx, cached, {size.width, size.height, "final"});
         result["memory"][std::to_string(size.width) + "x" + std::to_string(size.height)] =
-            memoryJson(ctx, renderer);
+            memoryJson(renderer);
     }
     progress.done();
     return result;

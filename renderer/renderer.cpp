@@ -271,31 +271,39 @@ void Renderer::continueFrom(Renderer& previous) {
     cutRequested_ = previous.cutRequested_;
     cuts_ = previous.cuts_;
     frameIndex_ = previous.frameIndex_;
-    if (!scene_.settings.cache_resize || frameIndex_ == 0) return;
+    if (!scene_.settings.cache_resize || frameIndex_ == 0 || !setup_->positionHistory ||
+        !previous.setup_->positionHistory)
+        return;
+    // After its last frame every pair has swapped: what it wrote is the previous side.
+    using graph::FrameGraph;
+    auto last = [&previous](uint32_t history) {
+        return previous.graph_->readTexels(FrameGraph::previous(history));
+    };
+    bool carried = false;
     for (const EffectCache& from : previous.setup_->caches) {
         if (!previous.graph_->hasHistory(from.value)) continue;
         for (const EffectCache& to : setup_->caches) {
             if (to.name != from.name) continue;
-            // After its last frame the pair has swapped: what it wrote is the previous side.
-            using graph::FrameGraph;
-            graph_->carryHistory(to.value, previous.size(),
-                                 previous.graph_->readTexels(FrameGraph::previous(from.value)));
+            graph_->carryHistory(to.value, previous.size(), last(from.value));
             // Each pixel's history counts as one sample (rotation count 1): screen-space effects
             // converge to another value at another size (their samples snap to other pixels),
             // and a history converged at the old size would hold the new one off for dozens of
             // frames (docs/temporal-cache.md, "Resize"). The shadow, which allows no blur, starts
             // over; the others blend the new frames into the resampled image.
-            std::vector<uint8_t> meta =
-                previous.graph_->readTexels(FrameGraph::previous(from.meta));
-            for (size_t i = 12; i + 4 <= meta.size(); i += 16) { // RGBA32F: count in alpha
-                float count = 0.0f;
-                std::memcpy(&count, &meta[i], 4);
-                count = std::min(count, 1.0f);
-                std::memcpy(&meta[i], &count, 4);
+            std::vector<uint8_t> count = last(from.count);
+            for (size_t i = 0; i + 4 <= count.size(); i += 4) { // R32F
+                float n = 0.0f;
+                std::memcpy(&n, &count[i], 4);
+                n = std::min(n, 1.0f);
+                std::memcpy(&count[i], &n, 4);
             }
-            graph_->carryHistory(to.meta, previous.size(), meta);
+            graph_->carryHistory(to.count, previous.size(), count);
+            carried = true;
         }
     }
+    if (carried)
+        graph_->carryHistory(*setup_->positionHistory, previous.size(),
+                             last(*previous.setup_->positionHistory));
 }
 
 FrameProfile Renderer::lastFrameProfile() const {
@@ -336,7 +344,7 @@ void Renderer::setTime(float seconds) {
     for (EffectCache& cache : setup_->caches)
         if (cache.motionTest == MOTION_RESTART_ALL) {
             graph_->resetHistory(cache.value);
-            graph_->resetHistory(cache.meta);
+            graph_->resetHistory(cache.count);
         }
 }
 
@@ -347,21 +355,40 @@ void Renderer::setLight(const SpotLight& light) {
     for (EffectCache& cache : setup_->caches)
         if (cache.lightDependent) {
             graph_->resetHistory(cache.value);
-            graph_->resetHistory(cache.meta);
+            graph_->resetHistory(cache.count);
         }
 }
 
 std::vector<float> Renderer::readImage(const std::string& name) {
+    using graph::FrameGraph;
+    // After the frame every pair has swapped: what it wrote is now the "previous" side.
+    if (setup_->positionHistory && name == "gbuffer.position")
+        return graph_->download(FrameGraph::previous(*setup_->positionHistory));
     for (const EffectCache& cache : setup_->caches) {
-        // After the frame the pair has swapped: what it wrote is now the "previous" side.
         if (name == cache.name + ".history")
-            return graph_->download(graph::FrameGraph::previous(cache.value));
-        if (name == cache.name + ".meta")
-            return graph_->download(graph::FrameGraph::previous(cache.meta));
+            return graph_->download(FrameGraph::previous(cache.value));
+        if (name == cache.name + ".count")
+            return graph_->download(FrameGraph::previous(cache.count));
+        if (name == cache.name + ".meta") { // the shared positions, the effect's count in alpha
+            std::vector<float> meta =
+                graph_->download(FrameGraph::previous(*setup_->positionHistory));
+            const std::vector<float> count = graph_->download(FrameGraph::previous(cache.count));
+            for (size_t i = 0; i < meta.size(); i += 4)
+                meta[i + 3] = count[i];
+            return meta;
+        }
     }
     graph::ImageRef ref = graph_->find(name);
     if (!ref.valid()) throw InputError("no image named '" + name + "' in the frame");
     return graph_->download(ref);
+}
+
+bool Renderer::hasImage(const std::string& name) const {
+    if (setup_->positionHistory && name == "gbuffer.position") return true;
+    for (const EffectCache& cache : setup_->caches)
+        for (const char* suffix : {".history", ".meta", ".count"})
+            if (name == cache.name + suffix) return true;
+    return graph_->find(name).valid();
 }
 
 const vk::Image& Renderer::prepareCopySource(VkCommandBuffer cmd, const std::string& name) {

@@ -59,8 +59,12 @@ public:
     // Reads an image of the last frame by name ("hdr", "ldr", "direct", "gbuffer.position",
     // "gbuffer.normal", "gbuffer.albedo", "gbuffer.depth", "rsm.flux", ...) as RGBA floats. A
     // cached effect's history is "<effect>.history" (the blended value) and "<effect>.meta"
-    // (world position, rotation count in alpha), as the last frame wrote them.
+    // (world position, the effect's rotation count in alpha: its "<effect>.count" beside the
+    // G-buffer's positions, which every cached effect shares; "<effect>.count" alone is the
+    // count in red), as the last frame wrote them.
     std::vector<float> readImage(const std::string& name);
+    // Whether readImage(name) finds an image in this frame.
+    bool hasImage(const std::string& name) const;
     VkExtent2D size() const { return setup_->size; }
     // For the viewer: records into cmd, after the last frame, the barrier that makes image `name`
     // ("ldr") a transfer source, and returns it.

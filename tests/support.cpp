@@ -32,8 +32,7 @@ Frame render(const Scene& scene, uint32_t width, uint32_t height, uint32_t frame
     f.width = width;
     f.height = height;
     auto read = [&](const char* name) {
-        return renderer.frameGraph().find(name).valid() ? renderer.readImage(name)
-                                                        : std::vector<float>();
+        return renderer.hasImage(name) ? renderer.readImage(name) : std::vector<float>();
     };
     f.direct = read("direct");
     f.position = read("gbuffer.position");

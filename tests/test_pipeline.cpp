@@ -25,9 +25,9 @@ constexpr VkDescriptorType kUniform = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
 constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
 constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
 
-// indirect_reconstruct.comp: the frame's uniforms, five sampler2Ds, two image2Ds.
-const std::vector<VkDescriptorType> kReconstruct = {kUniform, kSampled, kSampled, kSampled,
-                                                    kSampled, kSampled, kStorage, kStorage};
+// indirect_reconstruct.comp: the frame's uniforms, six sampler2Ds, two image2Ds.
+const std::vector<VkDescriptorType> kReconstruct = {
+    kUniform, kSampled, kSampled, kSampled, kSampled, kSampled, kSampled, kStorage, kStorage};
 
 } // namespace
 
@@ -71,12 +71,12 @@ TEST_F(PipelineTest, ALayoutThatDisagreesIsRefusedNamingShaderAndBinding) {
 
     std::vector<VkDescriptorType> missing(kReconstruct.begin(), kReconstruct.end() - 1);
     const std::string lacks = refusal(missing);
-    EXPECT_NE(lacks.find("binding 7"), std::string::npos) << lacks;
+    EXPECT_NE(lacks.find("binding 8"), std::string::npos) << lacks;
     EXPECT_NE(lacks.find("lacks"), std::string::npos) << lacks;
 
     std::vector<VkDescriptorType> extra = kReconstruct;
     extra.push_back(kStorage);
     const std::string never = refusal(extra);
-    EXPECT_NE(never.find("binding 8"), std::string::npos) << never;
+    EXPECT_NE(never.find("binding 9"), std::string::npos) << never;
     EXPECT_NE(never.find("never declares"), std::string::npos) << never;
 }

@@ -35,6 +35,7 @@ const char* kUsage = R"(usage: render [SCENE] [options]
                         every frame, warm-up ones marked (open in ui.perfetto.dev)
   --warmup W            frames left out of the timings (default 1 when more than one frame is
                         rendered: the first compiles shader variants and starts the caches)
+  --memory              print the device memory of every image of the frame, and the total
   --list-settings       print every method setting (type, default, range, meaning) as the
                         table in docs/settings.md, and exit
 )";
@@ -44,7 +45,7 @@ struct Args {
     std::string output, view = "final", profileJson, profileTrace;
     uint32_t frames = 0, warmup = UINT32_MAX; // 0, UINT32_MAX: not given
     float time = -1.0f;
-    bool profile = false;
+    bool profile = false, memory = false;
     bool profiling() const { return profile || !profileJson.empty() || !profileTrace.empty(); }
 };
 
@@ -55,6 +56,8 @@ Args parseArgs(int argc, char** argv) {
         if (arg == "--help" || arg == "-h") {
             std::cout << kUsage << cli::kCommonUsage;
             std::exit(0);
+        } else if (arg == "--memory") {
+            a.memory = true;
         } else if (arg == "--list-settings") {
             std::cout << settingsMarkdown();
             std::exit(0);
@@ -103,6 +106,15 @@ int run(int argc, char** argv) {
     const Scene scene = cli::loadSceneWithSettings(common);
     vk::Context ctx({common.validation, common.device});
     Renderer renderer(ctx, scene, {common.width, common.height, args.view});
+    if (args.memory) { // what the frame graph holds, image by image (a pair as two)
+        double total = 0.0;
+        for (const auto& [name, bytes] : renderer.frameGraph().imageMemory()) {
+            std::printf("%-34s %9.1f MiB\n", name.c_str(), double(bytes) / 1048576.0);
+            total += double(bytes);
+        }
+        std::printf("%-34s %9.1f MiB (%ux%u)\n", "all images", total / 1048576.0, common.width,
+                    common.height);
+    }
 
     Camera camera = scene.camera;
     if (args.time >= 0.0f) {

@@ -11,24 +11,26 @@ graph::ImageRef addAoPass(PassSetup& s, const GBufferAndRsm& in, EffectCache* ca
         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
     const Scene& m = s.model;
     const vk::Pipeline pipeline = s.computePipeline(
-        "ao.comp", 3, 1, sizeof(shader::AoConstants),
+        "ao.comp", 4, 1, sizeof(shader::AoConstants),
         {{int(m.settings.ao_variant), int(m.settings.ao_directions), int(m.settings.ao_steps)}});
-    const graph::ImageRef meta = cacheMetaInput(cache, in.gbuffer.position);
+    const CacheInputs history = cacheInputs(s, cache, in.gbuffer.position);
 
     addKeepPass(s, cache, {ao});
     using graph::Use;
     s.graph.addPass("ao", graph::PassKind::Compute,
                     {{in.gbuffer.position, Use::Sampled},
                      {in.gbuffer.normal, Use::Sampled},
-                     {meta, Use::Sampled},
+                     {history.position, Use::Sampled},
+                     {history.count, Use::Sampled},
                      {ao, Use::StorageWrite}},
-                    [&s, in, ao, meta, cache, pipeline](const graph::PassContext& pc) {
+                    [&s, in, ao, history, cache, pipeline](const graph::PassContext& pc) {
                         vk::Descriptors()
                             .uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size)
                             .sampledImage(1, pc.image(in.gbuffer.position).view, s.nearestSampler)
                             .sampledImage(2, pc.image(in.gbuffer.normal).view, s.nearestSampler)
-                            .sampledImage(3, pc.image(meta).view, s.nearestSampler)
-                            .storageImage(4, pc.image(ao).view)
+                            .sampledImage(3, pc.image(history.position).view, s.nearestSampler)
+                            .sampledImage(4, pc.image(history.count).view, s.nearestSampler)
+                            .storageImage(5, pc.image(ao).view)
                             .push(s.ctx, pc.cmd, pipeline);
                         shader::AoConstants constants{};
                         constants.rotation = s.patternRotation;

@@ -4,8 +4,8 @@
 // pass (indirect_reconstruct.comp), gives every pixel the whole set's estimate many times over
 // (Keller and Heidrich 2001; Segovia et al. 2006). No upsampling, so no staircase, and no pixel
 // gathers every VPL.
-//   reads:  gbuffer.position, gbuffer.normal, rsm.position, rsm.normal, rsm.flux, the cache's
-//           meta history (to skip converged pixels)
+//   reads:  gbuffer.position, gbuffer.normal, rsm.position, rsm.normal, rsm.flux, last frame's
+//           gbuffer.position and the cache's indirect.count (to skip converged pixels)
 //   writes: indirect + indirect.directional (each pixel's subset: irradiance / pi, and the L1
 //           sums of its VPLs' light), indirect.filtered_x + .filtered_x_directional (after the
 //           x axis), indirect again (after the y axis: the result; the y pass binds
@@ -47,14 +47,14 @@ graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& 
         return area;
     };
     const vk::Pipeline gather = s.computePipeline(
-        "indirect_interleaved.comp", 6, 2, sizeof(shader::IndirectConstants),
+        "indirect_interleaved.comp", 7, 2, sizeof(shader::IndirectConstants),
         vk::Specialization{{vpls, int(s.model.settings.indirect_visibility),
                             int(s.model.settings.indirect_visibility_steps), k, radius}});
     const vk::Pipeline filter =
-        s.computePipeline("indirect_reconstruct.comp", 5, 2, sizeof(shader::IndirectConstants),
+        s.computePipeline("indirect_reconstruct.comp", 6, 2, sizeof(shader::IndirectConstants),
                           vk::Specialization{{k, radius}});
 
-    const graph::ImageRef meta = cacheMetaInput(cache, in.gbuffer.position);
+    const CacheInputs history = cacheInputs(s, cache, in.gbuffer.position);
     auto constants = [&s, cache](glm::ivec2 axis) {
         shader::IndirectConstants c{};
         c.rotation = s.patternRotation;
@@ -77,10 +77,11 @@ graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& 
                      {in.rsm.position, Use::Sampled},
                      {in.rsm.normal, Use::Sampled},
                      {in.rsm.third, Use::Sampled},
-                     {meta, Use::Sampled},
+                     {history.position, Use::Sampled},
+                     {history.count, Use::Sampled},
                      {subsets, Use::StorageWrite},
                      {subsetsDirectional, Use::StorageWrite}},
-                    [&s, in, meta, subsets, subsetsDirectional, gather, dispatchArea, margin,
+                    [&s, in, history, subsets, subsetsDirectional, gather, dispatchArea, margin,
                      constants](const graph::PassContext& pc) {
                         vk::Descriptors()
                             .uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size)
@@ -89,9 +90,10 @@ graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& 
                             .sampledImage(3, pc.image(in.rsm.position).view, s.nearestSampler)
                             .sampledImage(4, pc.image(in.rsm.normal).view, s.nearestSampler)
                             .sampledImage(5, pc.image(in.rsm.third).view, s.nearestSampler)
-                            .sampledImage(6, pc.image(meta).view, s.nearestSampler)
-                            .storageImage(7, pc.image(subsets).view)
-                            .storageImage(8, pc.image(subsetsDirectional).view)
+                            .sampledImage(6, pc.image(history.position).view, s.nearestSampler)
+                            .sampledImage(7, pc.image(history.count).view, s.nearestSampler)
+                            .storageImage(8, pc.image(subsets).view)
+                            .storageImage(9, pc.image(subsetsDirectional).view)
                             .push(s.ctx, pc.cmd, gather);
                         const VkExtent2D area = dispatchArea(margin);
                         vk::dispatch(pc.cmd, gather, area.width, area.height, constants({0, 0}));
@@ -110,22 +112,24 @@ graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& 
             a.pass, graph::PassKind::Compute,
             {{in.gbuffer.position, Use::Sampled},
              {in.gbuffer.normal, Use::Sampled},
-             {meta, Use::Sampled},
+             {history.position, Use::Sampled},
+             {history.count, Use::Sampled},
              {a.source, Use::Sampled},
              {a.sourceDirectional, Use::Sampled},
              {a.target, Use::StorageWrite},
              {a.targetDirectional, Use::StorageWrite}},
-            [&s, in, meta, a, filter, constants, dispatchArea,
+            [&s, in, history, a, filter, constants, dispatchArea,
              margin](const graph::PassContext& pc) {
                 vk::Descriptors()
                     .uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size)
                     .sampledImage(1, pc.image(in.gbuffer.position).view, s.nearestSampler)
                     .sampledImage(2, pc.image(in.gbuffer.normal).view, s.nearestSampler)
-                    .sampledImage(3, pc.image(meta).view, s.nearestSampler)
-                    .sampledImage(4, pc.image(a.source).view, s.nearestSampler)
-                    .sampledImage(5, pc.image(a.sourceDirectional).view, s.nearestSampler)
-                    .storageImage(6, pc.image(a.target).view)
-                    .storageImage(7, pc.image(a.targetDirectional).view)
+                    .sampledImage(3, pc.image(history.position).view, s.nearestSampler)
+                    .sampledImage(4, pc.image(history.count).view, s.nearestSampler)
+                    .sampledImage(5, pc.image(a.source).view, s.nearestSampler)
+                    .sampledImage(6, pc.image(a.sourceDirectional).view, s.nearestSampler)
+                    .storageImage(7, pc.image(a.target).view)
+                    .storageImage(8, pc.image(a.targetDirectional).view)
                     .push(s.ctx, pc.cmd, filter);
                 const VkExtent2D area = dispatchArea(a.axis.x == 1 ? margin : 0);
                 vk::dispatch(pc.cmd, filter, area.width, area.height, constants(a.axis));

@@ -20,11 +20,11 @@ graph::ImageRef addIndirectPasses(PassSetup& s, const GBufferAndRsm& in, EffectC
          int(s.model.settings.indirect_visibility_steps), int(s.model.settings.indirect_half_res)}};
     const bool halfRes = s.model.settings.indirect_half_res;
     const vk::Pipeline gather =
-        s.computePipeline("indirect.comp", 6, 1, sizeof(shader::IndirectConstants), spec);
+        s.computePipeline("indirect.comp", 7, 1, sizeof(shader::IndirectConstants), spec);
     const vk::Pipeline upsample =
-        s.computePipeline("upsample.comp", 7, 1, sizeof(shader::IndirectConstants), spec);
+        s.computePipeline("upsample.comp", 8, 1, sizeof(shader::IndirectConstants), spec);
 
-    const graph::ImageRef meta = cacheMetaInput(cache, in.gbuffer.position);
+    const CacheInputs history = cacheInputs(s, cache, in.gbuffer.position);
     auto constants = [&s, halfSize, cache]() {
         shader::IndirectConstants c{};
         c.rotation = s.patternRotation;
@@ -36,14 +36,15 @@ graph::ImageRef addIndirectPasses(PassSetup& s, const GBufferAndRsm& in, EffectC
         c.cache = cacheConstants(s, cache);
         return c;
     };
-    auto sceneInputs = [&s, in, meta](const graph::PassContext& pc, vk::Descriptors& d) {
+    auto sceneInputs = [&s, in, history](const graph::PassContext& pc, vk::Descriptors& d) {
         d.uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size)
             .sampledImage(1, pc.image(in.gbuffer.position).view, s.nearestSampler)
             .sampledImage(2, pc.image(in.gbuffer.normal).view, s.nearestSampler)
             .sampledImage(3, pc.image(in.rsm.position).view, s.nearestSampler)
             .sampledImage(4, pc.image(in.rsm.normal).view, s.nearestSampler)
             .sampledImage(5, pc.image(in.rsm.third).view, s.nearestSampler)
-            .sampledImage(6, pc.image(meta).view, s.nearestSampler);
+            .sampledImage(6, pc.image(history.position).view, s.nearestSampler)
+            .sampledImage(7, pc.image(history.count).view, s.nearestSampler);
     };
 
     addKeepPass(s, cache, {half, full});
@@ -51,7 +52,8 @@ graph::ImageRef addIndirectPasses(PassSetup& s, const GBufferAndRsm& in, EffectC
     const std::vector<graph::ImageUse> reads = {
         {in.gbuffer.position, Use::Sampled}, {in.gbuffer.normal, Use::Sampled},
         {in.rsm.position, Use::Sampled},     {in.rsm.normal, Use::Sampled},
-        {in.rsm.third, Use::Sampled},        {meta, Use::Sampled}};
+        {in.rsm.third, Use::Sampled},        {history.position, Use::Sampled},
+        {history.count, Use::Sampled}};
     std::vector<graph::ImageUse> gatherUses = reads;
     gatherUses.push_back({half, Use::StorageWrite});
     s.graph.addPass(
@@ -59,7 +61,7 @@ graph::ImageRef addIndirectPasses(PassSetup& s, const GBufferAndRsm& in, EffectC
         [&s, cache, half, gather, constants, sceneInputs](const graph::PassContext& pc) {
             vk::Descriptors d;
             sceneInputs(pc, d);
-            d.storageImage(7, pc.image(half).view).push(s.ctx, pc.cmd, gather);
+            d.storageImage(8, pc.image(half).view).push(s.ctx, pc.cmd, gather);
             const VkExtent2D area = cacheDispatch(s, cache, s.size, 2);
             vk::dispatch(pc.cmd, gather, area.width, area.height, constants());
         },
@@ -73,8 +75,8 @@ graph::ImageRef addIndirectPasses(PassSetup& s, const GBufferAndRsm& in, EffectC
         [&s, cache, half, full, upsample, constants, sceneInputs](const graph::PassContext& pc) {
             vk::Descriptors d;
             sceneInputs(pc, d);
-            d.sampledImage(7, pc.image(half).view, s.nearestSampler)
-                .storageImage(8, pc.image(full).view)
+            d.sampledImage(8, pc.image(half).view, s.nearestSampler)
+                .storageImage(9, pc.image(full).view)
                 .push(s.ctx, pc.cmd, upsample);
             const VkExtent2D area = cacheDispatch(s, cache, s.size);
             vk::dispatch(pc.cmd, upsample, area.width, area.height, constants());

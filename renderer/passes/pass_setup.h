@@ -11,15 +11,18 @@
 
 #include <deque>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace ssgi {
 
-// The temporal cache of one effect: its history (value + blur, and world position + count)
-// as two ping-pong pairs, its tiled refresh, and this frame's state.
+// The temporal cache of one effect: its history (value + blur, and rotation count) as two
+// ping-pong pairs, its tiled refresh, and this frame's state. The world positions its history
+// was computed at are the G-buffer's of last frame, shared by every effect
+// (PassSetup::positionHistory).
 struct EffectCache {
     std::string name;
-    uint32_t value = 0, meta = 0; // frame-graph history ids
+    uint32_t value = 0, count = 0; // frame-graph history ids
     std::unique_ptr<TileRefresh> refresh;
     int refreshTile = -1;        // this frame's
     bool lightDependent = false; // reset when the light changes
@@ -52,6 +55,9 @@ struct PassSetup {
     // rings, PCF rings) as the turn fills the angles.
     float patternOffset = 0.5f;
     std::deque<EffectCache> caches; // empty when caching is off
+    // With caching on, the G-buffer's world positions are a history pair: last frame's is what
+    // every cached effect reprojects against (each keeps only its own value and count).
+    std::optional<uint32_t> positionHistory;
     // With the cache on, the RSM is drawn again only when the light changes.
     bool rsmStale = true;
     // The sky visibility maps are drawn again only when an object moved.
@@ -77,10 +83,12 @@ struct SceneTargets {
     graph::ImageRef position, normal, third, depth; // third: albedo (G-buffer) or flux (RSM)
 };
 // `enabled` (optional) is asked each frame whether to draw; the targets of a pass that may be
-// skipped persist from frame to frame.
+// skipped persist from frame to frame. With `positionHistory`, the position target is a history
+// pair (position is its current side), whose id is written there.
 SceneTargets addScenePass(PassSetup& setup, const std::string& name, const std::string& shader,
                           VkExtent2D extent, VkFormat thirdFormat,
-                          std::function<bool()> enabled = {});
+                          std::function<bool()> enabled = {},
+                          std::optional<uint32_t>* positionHistory = nullptr);
 
 // What the settings say of one effect's cache (cache_<effect>, cache_tile_<effect>,
 // cache_blur_<effect>).
@@ -92,9 +100,13 @@ struct EffectCacheSettings {
 // The temporal cache of an effect, when caching is on (nullptr otherwise).
 EffectCache* createCache(PassSetup& setup, const std::string& name,
                          const EffectCacheSettings& settings, bool lightDependent);
-// What an effect pass binds as its "historyMeta" input: last frame's meta of its cache, or
-// `fallback` (any image the pass reads anyway) without one.
-graph::ImageRef cacheMetaInput(const EffectCache* cache, graph::ImageRef fallback);
+// What an effect pass binds as its "historyPosition" and "historyCount" inputs (temporal.glsl):
+// last frame's world positions and its cache's rotation counts, or `fallback` (any image the
+// pass reads anyway) without a cache.
+struct CacheInputs {
+    graph::ImageRef position, count;
+};
+CacheInputs cacheInputs(const PassSetup& setup, const EffectCache* cache, graph::ImageRef fallback);
 shader::CacheConstants cacheConstants(const PassSetup& setup, const EffectCache* cache);
 // The pattern's radial offset for an effect's pass (the constants' pattern.w): this frame's
 // PassSetup::patternOffset when the effect is cached, else -1 (a single frame's fixed pattern).

@@ -6,7 +6,8 @@
 namespace ssgi {
 
 SceneTargets addScenePass(PassSetup& s, const std::string& name, const std::string& shader,
-                          VkExtent2D extent, VkFormat thirdFormat, std::function<bool()> enabled) {
+                          VkExtent2D extent, VkFormat thirdFormat, std::function<bool()> enabled,
+                          std::optional<uint32_t>* positionHistory) {
     const bool persistent = bool(enabled);
     const VkImageUsageFlags color =
         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
@@ -14,7 +15,13 @@ SceneTargets addScenePass(PassSetup& s, const std::string& name, const std::stri
     auto target = [&](const std::string& suffix, VkFormat format, VkImageUsageFlags usage) {
         return s.graph.createImage(name + suffix, format, extent, usage, persistent);
     };
-    t.position = target(".position", VK_FORMAT_R32G32B32A32_SFLOAT, color);
+    if (positionHistory) {
+        *positionHistory =
+            s.graph.createHistory(name + ".position", VK_FORMAT_R32G32B32A32_SFLOAT, extent, color);
+        t.position = graph::FrameGraph::current(**positionHistory);
+    } else {
+        t.position = target(".position", VK_FORMAT_R32G32B32A32_SFLOAT, color);
+    }
     t.normal = target(".normal", VK_FORMAT_R16G16B16A16_SFLOAT, color);
     t.third =
         target(thirdFormat == VK_FORMAT_R8G8B8A8_UNORM ? ".albedo" : ".flux", thirdFormat, color);

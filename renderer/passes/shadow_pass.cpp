@@ -12,25 +12,27 @@ graph::ImageRef addShadowPass(PassSetup& s, const GBufferAndRsm& in, EffectCache
         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
     const int taps = int(s.model.settings.shadow_taps);
     const vk::Pipeline pipeline =
-        s.computePipeline("shadow.comp", 4, 1, sizeof(shader::ShadowConstants), {{taps}});
+        s.computePipeline("shadow.comp", 5, 1, sizeof(shader::ShadowConstants), {{taps}});
 
-    const graph::ImageRef meta = cacheMetaInput(cache, in.gbuffer.position);
+    const CacheInputs history = cacheInputs(s, cache, in.gbuffer.position);
     addKeepPass(s, cache, {shadow});
     using graph::Use;
     s.graph.addPass("shadow", graph::PassKind::Compute,
                     {{in.gbuffer.position, Use::Sampled},
                      {in.gbuffer.normal, Use::Sampled},
                      {in.rsm.depth, Use::Sampled},
-                     {meta, Use::Sampled},
+                     {history.position, Use::Sampled},
+                     {history.count, Use::Sampled},
                      {shadow, Use::StorageWrite}},
-                    [&s, in, shadow, meta, cache, pipeline](const graph::PassContext& pc) {
+                    [&s, in, shadow, history, cache, pipeline](const graph::PassContext& pc) {
                         vk::Descriptors()
                             .uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size)
                             .sampledImage(1, pc.image(in.gbuffer.position).view, s.nearestSampler)
                             .sampledImage(2, pc.image(in.gbuffer.normal).view, s.nearestSampler)
                             .sampledImage(3, pc.image(in.rsm.depth).view, s.nearestSampler)
-                            .sampledImage(4, pc.image(meta).view, s.nearestSampler)
-                            .storageImage(5, pc.image(shadow).view)
+                            .sampledImage(4, pc.image(history.position).view, s.nearestSampler)
+                            .sampledImage(5, pc.image(history.count).view, s.nearestSampler)
+                            .storageImage(6, pc.image(shadow).view)
                             .push(s.ctx, pc.cmd, pipeline);
                         shader::ShadowConstants constants{};
                         constants.rotation = s.patternRotation;

@@ -12,14 +12,14 @@ graph::ImageRef addSsdoPass(PassSetup& s, const GBufferAndRsm& in, graph::ImageR
         "ssdo", VK_FORMAT_R16G16B16A16_SFLOAT, s.size,
         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
     const vk::Pipeline pipeline =
-        s.computePipeline("ssdo.comp", 6, 1, sizeof(shader::SsdoConstants),
+        s.computePipeline("ssdo.comp", 7, 1, sizeof(shader::SsdoConstants),
                           {{int(s.model.settings.ssdo_samples), secondLayer.valid() ? 1 : 0}});
     // Without peeling the shader never reads its second-layer binding: any valid image will do.
     const graph::ImageRef back = secondLayer.valid() ? secondLayer : in.gbuffer.position;
     const double radius = s.model.settings.ssdo_radius;
     const float rMax = radius > 0.0 ? float(radius) : aoRadius(s.model);
 
-    const graph::ImageRef meta = cacheMetaInput(cache, in.gbuffer.position);
+    const CacheInputs history = cacheInputs(s, cache, in.gbuffer.position);
     addKeepPass(s, cache, {ssdo});
     using graph::Use;
     s.graph.addPass(
@@ -28,19 +28,21 @@ graph::ImageRef addSsdoPass(PassSetup& s, const GBufferAndRsm& in, graph::ImageR
          {in.gbuffer.normal, Use::Sampled},
          {in.gbuffer.third, Use::Sampled},
          {direct, Use::Sampled},
-         {meta, Use::Sampled},
+         {history.position, Use::Sampled},
+         {history.count, Use::Sampled},
          {back, Use::Sampled},
          {ssdo, Use::StorageWrite}},
-        [&s, in, direct, ssdo, meta, back, cache, pipeline, rMax](const graph::PassContext& pc) {
+        [&s, in, direct, ssdo, history, back, cache, pipeline, rMax](const graph::PassContext& pc) {
             vk::Descriptors()
                 .uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size)
                 .sampledImage(1, pc.image(in.gbuffer.position).view, s.nearestSampler)
                 .sampledImage(2, pc.image(in.gbuffer.normal).view, s.nearestSampler)
                 .sampledImage(3, pc.image(in.gbuffer.third).view, s.nearestSampler)
                 .sampledImage(4, pc.image(direct).view, s.nearestSampler)
-                .sampledImage(5, pc.image(meta).view, s.nearestSampler)
-                .sampledImage(6, pc.image(back).view, s.nearestSampler)
-                .storageImage(7, pc.image(ssdo).view)
+                .sampledImage(5, pc.image(history.position).view, s.nearestSampler)
+                .sampledImage(6, pc.image(history.count).view, s.nearestSampler)
+                .sampledImage(7, pc.image(back).view, s.nearestSampler)
+                .storageImage(8, pc.image(ssdo).view)
                 .push(s.ctx, pc.cmd, pipeline);
             shader::SsdoConstants constants{};
             constants.rotation = s.patternRotation;

@@ -15,7 +15,7 @@ EffectCache* createCache(PassSetup& s, const std::string& name, const EffectCach
     c.name = name;
     c.value =
         s.graph.createHistory(name + ".history", VK_FORMAT_R16G16B16A16_SFLOAT, s.size, usage);
-    c.meta = s.graph.createHistory(name + ".meta", VK_FORMAT_R32G32B32A32_SFLOAT, s.size, usage);
+    c.count = s.graph.createHistory(name + ".count", VK_FORMAT_R32_SFLOAT, s.size, usage);
     if (s.model.settings.cache_refresh)
         c.refresh = std::make_unique<TileRefresh>(
             s.size.width, s.size.height, uint32_t(settings.tileSize), uint32_t(s.caches.size()));
@@ -24,8 +24,10 @@ EffectCache* createCache(PassSetup& s, const std::string& name, const EffectCach
     return &c;
 }
 
-graph::ImageRef cacheMetaInput(const EffectCache* cache, graph::ImageRef fallback) {
-    return cache ? graph::FrameGraph::previous(cache->meta) : fallback;
+CacheInputs cacheInputs(const PassSetup& s, const EffectCache* cache, graph::ImageRef fallback) {
+    using graph::FrameGraph;
+    if (!cache) return {fallback, fallback};
+    return {FrameGraph::previous(*s.positionHistory), FrameGraph::previous(cache->count)};
 }
 
 shader::CacheConstants cacheConstants(const PassSetup& s, const EffectCache* cache) {
@@ -66,15 +68,15 @@ void addKeepPass(PassSetup& s, EffectCache* cache, std::vector<graph::ImageRef> 
     using graph::FrameGraph;
     using graph::Use;
     std::vector<graph::ImageUse> uses = {{FrameGraph::previous(cache->value), Use::TransferSrc},
-                                         {FrameGraph::previous(cache->meta), Use::TransferSrc},
+                                         {FrameGraph::previous(cache->count), Use::TransferSrc},
                                          {FrameGraph::current(cache->value), Use::TransferDst},
-                                         {FrameGraph::current(cache->meta), Use::TransferDst}};
+                                         {FrameGraph::current(cache->count), Use::TransferDst}};
     for (const graph::ImageRef& output : outputs)
         uses.push_back({output, Use::TransferDst});
     s.graph.addPass(
         cache->name + ".keep", graph::PassKind::Transfer, uses,
         [cache, outputs](const graph::PassContext& pc) {
-            for (uint32_t history : {cache->value, cache->meta}) {
+            for (uint32_t history : {cache->value, cache->count}) {
                 const vk::Image& from = pc.image(FrameGraph::previous(history));
                 const vk::Image& to = pc.image(FrameGraph::current(history));
                 VkImageCopy region{};
@@ -97,19 +99,21 @@ graph::ImageRef addTemporalPass(PassSetup& s, EffectCache* cache, graph::ImageRe
                                 const GBufferAndRsm& in) {
     if (!cache) return raw;
     const vk::Pipeline pipeline =
-        s.computePipeline("temporal.comp", 5, 2, sizeof(shader::TemporalConstants));
+        s.computePipeline("temporal.comp", 6, 2, sizeof(shader::TemporalConstants));
     using graph::FrameGraph;
     using graph::Use;
     const graph::ImageRef value = FrameGraph::current(cache->value);
+    const CacheInputs history = cacheInputs(s, cache, in.gbuffer.position);
     s.graph.addPass(cache->name + ".temporal", graph::PassKind::Compute,
                     {{in.gbuffer.position, Use::Sampled},
                      {in.gbuffer.normal, Use::Sampled},
                      {raw, Use::Sampled},
                      {FrameGraph::previous(cache->value), Use::Sampled},
-                     {FrameGraph::previous(cache->meta), Use::Sampled},
+                     {history.position, Use::Sampled},
+                     {history.count, Use::Sampled},
                      {value, Use::StorageWrite},
-                     {FrameGraph::current(cache->meta), Use::StorageWrite}},
-                    [&s, cache, raw, in, pipeline](const graph::PassContext& pc) {
+                     {FrameGraph::current(cache->count), Use::StorageWrite}},
+                    [&s, cache, raw, in, history, pipeline](const graph::PassContext& pc) {
                         vk::Descriptors()
                             .uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size)
                             .sampledImage(1, pc.image(in.gbuffer.position).view, s.nearestSampler)
@@ -117,10 +121,10 @@ graph::ImageRef addTemporalPass(PassSetup& s, EffectCache* cache, graph::ImageRe
                             .sampledImage(3, pc.image(raw).view, s.nearestSampler)
                             .sampledImage(4, pc.image(FrameGraph::previous(cache->value)).view,
                                           s.nearestSampler)
-                            .sampledImage(5, pc.image(FrameGraph::previous(cache->meta)).view,
-                                          s.nearestSampler)
-                            .storageImage(6, pc.image(FrameGraph::current(cache->value)).view)
-                            .storageImage(7, pc.image(FrameGraph::current(cache->meta)).view)
+                            .sampledImage(5, pc.image(history.position).view, s.nearestSampler)
+                            .sampledImage(6, pc.image(history.count).view, s.nearestSampler)
+                            .storageImage(7, pc.image(FrameGraph::current(cache->value)).view)
+                            .storageImage(8, pc.image(FrameGraph::current(cache->count)).view)
                             .push(s.ctx, pc.cmd, pipeline);
                         shader::TemporalConstants constants{cacheConstants(s, cache)};
                         const VkExtent2D area = cacheDispatch(s, cache, s.size);

@@ -119,8 +119,8 @@ std::vector<Step> timeline(const Case& c, const Scene& scene, const RunOptions& 
 // Fraction of geometry pixels whose AO (or SSDO) history continued this frame: rotation count
 // above 1. The light does not reset these, so they show what the camera alone does.
 double aoReused(Renderer& r, const View& v, Mask* kept = nullptr) {
-    const char* name = r.frameGraph().find("ao.meta A").valid()     ? "ao.meta"
-                       : r.frameGraph().find("ssdo.meta A").valid() ? "ssdo.meta"
+    const char* name = r.frameGraph().find("ao.count A").valid()     ? "ao.meta"
+                       : r.frameGraph().find("ssdo.count A").valid() ? "ssdo.meta"
                                                                     : nullptr;
     if (!name) return kNaN;
     const Pixels meta = r.readImage(name);

@@ -102,6 +102,7 @@ Image createImage(const Context& ctx, const std::string& name, VkFormat format, 
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(ctx.device, img.image, &req);
     img.memory = allocate(ctx, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    img.memorySize = req.size;
     VK_CHECK(vkBindImageMemory(ctx.device, img.image, img.memory, 0));
 
     // Images used only for copies and clears have no view.

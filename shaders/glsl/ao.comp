@@ -15,8 +15,9 @@ layout(constant_id = 2) const int STEPS = 4;
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
 layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
 layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
-layout(set = 0, binding = 3) uniform sampler2D historyMeta;
-layout(set = 0, binding = 4, rgba16f) uniform writeonly image2D aoImage;
+layout(set = 0, binding = 3) uniform sampler2D historyPosition;
+layout(set = 0, binding = 4) uniform sampler2D historyCount;
+layout(set = 0, binding = 5, rgba16f) uniform writeonly image2D aoImage;
 layout(push_constant) uniform AoBlock { AoConstants constants; };
 
 #include "screen_space.glsl"

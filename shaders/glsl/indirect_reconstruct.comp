@@ -24,11 +24,12 @@ layout(constant_id = 1) const int RADIUS = 8;
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
 layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
 layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
-layout(set = 0, binding = 3) uniform sampler2D historyMeta;
-layout(set = 0, binding = 4) uniform sampler2D estimates;
-layout(set = 0, binding = 5) uniform sampler2D directionals;
-layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D filtered;
-layout(set = 0, binding = 7, rgba16f) uniform writeonly image2D filteredDirectional;
+layout(set = 0, binding = 3) uniform sampler2D historyPosition;
+layout(set = 0, binding = 4) uniform sampler2D historyCount;
+layout(set = 0, binding = 5) uniform sampler2D estimates;
+layout(set = 0, binding = 6) uniform sampler2D directionals;
+layout(set = 0, binding = 7, rgba16f) uniform writeonly image2D filtered;
+layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D filteredDirectional;
 layout(push_constant) uniform IndirectBlock { IndirectConstants constants; };
 
 #include "screen_space.glsl"

@@ -14,8 +14,9 @@ layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; }
 layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
 layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
 layout(set = 0, binding = 3) uniform sampler2D rsmDepth;
-layout(set = 0, binding = 4) uniform sampler2D historyMeta;
-layout(set = 0, binding = 5, rgba16f) uniform writeonly image2D shadowImage;
+layout(set = 0, binding = 4) uniform sampler2D historyPosition;
+layout(set = 0, binding = 5) uniform sampler2D historyCount;
+layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D shadowImage;
 layout(push_constant) uniform ShadowBlock { ShadowConstants constants; };
 
 #include "screen_space.glsl"

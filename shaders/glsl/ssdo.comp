@@ -22,9 +22,10 @@ layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
 layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
 layout(set = 0, binding = 3) uniform sampler2D gbufferAlbedo;
 layout(set = 0, binding = 4) uniform sampler2D directRadiance;
-layout(set = 0, binding = 5) uniform sampler2D historyMeta;
-layout(set = 0, binding = 6) uniform sampler2D secondLayer; // peel.position (PEELING only)
-layout(set = 0, binding = 7, rgba16f) uniform writeonly image2D ssdoImage;
+layout(set = 0, binding = 5) uniform sampler2D historyPosition;
+layout(set = 0, binding = 6) uniform sampler2D historyCount;
+layout(set = 0, binding = 7) uniform sampler2D secondLayer; // peel.position (PEELING only)
+layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D ssdoImage;
 layout(push_constant) uniform SsdoBlock { SsdoConstants constants; };
 
 #include "screen_space.glsl"

@@ -29,9 +29,10 @@ layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
 layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
 layout(set = 0, binding = 3) uniform sampler2D current; // a = 1 computed this frame, 0 skipped
 layout(set = 0, binding = 4) uniform sampler2D historyValue;
-layout(set = 0, binding = 5) uniform sampler2D historyMeta;
-layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D newValue;
-layout(set = 0, binding = 7, rgba32f) uniform writeonly image2D newMeta;
+layout(set = 0, binding = 5) uniform sampler2D historyPosition;
+layout(set = 0, binding = 6) uniform sampler2D historyCount;
+layout(set = 0, binding = 7, rgba16f) uniform writeonly image2D newValue;
+layout(set = 0, binding = 8, r32f) uniform writeonly image2D newCount;
 layout(push_constant) uniform TemporalBlock { TemporalConstants constants; };
 
 #include "screen_space.glsl"
@@ -58,7 +59,7 @@ vec4 historyAt(Reprojection r, vec3 world, out float spread) {
     for (int i = 0; i < 4; ++i) {
         ivec2 offset = ivec2(i & 1, i >> 1);
         ivec2 q = clamp(base + offset, ivec2(0), last);
-        vec4 meta = texelFetch(historyMeta, q, 0);
+        vec4 meta = historyMeta(q);
         if (meta.w == 0.0 || distance(meta.xyz, world) > r.epsilon) continue;
         float w = (offset.x == 1 ? f.x : 1.0 - f.x) * (offset.y == 1 ? f.y : 1.0 - f.y);
         vec2 d = (vec2(offset) - f) * toPixels;
@@ -87,7 +88,7 @@ void main() {
     vec4 position = texelFetch(gbufferPosition, pixel, 0);
     if (position.w == 0.0) {
         imageStore(newValue, pixel, vec4(texelFetch(current, pixel, 0).rgb, 0.0));
-        imageStore(newMeta, pixel, vec4(0.0));
+        imageStore(newCount, pixel, vec4(0.0));
         return;
     }
     CacheConstants cache = constants.cache;
@@ -171,5 +172,5 @@ void main() {
     if (spread == 0.0 && blur > REACCUMULATE_BLUR && count >= rotations) count = rotations - 1.0;
     if (blur < 1e-3) blur = 0.0; // below a thirtieth of a pixel: gone
     imageStore(newValue, pixel, vec4(value, blur));
-    imageStore(newMeta, pixel, vec4(position.xyz, max(min(count, rotations), 1.0)));
+    imageStore(newCount, pixel, vec4(max(min(count, rotations), 1.0)));
 }

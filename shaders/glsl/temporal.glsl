@@ -1,9 +1,15 @@
 // Reverse reprojection into an effect's history (thesis 3.1.1) and the reuse test (3.1.2),
 // shared by the effect passes (to skip converged pixels) and the temporal passes (to blend).
-// Needs: frame, historyMeta (last frame's world position in xyz, rotation count in w),
-// gbufferNormal, screen_space.glsl.
+// Needs: frame, historyPosition (last frame's G-buffer world positions, shared by every cached
+// effect), historyCount (the effect's rotation counts, 0 where it holds nothing), gbufferNormal,
+// screen_space.glsl.
 #ifndef SSGI_TEMPORAL_GLSL
 #define SSGI_TEMPORAL_GLSL
+
+// Last frame's world position (xyz) and the effect's rotation count (w) at texel q.
+vec4 historyMeta(ivec2 q) {
+    return vec4(texelFetch(historyPosition, q, 0).xyz, texelFetch(historyCount, q, 0).r);
+}
 
 struct Reprojection {
     bool valid;    // the pixel saw the same surface last frame
@@ -56,7 +62,7 @@ Reprojection reproject(vec3 world, vec3 normal, CacheConstants cache) {
     if (any(lessThan(r.uv, vec2(0.0))) || any(greaterThanEqual(r.uv, vec2(1.0)))) return r;
     // Positions do not interpolate across edges: the nearest texel's is compared. The history
     // has the frame's size, except in the first frame after a resize (Renderer::continueFrom).
-    vec4 meta = texelFetch(historyMeta, ivec2(r.uv * vec2(textureSize(historyMeta, 0))), 0);
+    vec4 meta = historyMeta(ivec2(r.uv * vec2(textureSize(historyCount, 0))));
     float facing = abs(dot(normal, normalize(frame.cameraPosition.xyz - world)));
     float epsilon = cache.epsilon / (pixelsPerUnit(viewDepth(world)) * max(facing, 0.1));
     r.epsilon = epsilon;

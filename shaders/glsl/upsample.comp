@@ -19,9 +19,10 @@ layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
 layout(set = 0, binding = 3) uniform sampler2D rsmPosition;
 layout(set = 0, binding = 4) uniform sampler2D rsmNormal;
 layout(set = 0, binding = 5) uniform sampler2D rsmFlux;
-layout(set = 0, binding = 6) uniform sampler2D historyMeta;
-layout(set = 0, binding = 7) uniform sampler2D halfIndirect;
-layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D indirectImage;
+layout(set = 0, binding = 6) uniform sampler2D historyPosition;
+layout(set = 0, binding = 7) uniform sampler2D historyCount;
+layout(set = 0, binding = 8) uniform sampler2D halfIndirect;
+layout(set = 0, binding = 9, rgba16f) uniform writeonly image2D indirectImage;
 layout(push_constant) uniform IndirectBlock { IndirectConstants constants; };
 
 #include "screen_space.glsl"
