@@ -310,8 +310,11 @@ CaseResult runCase(vk::Context& ctx, const Case& c, const RunOptions& o,
     std::vector<double> relative;
     for (size_t k = 0; k < errors.size(); ++k) {
         double tolerance = 2.0 * (std::isfinite(rests[k]) ? rests[k] : freshSettled);
-        if (std::isfinite(rests[k]) && std::isfinite(freshErrors[k]))
-            tolerance = std::max(tolerance, 2.0 * freshErrors[k]);
+        // The fresh start renders `converge` frames, one fewer than the hold's after the change:
+        // past them it has settled.
+        const double fresh = std::isfinite(freshErrors[k]) ? freshErrors[k] : freshSettled;
+        if (std::isfinite(rests[k]) && std::isfinite(fresh))
+            tolerance = std::max(tolerance, 2.0 * fresh);
         relative.push_back(errors[k] / tolerance);
     }
     res.tolerance = 2.0 * (std::isfinite(res.restError) ? res.restError : freshSettled);
