@@ -271,39 +271,7 @@ void Renderer::continueFrom(Renderer& previous) {
     cutRequested_ = previous.cutRequested_;
     cuts_ = previous.cuts_;
     frameIndex_ = previous.frameIndex_;
-    if (!scene_.settings.cache_resize || frameIndex_ == 0 || !setup_->positionHistory ||
-        !previous.setup_->positionHistory)
-        return;
-    // After its last frame every pair has swapped: what it wrote is the previous side.
-    using graph::FrameGraph;
-    auto last = [&previous](uint32_t history) {
-        return previous.graph_->readTexels(FrameGraph::previous(history));
-    };
-    bool carried = false;
-    for (const EffectCache& from : previous.setup_->caches) {
-        if (!previous.graph_->hasHistory(from.value)) continue;
-        for (const EffectCache& to : setup_->caches) {
-            if (to.name != from.name) continue;
-            graph_->carryHistory(to.value, previous.size(), last(from.value));
-            // Each pixel's history counts as one sample (rotation count 1): screen-space effects
-            // converge to another value at another size (their samples snap to other pixels),
-            // and a history converged at the old size would hold the new one off for dozens of
-            // frames (docs/temporal-cache.md, "Resize"). The shadow, which allows no blur, starts
-            // over; the others blend the new frames into the resampled image.
-            std::vector<uint8_t> count = last(from.count);
-            for (size_t i = 0; i + 4 <= count.size(); i += 4) { // R32F
-                float n = 0.0f;
-                std::memcpy(&n, &count[i], 4);
-                n = std::min(n, 1.0f);
-                std::memcpy(&count[i], &n, 4);
-            }
-            graph_->carryHistory(to.count, previous.size(), count);
-            carried = true;
-        }
-    }
-    if (carried)
-        graph_->carryHistory(*setup_->positionHistory, previous.size(),
-                             last(*previous.setup_->positionHistory));
+    if (scene_.settings.cache_resize && frameIndex_ > 0) carryCaches(*previous.setup_, *setup_);
 }
 
 FrameProfile Renderer::lastFrameProfile() const {
@@ -343,8 +311,7 @@ void Renderer::setTime(float seconds) {
     setup_->skyMapsStale = true;
     for (EffectCache& cache : setup_->caches)
         if (cache.motionTest == MOTION_RESTART_ALL) {
-            graph_->resetHistory(cache.value);
-            graph_->resetHistory(cache.count);
+            restartCache(*graph_, cache);
         }
 }
 
@@ -354,8 +321,7 @@ void Renderer::setLight(const SpotLight& light) {
     stillFrames_ = 0;
     for (EffectCache& cache : setup_->caches)
         if (cache.lightDependent) {
-            graph_->resetHistory(cache.value);
-            graph_->resetHistory(cache.count);
+            restartCache(*graph_, cache);
         }
 }
 

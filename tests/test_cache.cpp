@@ -3,7 +3,7 @@
 #include "renderer.h"
 #include "scene/camera.h"
 #include "support.h"
-#include "tile_refresh.h"
+#include "cache/tile_refresh.h"
 
 #include <algorithm>
 #include <cmath>

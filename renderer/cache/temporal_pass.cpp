@@ -1,6 +1,7 @@
 // <effect>.temporal: the temporal cache of one effect (thesis 3.1): reverse reprojection,
 // accumulation with the thesis's confidence rule or a running mean, reuse of converged pixels
 // (the effect pass skips them), tiled refresh. The history pair swaps each frame in the graph.
+#include "cache/cache.h"
 #include "passes/pass_setup.h"
 
 #include <algorithm>

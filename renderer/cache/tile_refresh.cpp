@@ -1,4 +1,4 @@
-#include "tile_refresh.h"
+#include "cache/tile_refresh.h"
 
 #include <algorithm>
 #include <numeric>

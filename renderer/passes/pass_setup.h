@@ -3,10 +3,10 @@
 // so the passes' record functions may keep a pointer to it.
 #pragma once
 
+#include "cache/cache.h"
 #include "graph/frame_graph.h"
 #include "scene_gpu.h"
 #include "shared.h"
-#include "tile_refresh.h"
 #include "vk/pipeline.h"
 
 #include <deque>
@@ -15,24 +15,6 @@
 #include <vector>
 
 namespace ssgi {
-
-// The temporal cache of one effect: its history (value + blur, and rotation count) as two
-// ping-pong pairs, its tiled refresh, and this frame's state. The world positions its history
-// was computed at are the G-buffer's of last frame, shared by every effect
-// (PassSetup::positionHistory).
-struct EffectCache {
-    std::string name;
-    uint32_t value = 0, count = 0; // frame-graph history ids
-    std::unique_ptr<TileRefresh> refresh;
-    int refreshTile = -1;        // this frame's
-    bool lightDependent = false; // reset when the light changes
-    // What an object that moved restarts (shared.h MOTION_*): the whole history; per pixel,
-    // those within `motionReach` of it, or those whose path to the light passes near it.
-    int motionTest = MOTION_RESTART_ALL;
-    float motionReach = 0.0f;
-    // The resampling blur (squared pixels) its history may carry under a moving camera.
-    float blurBudget = 0.0f;
-};
 
 struct PassSetup {
     vk::Context& ctx;
@@ -90,36 +72,6 @@ SceneTargets addScenePass(PassSetup& setup, const std::string& name, const std::
                           std::function<bool()> enabled = {},
                           std::optional<uint32_t>* positionHistory = nullptr);
 
-// What the settings say of one effect's cache (cache_<effect>, cache_tile_<effect>,
-// cache_blur_<effect>).
-struct EffectCacheSettings {
-    bool cached;
-    int tileSize;      // of its tiled refresh
-    double blurBudget; // squared pixels
-};
-// The temporal cache of an effect, when caching is on (nullptr otherwise).
-EffectCache* createCache(PassSetup& setup, const std::string& name,
-                         const EffectCacheSettings& settings, bool lightDependent);
-// What an effect pass binds as its "historyPosition" and "historyCount" inputs (temporal.glsl):
-// last frame's world positions and its cache's rotation counts, or `fallback` (any image the
-// pass reads anyway) without a cache.
-struct CacheInputs {
-    graph::ImageRef position, count;
-};
-CacheInputs cacheInputs(const PassSetup& setup, const EffectCache* cache, graph::ImageRef fallback);
-shader::CacheConstants cacheConstants(const PassSetup& setup, const EffectCache* cache);
-// The pattern's radial offset for an effect's pass (the constants' pattern.w): this frame's
-// PassSetup::patternOffset when the effect is cached, else -1 (a single frame's fixed pattern).
-float radialOffset(const PassSetup& setup, const EffectCache* cache);
-// The threads a cached effect's pass dispatches: the whole image (`full`), or once settled only
-// its refresh tile (none without one); `divisor` 2 for the half-resolution pass.
-VkExtent2D cacheDispatch(const PassSetup& setup, const EffectCache* cache, VkExtent2D full,
-                         uint32_t divisor = 1);
-// <effect>.keep, run only on settled frames before the effect: last frame's history carried
-// over whole to this frame's side (the temporal pass then rewrites the refresh tile), and the
-// effect's own images cleared, so that what the tile-only passes do not write reads "skipped".
-void addKeepPass(PassSetup& setup, EffectCache* cache, std::vector<graph::ImageRef> outputs);
-
 // gbuffer: world position (w = 1 on geometry), normal, albedo, depth.
 SceneTargets addGBufferPass(PassSetup& setup);
 // rsm: light-view world position, normal, reflected flux, depth. Drawn only while
@@ -143,11 +95,6 @@ graph::ImageRef addDirectPass(PassSetup& setup, const GBufferAndRsm& inputs,
 
 // ao: visibility of the hemisphere within the AO radius (1 = open).
 graph::ImageRef addAoPass(PassSetup& setup, const GBufferAndRsm& inputs, EffectCache* cache);
-
-// <effect>.temporal: blends an effect's value of this frame into its history; returns what
-// the effect's consumers read (the raw value when there is no cache).
-graph::ImageRef addTemporalPass(PassSetup& setup, EffectCache* cache, graph::ImageRef raw,
-                                const GBufferAndRsm& inputs);
 
 // indirect (half resolution) + upsample, indirect_method 0: one-bounce irradiance / pi from
 // the RSM's VPLs.
