@@ -204,15 +204,19 @@ void FrameGraph::endFrame() {
     }
 }
 
-const vk::Image& FrameGraph::prepareTransferSource(VkCommandBuffer cmd, ImageRef ref) {
-    Resource& r = resources_[resolve(ref)];
-    if (auto b = transition(r.state, Use::TransferSrc, PassKind::Transfer, false, r.image.image,
-                            r.image.aspect)) {
+void FrameGraph::transferBarrier(VkCommandBuffer cmd, Resource& r, Use use, bool discard) {
+    if (auto b =
+            transition(r.state, use, PassKind::Transfer, discard, r.image.image, r.image.aspect)) {
         VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
         dep.imageMemoryBarrierCount = 1;
         dep.pImageMemoryBarriers = &*b;
         vkCmdPipelineBarrier2(cmd, &dep);
     }
+}
+
+const vk::Image& FrameGraph::prepareTransferSource(VkCommandBuffer cmd, ImageRef ref) {
+    Resource& r = resources_[resolve(ref)];
+    transferBarrier(cmd, r, Use::TransferSrc, false);
     return r.image;
 }
 
@@ -253,13 +257,7 @@ void FrameGraph::carryHistory(uint32_t history, VkExtent2D extent,
     vk::Buffer staging = vk::createBuffer(ctx_, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
     std::memcpy(staging.mapped, texels.data(), size);
     ctx_.submitAndWait([&](VkCommandBuffer cmd) {
-        if (auto b = transition(r.state, Use::TransferDst, PassKind::Transfer, true, r.image.image,
-                                r.image.aspect)) {
-            VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-            dep.imageMemoryBarrierCount = 1;
-            dep.pImageMemoryBarriers = &*b;
-            vkCmdPipelineBarrier2(cmd, &dep);
-        }
+        transferBarrier(cmd, r, Use::TransferDst, true); // what it held is not needed
         VkBufferImageCopy region{};
         region.imageSubresource = {r.image.aspect, 0, 0, 1};
         region.imageExtent = {extent.width, extent.height, 1};

@@ -147,6 +147,8 @@ private:
         std::function<bool()> enabled;
     };
     uint32_t resolve(ImageRef ref) const;
+    // Records the barrier (if any) that readies `r` for a transfer `use`, outside any pass.
+    void transferBarrier(VkCommandBuffer cmd, Resource& r, Use use, bool discard);
     void writeTimestamp(VkCommandBuffer cmd, uint32_t query, const std::string& pass);
     uint32_t addResource(const std::string& name, VkFormat format, VkExtent2D extent,
                          VkImageUsageFlags usage, bool transient);
