@@ -1,9 +1,9 @@
 // The temporal cache (thesis 3.1) at frames 1, 16 and 64: convergence, disocclusion, reuse of
 // converged pixels, tiled refresh, and the reset a moved light needs.
+#include "cache/tile_refresh.h"
 #include "renderer.h"
 #include "scene/camera.h"
 #include "support.h"
-#include "cache/tile_refresh.h"
 
 #include <algorithm>
 #include <cmath>

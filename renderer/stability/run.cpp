@@ -121,7 +121,7 @@ std::vector<Step> timeline(const Case& c, const Scene& scene, const RunOptions& 
 double aoReused(Renderer& r, const View& v, Mask* kept = nullptr) {
     const char* name = r.frameGraph().find("ao.count A").valid()     ? "ao.meta"
                        : r.frameGraph().find("ssdo.count A").valid() ? "ssdo.meta"
-                                                                    : nullptr;
+                                                                     : nullptr;
     if (!name) return kNaN;
     const Pixels meta = r.readImage(name);
     size_t reused = 0, geometry = 0;
