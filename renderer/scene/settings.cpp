@@ -37,24 +37,30 @@ const SettingRow& findSetting(const std::string& where, const std::string& name)
     throw InputError(where + ": unknown setting '" + name + "' (known:" + known + ")");
 }
 
-} // namespace
-
-double checkSetting(const std::string& where, const std::string& name, double value) {
-    const SettingRow& row = findSetting(where, name);
+// `value` if it lies in the row's range (a whole number where the row asks for one).
+double checked(const SettingRow& row, const std::string& where, double value) {
     std::ostringstream problem;
-    problem << where << ": setting '" << name << "' is " << value << ", outside [" << row.min
+    problem << where << ": setting '" << row.name << "' is " << value << ", outside [" << row.min
             << ", " << row.max << "]";
     if (!std::isfinite(value) || value < row.min || value > row.max)
         throw InputError(problem.str());
     if (row.whole() && value != std::floor(value))
-        throw InputError(where + ": setting '" + name + "' must be a whole number");
+        throw InputError(where + ": setting '" + row.name + "' must be a whole number");
     return value;
+}
+
+} // namespace
+
+double checkSetting(const std::string& where, const std::string& name, double value) {
+    return checked(findSetting(where, name), where, value);
 }
 
 Settings withOverrides(Settings settings, const SettingOverrides& overrides,
                        const std::string& where) {
-    for (const auto& [name, value] : overrides)
-        findSetting(where, name).set(settings, checkSetting(where, name, value));
+    for (const auto& [name, value] : overrides) {
+        const SettingRow& row = findSetting(where, name);
+        row.set(settings, checked(row, where, value));
+    }
     return settings;
 }
 
@@ -82,13 +88,12 @@ std::string docNumber(double v) {
 
 // A flag is set as 0 or 1 (`--set cache=0`), and shown so.
 std::string docDefault(const SettingRow& row) {
-    if (std::string(row.type) == "bool") return row.defaultValue != 0.0 ? "1 (on)" : "0 (off)";
+    if (row.flag()) return row.defaultValue != 0.0 ? "1 (on)" : "0 (off)";
     return docNumber(row.defaultValue);
 }
 
 std::string docRange(const SettingRow& row) {
-    return docNumber(row.min) + (std::string(row.type) == "bool" ? ", " : " .. ") +
-           docNumber(row.max);
+    return docNumber(row.min) + (row.flag() ? ", " : " .. ") + docNumber(row.max);
 }
 
 } // namespace

@@ -8,6 +8,7 @@
 #include <map>
 #include <span>
 #include <string>
+#include <string_view>
 
 namespace ssgi {
 
@@ -132,7 +133,8 @@ struct SettingRow {
     const char* meaning;
     double (*get)(const Settings&);
     void (*set)(Settings&, double); // the value already checked
-    bool whole() const { return type[0] != 'd'; }
+    bool flag() const { return std::string_view(type) == "bool"; }
+    bool whole() const { return flag() || std::string_view(type) == "int"; }
 };
 std::span<const SettingRow> settingTable();
 

@@ -36,7 +36,6 @@ void TimingHistory::clear() {
 
 namespace {
 
-// Settings grouped by what they belong to, in the order a reader meets the passes.
 void plot(const char* id, const std::deque<float>& values, ImVec2 size) {
     std::vector<float> v(values.begin(), values.end());
     // ImGui 1.86 draws nothing for a plot sized "to the edge" (negative width): give it the width.
@@ -50,7 +49,7 @@ bool settingWidget(const SettingRow& row, Settings& settings) {
     bool changed = false;
     const double value = row.get(settings);
     double edited = value;
-    if (std::string(row.type) == "bool") {
+    if (row.flag()) {
         bool on = value != 0.0;
         changed = ImGui::Checkbox(row.name, &on);
         edited = on ? 1.0 : 0.0;
