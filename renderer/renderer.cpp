@@ -325,40 +325,43 @@ void Renderer::setLight(const SpotLight& light) {
         }
 }
 
-std::vector<float> Renderer::readImage(const std::string& name) {
+graph::ImageRef Renderer::imageNamed(const std::string& name) const {
     using graph::FrameGraph;
     // After the frame every pair has swapped: what it wrote is now the "previous" side.
     if (setup_->positionHistory && name == "gbuffer.position")
-        return graph_->download(FrameGraph::previous(*setup_->positionHistory));
+        return FrameGraph::previous(*setup_->positionHistory);
     for (const EffectCache& cache : setup_->caches) {
-        if (name == cache.name + ".history")
-            return graph_->download(FrameGraph::previous(cache.value));
-        if (name == cache.name + ".count")
-            return graph_->download(FrameGraph::previous(cache.count));
-        if (name == cache.name + ".meta") { // the shared positions, the effect's count in alpha
-            std::vector<float> meta =
-                graph_->download(FrameGraph::previous(*setup_->positionHistory));
-            const std::vector<float> count = graph_->download(FrameGraph::previous(cache.count));
-            for (size_t i = 0; i < meta.size(); i += 4)
-                meta[i + 3] = count[i];
-            return meta;
-        }
+        if (name == cache.name + ".history") return FrameGraph::previous(cache.value);
+        if (name == cache.name + ".count") return FrameGraph::previous(cache.count);
     }
-    graph::ImageRef ref = graph_->find(name);
+    return graph_->find(name);
+}
+
+const EffectCache* Renderer::metaOf(const std::string& name) const {
+    for (const EffectCache& cache : setup_->caches)
+        if (name == cache.name + ".meta") return &cache;
+    return nullptr;
+}
+
+std::vector<float> Renderer::readImage(const std::string& name) {
+    if (const EffectCache* cache = metaOf(name)) { // the shared positions, the count in alpha
+        std::vector<float> meta = readImage("gbuffer.position");
+        const std::vector<float> count = readImage(cache->name + ".count");
+        for (size_t i = 0; i < meta.size(); i += 4)
+            meta[i + 3] = count[i];
+        return meta;
+    }
+    const graph::ImageRef ref = imageNamed(name);
     if (!ref.valid()) throw InputError("no image named '" + name + "' in the frame");
     return graph_->download(ref);
 }
 
 bool Renderer::hasImage(const std::string& name) const {
-    if (setup_->positionHistory && name == "gbuffer.position") return true;
-    for (const EffectCache& cache : setup_->caches)
-        for (const char* suffix : {".history", ".meta", ".count"})
-            if (name == cache.name + suffix) return true;
-    return graph_->find(name).valid();
+    return metaOf(name) || imageNamed(name).valid();
 }
 
 const vk::Image& Renderer::prepareCopySource(VkCommandBuffer cmd, const std::string& name) {
-    graph::ImageRef ref = graph_->find(name);
+    const graph::ImageRef ref = imageNamed(name);
     if (!ref.valid()) throw InputError("no image named '" + name + "' in the frame");
     return graph_->prepareTransferSource(cmd, ref);
 }

@@ -76,6 +76,10 @@ public:
     const graph::FrameGraph& frameGraph() const { return *graph_; }
 
 private:
+    // The image readImage(name) downloads (a pair's side the last frame wrote), or none; the
+    // cache whose "<effect>.meta" `name` is (composed of two images), or none.
+    graph::ImageRef imageNamed(const std::string& name) const;
+    const EffectCache* metaOf(const std::string& name) const;
     void updateUniforms(const Camera& camera);
     bool startsAfresh(const Camera& camera) const;
     void uploadTransforms(); // transforms_, moved to the GPU's origin
