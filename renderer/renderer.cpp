@@ -376,12 +376,8 @@ std::vector<std::string> Renderer::cachedEffects() const {
 VkRect2D Renderer::refreshedTile(const std::string& effect) const {
     for (const EffectCache& cache : setup_->caches) {
         if (cache.name != effect || !cache.refresh || cache.refreshTile < 0) continue;
-        const uint32_t tile = cache.refresh->tileSize();
-        const uint32_t tilesX = (setup_->size.width + tile - 1) / tile;
-        const uint32_t x = (uint32_t(cache.refreshTile) % tilesX) * tile;
-        const uint32_t y = (uint32_t(cache.refreshTile) / tilesX) * tile;
-        return {{int32_t(x), int32_t(y)},
-                {std::min(tile, setup_->size.width - x), std::min(tile, setup_->size.height - y)}};
+        const TileRect tile = cache.refresh->rect(uint32_t(cache.refreshTile));
+        return {{int32_t(tile.x), int32_t(tile.y)}, {tile.width, tile.height}};
     }
     return {};
 }

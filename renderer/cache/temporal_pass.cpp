@@ -56,12 +56,8 @@ VkExtent2D cacheDispatch(const PassSetup& s, const EffectCache* cache, VkExtent2
                          uint32_t divisor) {
     if (!cache || !s.settled) return full;
     if (!cache->refresh || cache->refreshTile < 0) return {0, 0};
-    const uint32_t tile = cache->refresh->tileSize();
-    const uint32_t tilesX = (s.size.width + tile - 1) / tile;
-    const uint32_t x = (uint32_t(cache->refreshTile) % tilesX) * tile;
-    const uint32_t y = (uint32_t(cache->refreshTile) / tilesX) * tile;
-    return {(std::min(tile, s.size.width - x) + divisor - 1) / divisor,
-            (std::min(tile, s.size.height - y) + divisor - 1) / divisor};
+    const TileRect tile = cache->refresh->rect(uint32_t(cache->refreshTile));
+    return {(tile.width + divisor - 1) / divisor, (tile.height + divisor - 1) / divisor};
 }
 
 void addKeepPass(PassSetup& s, EffectCache* cache, std::vector<graph::ImageRef> outputs) {
