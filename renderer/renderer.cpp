@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtx/component_wise.hpp>
 #include <limits>
 #include <stdexcept>
@@ -99,7 +100,16 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
         throw InputError("image size " + std::to_string(options.width) + "x" +
                          std::to_string(options.height) + " is outside 1.." +
                          std::to_string(limit) + " (this device's largest 2D image)");
-    checkImageMemory(ctx, options.width, options.height);
+    // The screen images hold the output and the guard band on each side (see visibleRect()).
+    const uint32_t band = uint32_t(scene.settings.guard_band);
+    const VkExtent2D rendered{options.width + 2 * band, options.height + 2 * band};
+    if (rendered.width > limit || rendered.height > limit)
+        throw InputError("image size " + std::to_string(options.width) + "x" +
+                         std::to_string(options.height) + " with a guard band of " +
+                         std::to_string(band) + " pixels is beyond " + std::to_string(limit) +
+                         " (this device's largest 2D image)");
+    checkImageMemory(ctx, rendered.width, rendered.height);
+    visible_ = {{int32_t(band), int32_t(band)}, {options.width, options.height}};
     const int view = viewIndex(options.view);
     const uint32_t rsmSize = uint32_t(scene.settings.shadow_map_size);
     if (rsmSize == 0 || rsmSize > limit)
@@ -121,7 +131,8 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
             vk::createSampler(ctx, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
         setup_->linearSampler =
             vk::createSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
-        setup_->size = {options.width, options.height};
+        setup_->size = rendered;
+        setup_->guardBand = band;
         setup_->rsmSize = {rsmSize, rsmSize};
 
         setup_->view = view;
@@ -158,7 +169,7 @@ void Renderer::uploadTransforms() {
 
 void Renderer::updateUniforms(const Camera& worldCamera) {
     const VkExtent2D size = setup_->size;
-    const float aspect = float(size.width) / float(size.height);
+    const float aspect = float(visible_.extent.width) / float(visible_.extent.height);
     // The camera, light and bounds as the GPU sees them (see gpuOrigin).
     Camera camera = worldCamera;
     camera.position = moved(camera.position, origin_);
@@ -168,7 +179,12 @@ void Renderer::updateUniforms(const Camera& worldCamera) {
     const LightFrustum light = lightFrustum(l, bounds);
     shader::FrameUniforms u{};
     u.view = viewMatrix(camera);
-    u.projection = projectionMatrix(camera, aspect);
+    // The camera's frustum fills the output; the guard band widens it by as many pixels on
+    // each side: x and y shrink in clip space by output / rendered, so a pixel of the output
+    // sees the same ray it would without a band.
+    const glm::vec3 band(float(visible_.extent.width) / float(size.width),
+                         float(visible_.extent.height) / float(size.height), 1.0f);
+    u.projection = glm::scale(glm::mat4(1.0f), band) * projectionMatrix(camera, aspect);
     u.viewProjection = u.projection * u.view;
     u.inverseViewProjection = glm::inverse(u.viewProjection);
     u.previousViewProjection = frameIndex_ == 0 ? u.viewProjection : previousViewProjection_;
@@ -353,7 +369,16 @@ std::vector<float> Renderer::readImage(const std::string& name) {
     }
     const graph::ImageRef ref = imageNamed(name);
     if (!ref.valid()) throw InputError("no image named '" + name + "' in the frame");
-    return graph_->download(ref);
+    std::vector<float> texels = graph_->download(ref);
+    const VkExtent2D e = graph_->image(ref).extent;
+    if (setup_->guardBand == 0 || e.width != setup_->size.width || e.height != setup_->size.height)
+        return texels; // no band, or not a screen image (the light's view, half resolution)
+    const VkRect2D v = visible_;
+    std::vector<float> output(size_t(v.extent.width) * v.extent.height * 4);
+    for (uint32_t y = 0; y < v.extent.height; ++y)
+        std::copy_n(texels.begin() + 4 * ((size_t(y) + v.offset.y) * e.width + v.offset.x),
+                    4 * size_t(v.extent.width), output.begin() + 4 * size_t(y) * v.extent.width);
+    return output;
 }
 
 bool Renderer::hasImage(const std::string& name) const {
@@ -377,7 +402,16 @@ VkRect2D Renderer::refreshedTile(const std::string& effect) const {
     for (const EffectCache& cache : setup_->caches) {
         if (cache.name != effect || !cache.refresh || cache.refreshTile < 0) continue;
         const TileRect tile = cache.refresh->rect(uint32_t(cache.refreshTile));
-        return {{int32_t(tile.x), int32_t(tile.y)}, {tile.width, tile.height}};
+        // In the output's pixels: the tile less what of it lies in the guard band.
+        const int32_t x0 = std::max(int32_t(tile.x), visible_.offset.x);
+        const int32_t y0 = std::max(int32_t(tile.y), visible_.offset.y);
+        const int32_t x1 = std::min(int32_t(tile.x + tile.width),
+                                    visible_.offset.x + int32_t(visible_.extent.width));
+        const int32_t y1 = std::min(int32_t(tile.y + tile.height),
+                                    visible_.offset.y + int32_t(visible_.extent.height));
+        if (x1 <= x0 || y1 <= y0) return {};
+        return {{x0 - visible_.offset.x, y0 - visible_.offset.y},
+                {uint32_t(x1 - x0), uint32_t(y1 - y0)}};
     }
     return {};
 }

@@ -61,16 +61,20 @@ public:
     // cached effect's history is "<effect>.history" (the blended value) and "<effect>.meta"
     // (world position, the effect's rotation count in alpha: its "<effect>.count" beside the
     // G-buffer's positions, which every cached effect shares; "<effect>.count" alone is the
-    // count in red), as the last frame wrote them.
+    // count in red), as the last frame wrote them. A screen image is read at size(): its guard
+    // band (the guard_band setting) left out.
     std::vector<float> readImage(const std::string& name);
     // Whether readImage(name) finds an image in this frame.
     bool hasImage(const std::string& name) const;
-    VkExtent2D size() const { return setup_->size; }
+    // The output's size ("hdr", "ldr"); the screen images the passes write are larger by the
+    // guard band on each side.
+    VkExtent2D size() const { return visible_.extent; }
     // For the viewer: records into cmd, after the last frame, the barrier that makes image `name`
     // ("ldr") a transfer source, and returns it.
     const vk::Image& prepareCopySource(VkCommandBuffer cmd, const std::string& name);
     // The cached effects of this frame ("shadow", "ao", ...), and the pixels of the tile a cached
-    // effect refreshed in the last frame (extent 0 when none).
+    // effect refreshed in the last frame, in the output's pixels (extent 0 when none, or when it
+    // lay in the guard band).
     std::vector<std::string> cachedEffects() const;
     VkRect2D refreshedTile(const std::string& effect) const;
     const graph::FrameGraph& frameGraph() const { return *graph_; }
@@ -91,6 +95,7 @@ private:
     std::unique_ptr<graph::FrameGraph> graph_;
     std::unique_ptr<PassSetup> setup_;
     SpotLight light_;
+    VkRect2D visible_{}; // where the output lies in the screen images (guard_band)
     uint32_t frameIndex_ = 0;
     vk::HostSpan lastSubmission_;
     uint32_t stillFrames_ = 0;          // frames in a row with this camera and light

@@ -10,8 +10,10 @@ CompositeOutputs addCompositePass(PassSetup& s, const GBufferAndRsm& in,
                                   const LightingTerms& terms) {
     const VkImageUsageFlags storage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     CompositeOutputs out;
-    out.hdr = s.graph.createImage("hdr", VK_FORMAT_R32G32B32A32_SFLOAT, s.size, storage);
-    out.ldr = s.graph.createImage("ldr", VK_FORMAT_R8G8B8A8_UNORM, s.size, storage);
+    // The output's size: the screen images less the guard band on each side.
+    const VkExtent2D output{s.size.width - 2 * s.guardBand, s.size.height - 2 * s.guardBand};
+    out.hdr = s.graph.createImage("hdr", VK_FORMAT_R32G32B32A32_SFLOAT, output, storage);
+    out.ldr = s.graph.createImage("ldr", VK_FORMAT_R8G8B8A8_UNORM, output, storage);
     // Which terms exist is structural: the shader never reads the image bound in place of an
     // effect that is off (the direct term, so that every binding holds a valid image).
     const vk::Pipeline pipeline =
@@ -39,7 +41,7 @@ CompositeOutputs addCompositePass(PassSetup& s, const GBufferAndRsm& in,
     uses.push_back({out.ldr, graph::Use::StorageWrite});
     std::vector<graph::ImageRef> sampled(std::begin(inputs), std::end(inputs));
     s.graph.addPass("composite", graph::PassKind::Compute, uses,
-                    [&s, sampled, out, pipeline](const graph::PassContext& pc) {
+                    [&s, sampled, out, output, pipeline](const graph::PassContext& pc) {
                         vk::Descriptors d;
                         d.uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size);
                         for (uint32_t i = 0; i < sampled.size(); ++i)
@@ -49,8 +51,9 @@ CompositeOutputs addCompositePass(PassSetup& s, const GBufferAndRsm& in,
                             .storageImage(14, pc.image(out.ldr).view)
                             .push(s.ctx, pc.cmd, pipeline);
                         shader::CompositeConstants constants{};
-                        constants.mode.x = s.view;
-                        vk::dispatch(pc.cmd, pipeline, s.size.width, s.size.height, constants);
+                        constants.view = s.view;
+                        constants.guardBand = int(s.guardBand);
+                        vk::dispatch(pc.cmd, pipeline, output.width, output.height, constants);
                     });
     return out;
 }

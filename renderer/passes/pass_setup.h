@@ -24,7 +24,8 @@ struct PassSetup {
     vk::Buffer frameUniforms;
     VkSampler nearestSampler = VK_NULL_HANDLE;
     VkSampler linearSampler = VK_NULL_HANDLE;
-    VkExtent2D size{};                   // the output image
+    VkExtent2D size{};                   // every screen image: the output and the guard band
+    uint32_t guardBand = 0;              // pixels beyond each edge of the output (guard_band)
     glm::dvec3 gpuOrigin{0.0};           // the world point at the GPU's origin (renderer.cpp)
     VkExtent2D rsmSize{};                // the reflective shadow map
     std::vector<vk::Pipeline> pipelines; // destroyed with the renderer
@@ -125,7 +126,8 @@ graph::ImageRef addSkyVisibilityPasses(PassSetup& setup, const GBufferAndRsm& in
 struct CompositeOutputs {
     graph::ImageRef hdr, ldr;
 };
-// composite: HDR radiance, tonemapped sRGB image, or the debug view PassSetup::view names.
+// composite: HDR radiance, tonemapped sRGB image, or the debug view PassSetup::view names, at
+// the output's size (the screen images less their guard band).
 CompositeOutputs addCompositePass(PassSetup& setup, const GBufferAndRsm& inputs,
                                   const LightingTerms& terms);
 

@@ -20,6 +20,9 @@ namespace ssgi {
     X(ground_plane, int, -1, -1, 1, "Image",                                                       \
       "a ground plane under a model without a floor of its own: 1 yes, 0 no, -1 only under a "     \
       "bare glTF (read while loading; docs/bare-models.md)")                                       \
+    X(guard_band, int, 0, 0, 256, "Image",                                                         \
+      "pixels rendered beyond each edge of the image, for the screen-space effects to see what "   \
+      "lies just off screen (0: none; docs/frame.md)")                                             \
     X(shadow_map_size, int, 1024, 16, 8192, "Shadow", "RSM resolution, texels per side")           \
     X(shadow_bias, double, 1.5, 0, 100, "Shadow", "normal offset of the shadow lookup, in texels") \
     X(shadow_taps, int, 49, 1, 64, "Shadow",                                                       \

@@ -46,8 +46,10 @@ vec3 skyLight(vec3 n) {
 }
 
 void main() {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
+    // `written` in the images written, `pixel` in the screen images read (guard band added).
+    ivec2 written = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(written, imageSize(hdrImage)))) return;
+    ivec2 pixel = written + constants.guardBand;
     vec2 uv = (vec2(pixel) + 0.5) * frame.viewport.zw;
     vec4 position = texelFetch(gbufferPosition, pixel, 0);
     vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
@@ -76,15 +78,16 @@ void main() {
     // visibility, normal, distance), the PNG its display encoding.
     float exposure = frame.params.x;
     vec3 value = hdr;
-    int view = constants.mode.x;
+    int view = constants.view;
     if (view == VIEW_ALBEDO) value = albedo;
     if (view == VIEW_NORMAL) value = position.w == 0.0 ? vec3(0.0) : n;
     if (view == VIEW_DEPTH)
         value = vec3(position.w == 0.0 ? 0.0 : distance(position.xyz, frame.cameraPosition.xyz));
     if (view == VIEW_DIRECT) value = direct * unit;
     float texel = 2.0 * frame.lightFrustum.z / frame.lightFrustum.w;
-    if (view == VIEW_RSM_FLUX) value = texture(rsmFlux, uv).rgb * unit / (texel * texel);
-    if (view == VIEW_RSM_NORMAL) value = texture(rsmNormal, uv).xyz;
+    vec2 outputUv = (vec2(written) + 0.5) / vec2(imageSize(hdrImage)); // the light's views fill it
+    if (view == VIEW_RSM_FLUX) value = texture(rsmFlux, outputUv).rgb * unit / (texel * texel);
+    if (view == VIEW_RSM_NORMAL) value = texture(rsmNormal, outputUv).xyz;
     vec4 shadow = texelFetch(shadowImage, pixel, 0);
     if (view == VIEW_SHADOW) value = vec3(shadow.r);
     if (view == VIEW_AO) value = vec3(ao);
@@ -111,6 +114,6 @@ void main() {
     bool isData = view == VIEW_NORMAL || view == VIEW_RSM_NORMAL || view == VIEW_DEPTH ||
                   view == VIEW_SHADOW || view == VIEW_AO || view == VIEW_PEEL ||
                   view == VIEW_CONTACT || view == VIEW_SKY_VISIBILITY;
-    imageStore(hdrImage, pixel, vec4(view == VIEW_FINAL ? hdr : value, 1.0));
-    imageStore(ldrImage, pixel, vec4(isData ? shown : encodeSrgb(shown), 1.0));
+    imageStore(hdrImage, written, vec4(view == VIEW_FINAL ? hdr : value, 1.0));
+    imageStore(ldrImage, written, vec4(isData ? shown : encodeSrgb(shown), 1.0));
 }

@@ -169,9 +169,12 @@ struct SkyVisibilityConstants {
 };
 SSGI_CHECK_SIZE(SkyVisibilityConstants, 48);
 
-// Composite's choice of output (push constants): x = view (see VIEW_*).
+// Composite's choice of output (push constants), and where the output lies in the screen
+// images it reads: `guardBand` pixels in from their top left corner (the guard_band setting).
 struct CompositeConstants {
-    ivec4 mode;
+    int view; // VIEW_*
+    int guardBand;
+    int unused[2];
 };
 SSGI_CHECK_SIZE(CompositeConstants, 16);
 
