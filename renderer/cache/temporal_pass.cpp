@@ -45,6 +45,7 @@ shader::CacheConstants cacheConstants(const PassSetup& s, const EffectCache* cac
     c.motionTest = cache->motionTest;
     c.motionReach = cache->motionReach;
     c.blurBudget = cache->blurBudget;
+    c.thinGeometry = s.model.settings.cache_thin_geometry ? 1 : 0;
     return c;
 }
 

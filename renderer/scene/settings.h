@@ -84,6 +84,9 @@ namespace ssgi {
     X(cache_bias, double, 0.0, 0, 1e3, "Temporal cache", "bias of the confidence rule (eq. 4)")    \
     X(cache_epsilon, double, 2.0, 0, 1e3, "Temporal cache",                                        \
       "reprojection test (eq. 3), in pixel footprints")                                            \
+    X(cache_thin_geometry, bool, true, 0, 1, "Temporal cache",                                     \
+      "where the nearest history texel lies behind, the reprojection also tries the 8 beside it, " \
+      "so features under a pixel wide keep their history")                                         \
     X(cache_rotations, int, 36, 1, 1e6, "Temporal cache",                                          \
       "pattern rotations until a pixel is converged")                                              \
     X(cache_rotation_deg, double, 10.0, -360, 360, "Temporal cache",                               \

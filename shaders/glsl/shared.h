@@ -77,7 +77,8 @@ struct CacheConstants {
     float motionReach;    // scene units
     float blurBudget;     // the resampling blur (squared pixels) a cached value may carry:
                           // beyond it the history's weight is cut and the pixel recomputed
-    float unused;
+    int thinGeometry;     // 1: where the nearest history texel lies behind, the test also tries
+                          // the texels beside it (temporal.glsl reproject)
 };
 SSGI_CHECK_SIZE(CacheConstants, 48);
 

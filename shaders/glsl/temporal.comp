@@ -72,10 +72,10 @@ vec4 historyAt(Reprojection r, vec3 world, out float spread) {
     if (weights > 1e-6) {
         v = sum / weights;
         spread /= weights;
-    } else { // no texel around passed: the nearest one, which did
-        vec2 d = (fract(r.uv * size) - 0.5) * toPixels;
+    } else { // no texel around passed: the one that did (the nearest, or one beside it)
+        vec2 d = (vec2(r.texel) + 0.5 - r.uv * size) * toPixels;
         spread = dot(d, d);
-        v = texelFetch(historyValue, ivec2(r.uv * size), 0);
+        v = texelFetch(historyValue, r.texel, 0);
     }
     // Offsets below a thirtieth of a pixel are rounding (a still camera): no blur.
     if (spread < 1e-3) spread = 0.0;

@@ -14,6 +14,7 @@ vec4 historyMeta(ivec2 q) {
 struct Reprojection {
     bool valid;    // the pixel saw the same surface last frame
     vec2 uv;       // where, in last frame's image
+    ivec2 texel;   // the history texel that passed the test (the nearest, or one beside it)
     float count;   // rotations accumulated there
     float epsilon; // the world-space tolerance of the test
 };
@@ -53,8 +54,13 @@ bool movedNearby(vec3 world, CacheConstants cache) {
 // history holds a world position within epsilon of W_t (2-3). Epsilon is a number of pixel
 // footprints at W_t, so one setting serves every scene scale, widened where the surface is seen
 // at a grazing angle, since there neighbouring pixels lie farther apart than one footprint.
+// Beyond the thesis, thin geometry: a feature narrower than a pixel (a chair leg, a needle) falls
+// between texel centres from one frame to the next, so where the nearest texel holds something
+// behind W_t (or nothing), the texels beside it are tried as well, as temporal upscalers dilate
+// their reprojection; where it holds something in front of W_t, W_t was hidden last frame (a
+// disocclusion) and starts over.
 Reprojection reproject(vec3 world, vec3 normal, CacheConstants cache) {
-    Reprojection r = Reprojection(false, vec2(0.0), 0.0, 0.0);
+    Reprojection r = Reprojection(false, vec2(0.0), ivec2(0), 0.0, 0.0);
     if (cache.historyValid == 0 || movedNearby(world, cache)) return r;
     vec4 clip = frame.previousViewProjection * vec4(world, 1.0);
     if (clip.w <= 0.0) return r;
@@ -62,11 +68,29 @@ Reprojection reproject(vec3 world, vec3 normal, CacheConstants cache) {
     if (any(lessThan(r.uv, vec2(0.0))) || any(greaterThanEqual(r.uv, vec2(1.0)))) return r;
     // Positions do not interpolate across edges: the nearest texel's is compared. The history
     // has the frame's size, except in the first frame after a resize (Renderer::continueFrom).
-    vec4 meta = historyMeta(ivec2(r.uv * vec2(textureSize(historyCount, 0))));
+    ivec2 size = textureSize(historyCount, 0);
+    r.texel = ivec2(r.uv * vec2(size));
+    vec4 meta = historyMeta(r.texel);
     float facing = abs(dot(normal, normalize(frame.cameraPosition.xyz - world)));
     float epsilon = cache.epsilon / (pixelsPerUnit(viewDepth(world)) * max(facing, 0.1));
     r.epsilon = epsilon;
-    r.valid = meta.w > 0.0 && distance(meta.xyz, world) <= epsilon;
+    float nearest = meta.w > 0.0 ? distance(meta.xyz, world) : 1e30;
+    if (nearest > epsilon && cache.thinGeometry != 0 &&
+        (meta.w == 0.0 || (frame.previousViewProjection * vec4(meta.xyz, 1.0)).w > clip.w)) {
+        ivec2 centre = r.texel;
+        for (int y = -1; y <= 1; ++y)
+            for (int x = -1; x <= 1; ++x) {
+                ivec2 q = clamp(centre + ivec2(x, y), ivec2(0), size - 1);
+                vec4 m = historyMeta(q);
+                float d = m.w > 0.0 ? distance(m.xyz, world) : 1e30;
+                if (d < nearest) {
+                    nearest = d;
+                    r.texel = q;
+                    meta = m;
+                }
+            }
+    }
+    r.valid = nearest <= epsilon;
     r.count = r.valid ? meta.w : 0.0;
     return r;
 }
