@@ -66,9 +66,11 @@ SceneGpu::~SceneGpu() {
 
 void SceneGpu::draw(VkCommandBuffer cmd, const vk::Pipeline& pipeline, VkBuffer frameUniforms,
                     VkDeviceSize frameUniformsSize,
-                    const std::function<void(vk::Descriptors&)>& extra) const {
+                    const std::function<void(vk::Descriptors&)>& extra,
+                    const std::vector<bool>& only) const {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline);
     for (size_t i = 0; i < scene_.instances.size(); ++i) {
+        if (!only.empty() && !only[i]) continue;
         const Instance& instance = scene_.instances[i];
         const MeshBuffers& mesh = meshes_[instance.mesh];
         if (mesh.indexCount == 0) continue;

@@ -23,10 +23,12 @@ public:
     SceneGpu& operator=(const SceneGpu&) = delete;
 
     // Draws every instance with `pipeline` (set 0: binding 0 = frame uniforms, binding 1 = the
-    // draw's base-colour texture, then whatever `extra` adds; push constants = DrawConstants).
+    // draw's base-colour texture, then whatever `extra` adds; push constants = DrawConstants);
+    // with `only` given, the instances it marks.
     void draw(VkCommandBuffer cmd, const vk::Pipeline& pipeline, VkBuffer frameUniforms,
               VkDeviceSize frameUniformsSize,
-              const std::function<void(vk::Descriptors&)>& extra = {}) const;
+              const std::function<void(vk::Descriptors&)>& extra = {},
+              const std::vector<bool>& only = {}) const;
     // Places the instances (moving objects) for the draws recorded from now on.
     void setTransforms(const std::vector<glm::mat4>& transforms) { transforms_ = transforms; }
 

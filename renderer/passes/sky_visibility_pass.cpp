@@ -1,17 +1,73 @@
 // sky.maps and sky_visibility: the sky's visibility beyond the screen. sky.maps draws the
-// scene's depth from directions spread over the whole sphere (orthographic, around the scene's
-// bounding sphere) into the tiles of one depth atlas; sky_visibility looks every pixel up in
-// each map and writes the fraction of the sky's light that arrives past the occluders farther
-// than the AO's radius (sky_visibility.comp). A static scene's maps are drawn once and again
-// only after an object moved; the lookup runs again only when the camera or the maps changed.
+// scene's depth from directions spread over the whole sphere (orthographic, around the bounding
+// sphere of what it draws) into the tiles of one depth atlas; sky_visibility looks every pixel
+// up in each map, and tests the scene's single quads and triangles (floors, walls) exactly, and
+// writes the fraction of the sky's light that arrives past the occluders farther than the AO's
+// radius (sky_visibility.comp). A static scene's maps are drawn once and again only after an
+// object moved; the lookup runs again only when the camera or the maps changed.
 #include "passes/pass_setup.h"
 
+#include "scene/animation.h"
 #include "shared.h"
 
 #include <cmath>
 #include <cstring>
 
 namespace ssgi {
+
+namespace {
+
+// The sky's occluders, split in two. A floor or a wall (a mesh of one or two triangles, not
+// alpha-masked, not moved by a path) is tested exactly; the rest is drawn into the maps, whose
+// sphere then fits the rest alone: the bunny on its 20 m floor filled two texels of a map
+// around the floor, and of a map around itself all of it.
+struct SkyOccluders {
+    std::vector<bool> mapped; // per instance: drawn into the maps
+    Aabb mappedBounds;        // theirs, wherever their paths take them
+    shader::SkyTriangles exact{};
+};
+
+SkyOccluders splitSkyOccluders(const Scene& scene, const glm::dvec3& gpuOrigin) {
+    SkyOccluders o;
+    std::vector<bool> moving(scene.instances.size());
+    for (const ObjectPath& path : scene.objectPaths)
+        for (int i : path.instances)
+            moving[size_t(i)] = true;
+    std::vector<float> times{std::numeric_limits<float>::lowest()};
+    for (const ObjectPath& path : scene.objectPaths)
+        for (const ObjectKey& key : path.keys)
+            times.push_back(key.time);
+    int triangles = 0;
+    for (size_t i = 0; i < scene.instances.size(); ++i) {
+        const Instance& instance = scene.instances[i];
+        const Mesh& mesh = scene.meshes[size_t(instance.mesh)];
+        const int count = int(mesh.indices.size() / 3);
+        const bool exact = count > 0 && count <= 2 && !moving[i] &&
+                           !scene.materials[size_t(mesh.material)].alphaMask &&
+                           triangles + count <= SKY_TRIANGLES_MAX;
+        o.mapped.push_back(!exact);
+        if (exact) {
+            for (size_t k = 0; k < size_t(3 * count); ++k) {
+                const glm::vec3 p =
+                    instance.transform * glm::vec4(mesh.vertices[mesh.indices[k]].position, 1.0f);
+                o.exact.corners[3 * triangles + k] =
+                    glm::vec4(glm::vec3(glm::dvec3(p) - gpuOrigin), 1.0f);
+            }
+            triangles += count;
+            continue;
+        }
+        for (float t : times) {
+            const Aabb box = instanceBounds(scene, i, instanceTransformsAt(scene, t)[i]);
+            o.mappedBounds.extend(box.min);
+            o.mappedBounds.extend(box.max);
+        }
+    }
+    o.exact.count.x = triangles;
+    if (o.mappedBounds.empty()) o.mappedBounds = scene.bounds; // nothing to draw: any sphere
+    return o;
+}
+
+} // namespace
 
 graph::ImageRef addSkyVisibilityPasses(PassSetup& s, const GBufferAndRsm& in) {
     const Scene& m = s.model;
@@ -27,9 +83,11 @@ graph::ImageRef addSkyVisibilityPasses(PassSetup& s, const GBufferAndRsm& in) {
                          std::to_string(atlas.width) + "x" + std::to_string(atlas.height) +
                          " atlas, beyond this device's largest 2D image (" + std::to_string(limit) +
                          ")");
+    const SkyOccluders occluders = splitSkyOccluders(m, s.gpuOrigin);
     // In the GPU's coordinates, as the G-buffer and the draws are.
-    const glm::vec3 centre = glm::vec3(glm::dvec3(m.bounds.center()) - s.gpuOrigin);
-    const float radius = std::max(0.5f * glm::length(m.bounds.size()) * 1.02f, 1e-6f);
+    const Aabb& drawn = occluders.mappedBounds;
+    const glm::vec3 centre = glm::vec3(glm::dvec3(drawn.center()) - s.gpuOrigin);
+    const float radius = std::max(0.5f * glm::length(drawn.size()) * 1.02f, 1e-6f);
     const shader::SkyMapView view{glm::vec4(centre, radius),
                                   glm::ivec4(0, count, perRow, tileSize)};
 
@@ -59,7 +117,8 @@ graph::ImageRef addSkyVisibilityPasses(PassSetup& s, const GBufferAndRsm& in) {
     using graph::Use;
     s.graph.addPass(
         "sky.maps", graph::PassKind::Graphics, {{maps, Use::DepthAttachment}},
-        [&s, maps, atlas, views, perRow, tileSize, draw](const graph::PassContext& pc) {
+        [&s, maps, atlas, views, perRow, tileSize, draw,
+         mapped = occluders.mapped](const graph::PassContext& pc) {
             VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
             depth.imageView = pc.image(maps).view;
             depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
@@ -79,7 +138,7 @@ graph::ImageRef addSkyVisibilityPasses(PassSetup& s, const GBufferAndRsm& in) {
                                  {uint32_t(tileSize), uint32_t(tileSize)}};
                 vkCmdSetViewport(pc.cmd, 0, 1, &viewport);
                 vkCmdSetScissor(pc.cmd, 0, 1, &scissor);
-                s.scene.draw(pc.cmd, draw, views[k], sizeof(shader::SkyMapView));
+                s.scene.draw(pc.cmd, draw, views[k], sizeof(shader::SkyMapView), {}, mapped);
             }
             vkCmdEndRendering(pc.cmd);
         },
@@ -88,8 +147,18 @@ graph::ImageRef addSkyVisibilityPasses(PassSetup& s, const GBufferAndRsm& in) {
     const graph::ImageRef visibility =
         s.graph.createImage("sky_visibility", VK_FORMAT_R16G16B16A16_SFLOAT, s.size,
                             VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, true);
-    const vk::Pipeline lookup =
-        s.computePipeline("sky_visibility.comp", 3, 1, sizeof(shader::SkyVisibilityConstants));
+    // Bindings: the frame's uniforms, three sampled images, the output, the exact triangles.
+    s.pipelines.push_back(vk::createComputePipeline(
+        s.ctx, "sky_visibility.comp",
+        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+         VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+         VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+        sizeof(shader::SkyVisibilityConstants)));
+    const vk::Pipeline lookup = s.pipelines.back();
+    s.buffers.push_back(vk::createBuffer(s.ctx, sizeof(shader::SkyTriangles),
+                                         VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true));
+    std::memcpy(s.buffers.back().mapped, &occluders.exact, sizeof(occluders.exact));
+    const vk::Buffer triangles = s.buffers.back();
     // Occluders nearer than the AO's radius are the AO's; with no AO, only a few texels' worth
     // of nearness is left out (the map's own resolution).
     const float texel = 2.0f * radius / float(tileSize);
@@ -104,13 +173,14 @@ graph::ImageRef addSkyVisibilityPasses(PassSetup& s, const GBufferAndRsm& in) {
          {in.gbuffer.normal, Use::Sampled},
          {maps, Use::Sampled},
          {visibility, Use::StorageWrite}},
-        [&s, in, maps, visibility, lookup, constants](const graph::PassContext& pc) {
+        [&s, in, maps, visibility, lookup, constants, triangles](const graph::PassContext& pc) {
             vk::Descriptors()
                 .uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size)
                 .sampledImage(1, pc.image(in.gbuffer.position).view, s.nearestSampler)
                 .sampledImage(2, pc.image(in.gbuffer.normal).view, s.nearestSampler)
                 .sampledImage(3, pc.image(maps).view, s.nearestSampler)
                 .storageImage(4, pc.image(visibility).view)
+                .uniformBuffer(5, triangles.buffer, triangles.size)
                 .push(s.ctx, pc.cmd, lookup);
             vk::dispatch(pc.cmd, lookup, s.size.width, s.size.height, constants);
         },

@@ -170,6 +170,16 @@ struct SkyVisibilityConstants {
 };
 SSGI_CHECK_SIZE(SkyVisibilityConstants, 48);
 
+// The sky's occluders the lookup tests exactly instead of through the maps: the triangles of
+// the scene's single quads and triangles (floors, walls), corners 3i..3i+2 in the GPU's
+// coordinates (a uniform buffer; sky_visibility_pass.cpp).
+#define SKY_TRIANGLES_MAX 32
+struct SkyTriangles {
+    ivec4 count; // x: how many
+    vec4 corners[3 * SKY_TRIANGLES_MAX];
+};
+SSGI_CHECK_SIZE(SkyTriangles, 16 + 3 * 32 * 16);
+
 // Composite's choice of output (push constants), and where the output lies in the screen
 // images it reads: `guardBand` pixels in from their top left corner (the guard_band setting).
 struct CompositeConstants {
