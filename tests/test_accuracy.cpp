@@ -46,6 +46,15 @@ double relMseOnGeometry(const std::vector<float>& realtime, const std::vector<fl
     return metrics::errorFigures(a, b, geometry, metrics::ssimMap(a, b)).relMse;
 }
 
+// The reference image of `scene`'s camera in `mode` at kSize, 256 samples a pixel (cached).
+std::vector<float> referenceImage(const Scene& scene, reference::Mode mode) {
+    reference::ReferenceOptions options;
+    options.width = options.height = kSize;
+    options.spp = 256;
+    options.mode = mode;
+    return reference::cachedReference(scene, options).rgba;
+}
+
 // The converged (cached) images of a still camera after 40 frames.
 std::unique_ptr<Renderer> converged(const Scene& scene) {
     auto renderer =
@@ -56,13 +65,7 @@ std::unique_ptr<Renderer> converged(const Scene& scene) {
 }
 
 Measured measure(const Scene& scene) {
-    reference::ReferenceOptions options;
-    options.width = options.height = kSize;
-    options.spp = 256;
-    auto ref = [&](reference::Mode mode) {
-        options.mode = mode;
-        return reference::cachedReference(scene, options).rgba;
-    };
+    auto ref = [&](reference::Mode mode) { return referenceImage(scene, mode); };
     Measured m;
     auto renderer = converged(scene);
     const std::vector<float> position = renderer->readImage("gbuffer.position");
@@ -98,6 +101,24 @@ void print(const char* scene, const Measured& m) {
     std::printf("%s: AO mean abs error thesis %.4f Crytek %.4f horizon %.4f; indirect relMSE "
                 "%.4f; direct relMSE %.4f; SSDO image relMSE %.4f\n",
                 scene, m.ao[0], m.ao[1], m.ao[2], m.indirect, m.direct, m.ssdo);
+}
+
+// One frame of `scene` from its camera: the HDR image and the G-buffer's positions.
+struct OneFrame {
+    std::vector<float> hdr, position;
+};
+OneFrame oneFrame(const Scene& scene) {
+    Renderer renderer(test::context(), scene, RenderOptions{kSize, kSize, "final"});
+    renderer.renderFrame(scene.camera);
+    return {renderer.readImage("hdr"), renderer.readImage("gbuffer.position")};
+}
+
+// The sky term alone: no spot light, no bounce, no cache.
+Scene skyLightOnly(Scene scene) {
+    scene.light.intensity = 0.0f;
+    scene.settings.indirect = false;
+    scene.settings.cache = false;
+    return scene;
 }
 
 class AccuracyTest : public test::VulkanTest {};
@@ -139,15 +160,9 @@ TEST_F(AccuracyTest, BunnyEffectsAgainstTheReference) {
 // leaves the reference's noise.
 TEST_F(AccuracyTest, GradientSkyIrradianceOnASphereMatchesTheReference) {
     const Scene scene = loadScene(test::sourcePath("tests/scenes/gradient-sky-sphere.json"));
-    reference::ReferenceOptions options;
-    options.width = options.height = kSize;
-    options.spp = 256;
-    options.mode = reference::Mode::Full;
-    const std::vector<float> truth = reference::cachedReference(scene, options).rgba;
-    Renderer renderer(test::context(), scene, RenderOptions{kSize, kSize, "final"});
-    renderer.renderFrame(scene.camera);
-    const double error =
-        relMseOnGeometry(renderer.readImage("hdr"), truth, renderer.readImage("gbuffer.position"));
+    const std::vector<float> truth = referenceImage(scene, reference::Mode::Full);
+    const OneFrame frame = oneFrame(scene);
+    const double error = relMseOnGeometry(frame.hdr, truth, frame.position);
     std::printf("gradient sky on a sphere: relMSE %.5f\n", error);
     EXPECT_LT(error, 0.01);
 }
@@ -157,22 +172,13 @@ TEST_F(AccuracyTest, GradientSkyIrradianceOnASphereMatchesTheReference) {
 // measured against the reference's `sky` mode (the sky's light with true visibility). With the
 // sky visibility maps the AO keeps the near occluders and the maps the far ones.
 TEST_F(AccuracyTest, SkyVisibilityBeyondTheScreenMatchesTheReferenceSkyLight) {
-    Scene scene = loadScene(test::sourcePath("scenes/sponza.json"));
-    scene.light.intensity = 0.0f;
-    scene.settings.indirect = false;
-    scene.settings.cache = false;
-    reference::ReferenceOptions options;
-    options.width = options.height = kSize;
-    options.spp = 256;
-    options.mode = reference::Mode::Sky;
-    const std::vector<float> truth = reference::cachedReference(scene, options).rgba;
+    Scene scene = skyLightOnly(loadScene(test::sourcePath("scenes/sponza.json")));
+    const std::vector<float> truth = referenceImage(scene, reference::Mode::Sky);
     double error[2];
     for (int on = 0; on < 2; ++on) {
         scene.settings.sky_visibility = on;
-        Renderer renderer(test::context(), scene, RenderOptions{kSize, kSize, "final"});
-        renderer.renderFrame(scene.camera);
-        error[on] = relMseOnGeometry(renderer.readImage("hdr"), truth,
-                                     renderer.readImage("gbuffer.position"));
+        const OneFrame frame = oneFrame(scene);
+        error[on] = relMseOnGeometry(frame.hdr, truth, frame.position);
     }
     std::printf("Sponza's sky light: relMSE %.4f with screen-space AO alone, %.4f with the sky "
                 "visibility maps\n",
@@ -186,28 +192,18 @@ TEST_F(AccuracyTest, SkyVisibilityBeyondTheScreenMatchesTheReferenceSkyLight) {
 // both were drawn into maps around the 20 m floor, the bunny filled two texels of each and its
 // sky light came out 26% too bright (mean 0.0871 against 0.0690, docs/bench-indirect.md).
 TEST_F(AccuracyTest, TheBunnysSkyLightMatchesTheReferenceSkyLight) {
-    Scene scene = loadScene(test::sourcePath("scenes/bunny.json"));
-    scene.light.intensity = 0.0f;
-    scene.settings.indirect = false;
-    scene.settings.cache = false;
-    reference::ReferenceOptions options;
-    options.width = options.height = kSize;
-    options.spp = 256;
-    options.mode = reference::Mode::Sky;
-    const std::vector<float> truth = reference::cachedReference(scene, options).rgba;
+    Scene scene = skyLightOnly(loadScene(test::sourcePath("scenes/bunny.json")));
+    const std::vector<float> truth = referenceImage(scene, reference::Mode::Sky);
     double error[2], mean[2] = {0.0, 0.0}, truthMean = 0.0;
     for (int on = 0; on < 2; ++on) {
         scene.settings.sky_visibility = on;
-        Renderer renderer(test::context(), scene, RenderOptions{kSize, kSize, "final"});
-        renderer.renderFrame(scene.camera);
-        const std::vector<float> hdr = renderer.readImage("hdr");
-        const std::vector<float> position = renderer.readImage("gbuffer.position");
-        error[on] = relMseOnGeometry(hdr, truth, position);
+        const OneFrame frame = oneFrame(scene);
+        error[on] = relMseOnGeometry(frame.hdr, truth, frame.position);
         size_t n = 0;
         truthMean = 0.0;
         for (size_t i = 0; i < size_t(kSize) * kSize; ++i)
-            if (position[4 * i + 3] != 0.0f) {
-                mean[on] += hdr[4 * i + 1];
+            if (frame.position[4 * i + 3] != 0.0f) {
+                mean[on] += frame.hdr[4 * i + 1];
                 truthMean += truth[4 * i + 1];
                 ++n;
             }
@@ -227,18 +223,12 @@ TEST_F(AccuracyTest, TheBunnysSkyLightMatchesTheReferenceSkyLight) {
 TEST_F(AccuracyTest, TheBounceLowersTheBunnysError) {
     Scene scene = loadScene(test::sourcePath("scenes/bunny.json"));
     scene.settings.cache = false;
-    reference::ReferenceOptions options;
-    options.width = options.height = kSize;
-    options.spp = 256;
-    options.mode = reference::Mode::Full;
-    const std::vector<float> truth = reference::cachedReference(scene, options).rgba;
+    const std::vector<float> truth = referenceImage(scene, reference::Mode::Full);
     double error[2];
     for (int on = 0; on < 2; ++on) {
         scene.settings.indirect = on;
-        Renderer renderer(test::context(), scene, RenderOptions{kSize, kSize, "final"});
-        renderer.renderFrame(scene.camera);
-        error[on] = relMseOnGeometry(renderer.readImage("hdr"), truth,
-                                     renderer.readImage("gbuffer.position"));
+        const OneFrame frame = oneFrame(scene);
+        error[on] = relMseOnGeometry(frame.hdr, truth, frame.position);
     }
     std::printf("the bunny, one frame: relMSE %.4f without the bounce, %.4f with\n", error[0],
                 error[1]);
