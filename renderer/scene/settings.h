@@ -119,8 +119,9 @@ namespace ssgi {
       "weight is cut")                                                                             \
     X(cache_blur_ao, double, 2.0, 0, 1e6, "Temporal cache",                                        \
       "the same for the AO's history (pixels^2)")                                                  \
-    X(cache_blur_ssdo, double, 2.0, 0, 1e6, "Temporal cache",                                      \
-      "the same for SSDO's history (pixels^2)")                                                    \
+    X(cache_blur_ssdo, double, 0.0, 0, 1e6, "Temporal cache",                                      \
+      "the same for SSDO's history (pixels^2; 0: computed anew while the camera moves, since "     \
+      "what SSDO sees on screen changes with the view)")                                           \
     X(cache_blur_indirect, double, 4.0, 0, 1e6, "Temporal cache",                                  \
       "the same for the indirect light's history (pixels^2)")
 
