@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 namespace ssgi {
 
@@ -33,10 +34,12 @@ SkyOccluders splitSkyOccluders(const Scene& scene, const glm::dvec3& gpuOrigin) 
     for (const ObjectPath& path : scene.objectPaths)
         for (int i : path.instances)
             moving[size_t(i)] = true;
-    std::vector<float> times{std::numeric_limits<float>::lowest()};
+    // Where the instances stand before the paths start and at every key of every path.
+    std::vector<std::vector<glm::mat4>> poses{
+        instanceTransformsAt(scene, std::numeric_limits<float>::lowest())};
     for (const ObjectPath& path : scene.objectPaths)
         for (const ObjectKey& key : path.keys)
-            times.push_back(key.time);
+            poses.push_back(instanceTransformsAt(scene, key.time));
     int triangles = 0;
     for (size_t i = 0; i < scene.instances.size(); ++i) {
         const Instance& instance = scene.instances[i];
@@ -56,8 +59,8 @@ SkyOccluders splitSkyOccluders(const Scene& scene, const glm::dvec3& gpuOrigin) 
             triangles += count;
             continue;
         }
-        for (float t : times) {
-            const Aabb box = instanceBounds(scene, i, instanceTransformsAt(scene, t)[i]);
+        for (const std::vector<glm::mat4>& pose : poses) {
+            const Aabb box = instanceBounds(scene, i, pose[i]);
             o.mappedBounds.extend(box.min);
             o.mappedBounds.extend(box.max);
         }
