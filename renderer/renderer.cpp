@@ -95,21 +95,16 @@ static void checkImageMemory(const vk::Context& ctx, uint32_t width, uint32_t he
 Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& options)
     : ctx_(ctx), scene_(scene), light_(scene.light) {
     const uint32_t limit = ctx.properties.limits.maxImageDimension2D;
-    if (options.width == 0 || options.height == 0 || options.width > limit ||
-        options.height > limit)
-        throw InputError("image size " + std::to_string(options.width) + "x" +
-                         std::to_string(options.height) + " is outside 1.." +
-                         std::to_string(limit) + " (this device's largest 2D image)");
-    // The screen images hold the output and the guard band on each side (see visibleRect()).
+    // The screen images hold the output and the guard band on each side (PassSetup::output).
     const uint32_t band = uint32_t(scene.settings.guard_band);
     const VkExtent2D rendered{options.width + 2 * band, options.height + 2 * band};
-    if (rendered.width > limit || rendered.height > limit)
-        throw InputError("image size " + std::to_string(options.width) + "x" +
-                         std::to_string(options.height) + " with a guard band of " +
-                         std::to_string(band) + " pixels is beyond " + std::to_string(limit) +
-                         " (this device's largest 2D image)");
+    if (options.width == 0 || options.height == 0 || rendered.width > limit ||
+        rendered.height > limit)
+        throw InputError(
+            "image size " + std::to_string(options.width) + "x" + std::to_string(options.height) +
+            (band ? " with a guard band of " + std::to_string(band) + " pixels" : "") +
+            " is outside 1.." + std::to_string(limit) + " (this device's largest 2D image)");
     checkImageMemory(ctx, rendered.width, rendered.height);
-    visible_ = {{int32_t(band), int32_t(band)}, {options.width, options.height}};
     const int view = viewIndex(options.view);
     const uint32_t rsmSize = uint32_t(scene.settings.shadow_map_size);
     if (rsmSize == 0 || rsmSize > limit)
@@ -168,8 +163,8 @@ void Renderer::uploadTransforms() {
 }
 
 void Renderer::updateUniforms(const Camera& worldCamera) {
-    const VkExtent2D size = setup_->size;
-    const float aspect = float(visible_.extent.width) / float(visible_.extent.height);
+    const VkExtent2D size = setup_->size, output = setup_->output().extent;
+    const float aspect = float(output.width) / float(output.height);
     // The camera, light and bounds as the GPU sees them (see gpuOrigin).
     Camera camera = worldCamera;
     camera.position = moved(camera.position, origin_);
@@ -182,8 +177,8 @@ void Renderer::updateUniforms(const Camera& worldCamera) {
     // The camera's frustum fills the output; the guard band widens it by as many pixels on
     // each side: x and y shrink in clip space by output / rendered, so a pixel of the output
     // sees the same ray it would without a band.
-    const glm::vec3 band(float(visible_.extent.width) / float(size.width),
-                         float(visible_.extent.height) / float(size.height), 1.0f);
+    const glm::vec3 band(float(output.width) / float(size.width),
+                         float(output.height) / float(size.height), 1.0f);
     u.projection = glm::scale(glm::mat4(1.0f), band) * projectionMatrix(camera, aspect);
     u.viewProjection = u.projection * u.view;
     u.inverseViewProjection = glm::inverse(u.viewProjection);
@@ -369,16 +364,10 @@ std::vector<float> Renderer::readImage(const std::string& name) {
     }
     const graph::ImageRef ref = imageNamed(name);
     if (!ref.valid()) throw InputError("no image named '" + name + "' in the frame");
-    std::vector<float> texels = graph_->download(ref);
+    // A screen image is read where the output lies in it: its guard band left out.
     const VkExtent2D e = graph_->image(ref).extent;
-    if (setup_->guardBand == 0 || e.width != setup_->size.width || e.height != setup_->size.height)
-        return texels; // no band, or not a screen image (the light's view, half resolution)
-    const VkRect2D v = visible_;
-    std::vector<float> output(size_t(v.extent.width) * v.extent.height * 4);
-    for (uint32_t y = 0; y < v.extent.height; ++y)
-        std::copy_n(texels.begin() + 4 * ((size_t(y) + v.offset.y) * e.width + v.offset.x),
-                    4 * size_t(v.extent.width), output.begin() + 4 * size_t(y) * v.extent.width);
-    return output;
+    const bool screen = e.width == setup_->size.width && e.height == setup_->size.height;
+    return graph_->download(ref, screen ? std::optional(setup_->output()) : std::nullopt);
 }
 
 bool Renderer::hasImage(const std::string& name) const {
@@ -403,15 +392,15 @@ VkRect2D Renderer::refreshedTile(const std::string& effect) const {
         if (cache.name != effect || !cache.refresh || cache.refreshTile < 0) continue;
         const TileRect tile = cache.refresh->rect(uint32_t(cache.refreshTile));
         // In the output's pixels: the tile less what of it lies in the guard band.
-        const int32_t x0 = std::max(int32_t(tile.x), visible_.offset.x);
-        const int32_t y0 = std::max(int32_t(tile.y), visible_.offset.y);
-        const int32_t x1 = std::min(int32_t(tile.x + tile.width),
-                                    visible_.offset.x + int32_t(visible_.extent.width));
-        const int32_t y1 = std::min(int32_t(tile.y + tile.height),
-                                    visible_.offset.y + int32_t(visible_.extent.height));
+        const VkRect2D v = setup_->output();
+        const int32_t x0 = std::max(int32_t(tile.x), v.offset.x);
+        const int32_t y0 = std::max(int32_t(tile.y), v.offset.y);
+        const int32_t x1 =
+            std::min(int32_t(tile.x + tile.width), v.offset.x + int32_t(v.extent.width));
+        const int32_t y1 =
+            std::min(int32_t(tile.y + tile.height), v.offset.y + int32_t(v.extent.height));
         if (x1 <= x0 || y1 <= y0) return {};
-        return {{x0 - visible_.offset.x, y0 - visible_.offset.y},
-                {uint32_t(x1 - x0), uint32_t(y1 - y0)}};
+        return {{x0 - v.offset.x, y0 - v.offset.y}, {uint32_t(x1 - x0), uint32_t(y1 - y0)}};
     }
     return {};
 }

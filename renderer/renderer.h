@@ -68,7 +68,7 @@ public:
     bool hasImage(const std::string& name) const;
     // The output's size ("hdr", "ldr"); the screen images the passes write are larger by the
     // guard band on each side.
-    VkExtent2D size() const { return visible_.extent; }
+    VkExtent2D size() const { return setup_->output().extent; }
     // For the viewer: records into cmd, after the last frame, the barrier that makes image `name`
     // ("ldr") a transfer source, and returns it.
     const vk::Image& prepareCopySource(VkCommandBuffer cmd, const std::string& name);
@@ -95,7 +95,6 @@ private:
     std::unique_ptr<graph::FrameGraph> graph_;
     std::unique_ptr<PassSetup> setup_;
     SpotLight light_;
-    VkRect2D visible_{}; // where the output lies in the screen images (guard_band)
     uint32_t frameIndex_ = 0;
     vk::HostSpan lastSubmission_;
     uint32_t stillFrames_ = 0;          // frames in a row with this camera and light

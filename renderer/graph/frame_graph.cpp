@@ -220,17 +220,18 @@ const vk::Image& FrameGraph::prepareTransferSource(VkCommandBuffer cmd, ImageRef
     return r.image;
 }
 
-std::vector<uint8_t> FrameGraph::readTexels(ImageRef ref) {
+std::vector<uint8_t> FrameGraph::readTexels(ImageRef ref, std::optional<VkRect2D> area) {
     Resource& r = resources_[resolve(ref)];
-    const VkExtent2D e = r.image.extent;
+    const VkRect2D a = area.value_or(VkRect2D{{0, 0}, r.image.extent});
     const VkDeviceSize size =
-        VkDeviceSize(e.width) * e.height * vk::formatTexelSize(r.image.format);
+        VkDeviceSize(a.extent.width) * a.extent.height * vk::formatTexelSize(r.image.format);
     vk::Buffer staging = vk::createBuffer(ctx_, size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     ctx_.submitAndWait([&](VkCommandBuffer cmd) {
         prepareTransferSource(cmd, ref);
         VkBufferImageCopy region{};
         region.imageSubresource = {r.image.aspect, 0, 0, 1};
-        region.imageExtent = {e.width, e.height, 1};
+        region.imageOffset = {a.offset.x, a.offset.y, 0};
+        region.imageExtent = {a.extent.width, a.extent.height, 1};
         vkCmdCopyImageToBuffer(cmd, r.image.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                                staging.buffer, 1, &region);
     });
@@ -269,10 +270,10 @@ void FrameGraph::carryHistory(uint32_t history, VkExtent2D extent,
     h.valid = true;
 }
 
-std::vector<float> FrameGraph::download(ImageRef ref) {
+std::vector<float> FrameGraph::download(ImageRef ref, std::optional<VkRect2D> area) {
     const vk::Image& image = resources_[resolve(ref)].image;
-    const VkExtent2D e = image.extent;
-    const std::vector<uint8_t> texels = readTexels(ref);
+    const VkExtent2D e = area ? area->extent : image.extent;
+    const std::vector<uint8_t> texels = readTexels(ref, area);
     const uint8_t* bytes = texels.data();
     const size_t count = size_t(e.width) * e.height;
     std::vector<float> rgba(count * 4, 0.0f);

@@ -110,10 +110,12 @@ public:
     const std::vector<RecordedCommand>& lastCommands() const { return lastCommands_; }
 
     const vk::Image& image(ImageRef ref) const;
-    // Copies an image to the host as RGBA float (depth: R = depth), after the last frame.
-    std::vector<float> download(ImageRef ref);
-    // Copies an image to the host as its texels lie (its own format, rows tightly packed).
-    std::vector<uint8_t> readTexels(ImageRef ref);
+    // Copies an image (or the part of it `area` names) to the host as RGBA float (depth: R =
+    // depth), after the last frame.
+    std::vector<float> download(ImageRef ref, std::optional<VkRect2D> area = std::nullopt);
+    // Copies an image (or its `area`) to the host as its texels lie (its own format, rows
+    // tightly packed).
+    std::vector<uint8_t> readTexels(ImageRef ref, std::optional<VkRect2D> area = std::nullopt);
     // For the next frame only, previous(history) is an image of `extent` holding `texels` (the
     // pair's format, rows tightly packed), and the pair counts as valid: a renderer of another
     // size hands its last frame over (Renderer::continueFrom). The frame's passes read it as any

@@ -10,8 +10,7 @@ CompositeOutputs addCompositePass(PassSetup& s, const GBufferAndRsm& in,
                                   const LightingTerms& terms) {
     const VkImageUsageFlags storage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     CompositeOutputs out;
-    // The output's size: the screen images less the guard band on each side.
-    const VkExtent2D output{s.size.width - 2 * s.guardBand, s.size.height - 2 * s.guardBand};
+    const VkExtent2D output = s.output().extent;
     out.hdr = s.graph.createImage("hdr", VK_FORMAT_R32G32B32A32_SFLOAT, output, storage);
     out.ldr = s.graph.createImage("ldr", VK_FORMAT_R8G8B8A8_UNORM, output, storage);
     // Which terms exist is structural: the shader never reads the image bound in place of an

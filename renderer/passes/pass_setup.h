@@ -58,6 +58,11 @@ struct PassSetup {
     const vk::Pipeline& computePipeline(const std::string& shader, uint32_t sampled,
                                         uint32_t storage, uint32_t pushSize,
                                         const vk::Specialization& spec = {});
+    // Where the output ("hdr", "ldr") lies in the screen images: the guard band in from each edge.
+    VkRect2D output() const {
+        return {{int32_t(guardBand), int32_t(guardBand)},
+                {size.width - 2 * guardBand, size.height - 2 * guardBand}};
+    }
 };
 
 // The G-buffer (camera view) and the reflective shadow map (light view) are the same kind of
