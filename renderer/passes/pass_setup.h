@@ -54,10 +54,11 @@ struct PassSetup {
     int view = 0;
 
     // A compute pipeline whose bindings are set 0's: binding 0 the frame uniforms, then
-    // `sampled` combined image samplers, then `storage` storage images.
+    // `sampled` combined image samplers, then `storage` storage images, then `uniforms` more
+    // uniform buffers (the pass's own tables).
     const vk::Pipeline& computePipeline(const std::string& shader, uint32_t sampled,
                                         uint32_t storage, uint32_t pushSize,
-                                        const vk::Specialization& spec = {});
+                                        const vk::Specialization& spec = {}, uint32_t uniforms = 0);
     // Where the output ("hdr", "ldr") lies in the screen images: the guard band in from each edge.
     VkRect2D output() const {
         return {{int32_t(guardBand), int32_t(guardBand)},

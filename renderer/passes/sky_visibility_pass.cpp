@@ -150,14 +150,9 @@ graph::ImageRef addSkyVisibilityPasses(PassSetup& s, const GBufferAndRsm& in) {
     const graph::ImageRef visibility =
         s.graph.createImage("sky_visibility", VK_FORMAT_R16G16B16A16_SFLOAT, s.size,
                             VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, true);
-    // Bindings: the frame's uniforms, three sampled images, the output, the exact triangles.
-    s.pipelines.push_back(vk::createComputePipeline(
-        s.ctx, "sky_visibility.comp",
-        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-         VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-         VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-        sizeof(shader::SkyVisibilityConstants)));
-    const vk::Pipeline lookup = s.pipelines.back();
+    // After the output, binding 5: the exact triangles.
+    const vk::Pipeline lookup = s.computePipeline("sky_visibility.comp", 3, 1,
+                                                  sizeof(shader::SkyVisibilityConstants), {}, 1);
     s.buffers.push_back(vk::createBuffer(s.ctx, sizeof(shader::SkyTriangles),
                                          VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true));
     std::memcpy(s.buffers.back().mapped, &occluders.exact, sizeof(occluders.exact));
