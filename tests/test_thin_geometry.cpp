@@ -6,9 +6,8 @@
 // starts over.
 #include "renderer.h"
 #include "scene/camera.h"
+#include "stability/measures.h"
 #include "support.h"
-
-#include <cmath>
 
 using namespace ssgi;
 
@@ -17,36 +16,6 @@ namespace {
 class ThinGeometryTest : public test::VulkanTest {
 protected:
     static constexpr uint32_t kWidth = 96, kHeight = 72; // the stability suite's --quick size
-
-    // Pixels on something that lies nearer than the pixels on both sides of it, along x or y
-    // within 3 pixels (by more than 15%): the stability suite's thin features.
-    static std::vector<bool> thinPixels(const std::vector<float>& position, glm::vec3 eye) {
-        std::vector<float> d(size_t(kWidth) * kHeight, INFINITY);
-        for (size_t i = 0; i < d.size(); ++i)
-            if (position[4 * i + 3] != 0.0f)
-                d[i] = glm::distance(
-                    eye, glm::vec3(position[4 * i], position[4 * i + 1], position[4 * i + 2]));
-        auto farther = [&](long x, long y, float than) {
-            return x >= 0 && y >= 0 && x < long(kWidth) && y < long(kHeight) &&
-                   d[size_t(y) * kWidth + size_t(x)] > 1.15f * than;
-        };
-        std::vector<bool> thin(d.size());
-        for (long y = 0; y < long(kHeight); ++y)
-            for (long x = 0; x < long(kWidth); ++x) {
-                const float here = d[size_t(y) * kWidth + size_t(x)];
-                if (!std::isfinite(here)) continue;
-                for (int axis = 0; axis < 2; ++axis) {
-                    const long sx = axis == 0, sy = axis == 1;
-                    bool before = false, after = false;
-                    for (long k = 1; k <= 3; ++k) {
-                        before = before || farther(x - k * sx, y - k * sy, here);
-                        after = after || farther(x + k * sx, y + k * sy, here);
-                    }
-                    if (before && after) thin[size_t(y) * kWidth + size_t(x)] = true;
-                }
-            }
-        return thin;
-    }
 
     struct Kept {
         double thin = 0.0, rest = 0.0; // fractions of those pixels whose history went on
@@ -63,11 +32,16 @@ protected:
         for (int i = 1; i <= 6; ++i) {
             const Camera camera = cameraAt(scene.cameraPath, float(i) / 6.0f);
             r.renderFrame(camera);
-            const std::vector<float> position = r.readImage("gbuffer.position");
+            stability::View view;
+            view.width = kWidth;
+            view.height = kHeight;
+            view.camera = camera;
+            view.position = r.readImage("gbuffer.position");
             const std::vector<float> count = r.readImage("ao.count");
-            const std::vector<bool> isThin = thinPixels(position, camera.position);
+            // The stability suite's thin features, without its border.
+            const stability::Mask isThin = stability::thinMask(view, 3, 1.15f, 0);
             for (size_t p = 0; p < isThin.size(); ++p) {
-                if (position[4 * p + 3] == 0.0f) continue;
+                if (!view.geometry(p)) continue;
                 const bool kept = count[4 * p] > 1.0f;
                 thin += isThin[p];
                 thinKept += isThin[p] && kept;
