@@ -153,6 +153,31 @@ TEST_F(HistoryTest, PairSwapsKeepsContentsAndReportsNoHistoryFirst) {
     EXPECT_EQ(graph.timings()[0].name, "write current");
 }
 
+// A pass reaches only the images it declared: the graph derives barriers from the declarations,
+// so an image reached around them would be used unsynchronized. The refusal names the pass.
+TEST_F(HistoryTest, APassReachesOnlyTheImagesItDeclared) {
+    vk::Context& ctx = test::context();
+    FrameGraph graph(ctx);
+    const VkImageUsageFlags usage = VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    const ImageRef declared =
+        graph.createImage("declared", VK_FORMAT_R8G8B8A8_UNORM, {4, 4}, usage);
+    const ImageRef other = graph.createImage("other", VK_FORMAT_R8G8B8A8_UNORM, {4, 4}, usage);
+    std::string refusal;
+    graph.addPass("clear", PassKind::Transfer, {{declared, Use::TransferDst}},
+                  [&](const PassContext& pc) {
+                      EXPECT_EQ(pc.image(declared).name, "declared");
+                      try {
+                          pc.image(other);
+                      } catch (const std::logic_error& e) {
+                          refusal = e.what();
+                      }
+                  });
+    ctx.submitAndWait([&](VkCommandBuffer cmd) { graph.record(cmd); });
+    graph.endFrame();
+    EXPECT_NE(refusal.find("pass clear"), std::string::npos) << refusal;
+    EXPECT_NE(refusal.find("other"), std::string::npos) << refusal;
+}
+
 // Timestamps (issue 16): on a CPU device (lavapipe) a full barrier follows every stamp, so the
 // stamp is written where it stands; a GPU records the stamps alone. Checked on what the graph
 // recorded, in both modes, on the real device; no timing is judged here.

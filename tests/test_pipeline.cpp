@@ -26,8 +26,12 @@ constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
 constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
 
 // indirect_reconstruct.comp: the frame's uniforms, six sampler2Ds, two image2Ds.
-const std::vector<VkDescriptorType> kReconstruct = {
-    kUniform, kSampled, kSampled, kSampled, kSampled, kSampled, kSampled, kStorage, kStorage};
+const std::vector<vk::LayoutBinding> kReconstruct = {
+    {kUniform, "FrameBlock"},         {kSampled, "gbufferPosition"},
+    {kSampled, "gbufferNormal"},      {kSampled, "historyPosition"},
+    {kSampled, "historyCount"},       {kSampled, "estimates"},
+    {kSampled, "directionals"},       {kStorage, "filtered"},
+    {kStorage, "filteredDirectional"}};
 
 } // namespace
 
@@ -35,8 +39,10 @@ TEST(ShaderBindings, ReflectTheShadersOwnDeclarations) {
     const vk::EmbeddedShader& s = shader("indirect_reconstruct.comp");
     const auto bindings = vk::shaderBindings(s.code, s.bytes / 4, 0);
     ASSERT_EQ(bindings.size(), kReconstruct.size());
-    for (uint32_t b = 0; b < kReconstruct.size(); ++b)
-        EXPECT_EQ(bindings.at(b), kReconstruct[b]) << "binding " << b;
+    for (uint32_t b = 0; b < kReconstruct.size(); ++b) {
+        EXPECT_EQ(bindings.at(b).type, kReconstruct[b].type) << "binding " << b;
+        EXPECT_EQ(bindings.at(b).name, kReconstruct[b].name) << "binding " << b;
+    }
     EXPECT_TRUE(vk::shaderBindings(s.code, s.bytes / 4, 1).empty()) << "nothing in set 1";
     // A graphics shader with a texture in set 1: the G-buffer's fragment shader.
     const vk::EmbeddedShader& g = shader("gbuffer.frag");
@@ -53,7 +59,7 @@ TEST_F(PipelineTest, TheShadersOwnLayoutIsAccepted) {
 }
 
 TEST_F(PipelineTest, ALayoutThatDisagreesIsRefusedNamingShaderAndBinding) {
-    auto refusal = [](std::vector<VkDescriptorType> layout) {
+    auto refusal = [](std::vector<vk::LayoutBinding> layout) {
         try {
             vk::Pipeline p =
                 vk::createComputePipeline(test::context(), "indirect_reconstruct.comp", layout, 80);
@@ -63,20 +69,38 @@ TEST_F(PipelineTest, ALayoutThatDisagreesIsRefusedNamingShaderAndBinding) {
         }
         return std::string("accepted");
     };
-    std::vector<VkDescriptorType> wrongType = kReconstruct;
-    wrongType[5] = kStorage; // the shader samples binding 5
+    std::vector<vk::LayoutBinding> wrongType = kReconstruct;
+    wrongType[5].type = kStorage; // the shader samples binding 5
     const std::string type = refusal(wrongType);
     EXPECT_NE(type.find("indirect_reconstruct.comp binding 5"), std::string::npos) << type;
     EXPECT_NE(type.find("sampled image"), std::string::npos) << type;
 
-    std::vector<VkDescriptorType> missing(kReconstruct.begin(), kReconstruct.end() - 1);
+    std::vector<vk::LayoutBinding> missing(kReconstruct.begin(), kReconstruct.end() - 1);
     const std::string lacks = refusal(missing);
     EXPECT_NE(lacks.find("binding 8"), std::string::npos) << lacks;
     EXPECT_NE(lacks.find("lacks"), std::string::npos) << lacks;
 
-    std::vector<VkDescriptorType> extra = kReconstruct;
+    std::vector<vk::LayoutBinding> extra = kReconstruct;
     extra.push_back(kStorage);
     const std::string never = refusal(extra);
     EXPECT_NE(never.find("binding 9"), std::string::npos) << never;
     EXPECT_NE(never.find("never declares"), std::string::npos) << never;
+}
+
+// Two images swapped in a pass's list have the same type: only the names tell them apart, and the
+// refusal names both.
+TEST_F(PipelineTest, ABindingTheShaderNamesOtherwiseIsRefusedNamingBoth) {
+    std::vector<vk::LayoutBinding> swapped = kReconstruct;
+    std::swap(swapped[3], swapped[4]);
+    std::string message = "accepted";
+    try {
+        vk::Pipeline p =
+            vk::createComputePipeline(test::context(), "indirect_reconstruct.comp", swapped, 80);
+        vk::destroyPipeline(test::context(), p);
+    } catch (const vk::VulkanError& e) {
+        message = e.what();
+    }
+    EXPECT_NE(message.find("indirect_reconstruct.comp binding 3"), std::string::npos) << message;
+    EXPECT_NE(message.find("historyPosition"), std::string::npos) << message;
+    EXPECT_NE(message.find("declares historyCount"), std::string::npos) << message;
 }

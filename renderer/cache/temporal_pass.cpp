@@ -96,38 +96,25 @@ void addKeepPass(PassSetup& s, EffectCache* cache, std::vector<graph::ImageRef> 
 graph::ImageRef addTemporalPass(PassSetup& s, EffectCache* cache, graph::ImageRef raw,
                                 const GBufferAndRsm& in) {
     if (!cache) return raw;
-    const vk::Pipeline pipeline =
-        s.computePipeline("temporal.comp", 6, 2, sizeof(shader::TemporalConstants));
     using graph::FrameGraph;
     using graph::Use;
     const graph::ImageRef value = FrameGraph::current(cache->value);
     const CacheInputs history = cacheInputs(s, cache, in.gbuffer.position);
-    s.graph.addPass(cache->name + ".temporal", graph::PassKind::Compute,
-                    {{in.gbuffer.position, Use::Sampled},
-                     {in.gbuffer.normal, Use::Sampled},
-                     {raw, Use::Sampled},
-                     {FrameGraph::previous(cache->value), Use::Sampled},
-                     {history.position, Use::Sampled},
-                     {history.count, Use::Sampled},
-                     {value, Use::StorageWrite},
-                     {FrameGraph::current(cache->count), Use::StorageWrite}},
-                    [&s, cache, raw, in, history, pipeline](const graph::PassContext& pc) {
-                        vk::Descriptors()
-                            .uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size)
-                            .sampledImage(1, pc.image(in.gbuffer.position).view, s.nearestSampler)
-                            .sampledImage(2, pc.image(in.gbuffer.normal).view, s.nearestSampler)
-                            .sampledImage(3, pc.image(raw).view, s.nearestSampler)
-                            .sampledImage(4, pc.image(FrameGraph::previous(cache->value)).view,
-                                          s.nearestSampler)
-                            .sampledImage(5, pc.image(history.position).view, s.nearestSampler)
-                            .sampledImage(6, pc.image(history.count).view, s.nearestSampler)
-                            .storageImage(7, pc.image(FrameGraph::current(cache->value)).view)
-                            .storageImage(8, pc.image(FrameGraph::current(cache->count)).view)
-                            .push(s.ctx, pc.cmd, pipeline);
-                        shader::TemporalConstants constants{cacheConstants(s, cache)};
-                        const VkExtent2D area = cacheDispatch(s, cache, s.size);
-                        vk::dispatch(pc.cmd, pipeline, area.width, area.height, constants);
-                    });
+    ComputePassDesc pass{cache->name + ".temporal", "temporal.comp"};
+    pass.images = {{"gbufferPosition", in.gbuffer.position, Use::Sampled},
+                   {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
+                   {"current", raw, Use::Sampled},
+                   {"historyValue", FrameGraph::previous(cache->value), Use::Sampled},
+                   {"historyPosition", history.position, Use::Sampled},
+                   {"historyCount", history.count, Use::Sampled},
+                   {"newValue", value, Use::StorageWrite},
+                   {"newCount", FrameGraph::current(cache->count), Use::StorageWrite}};
+    pass.pushSize = sizeof(shader::TemporalConstants);
+    addComputePass(s, std::move(pass), [&s, cache](const ComputeRecorder& r) {
+        shader::TemporalConstants constants{cacheConstants(s, cache)};
+        const VkExtent2D area = cacheDispatch(s, cache, s.size);
+        r.dispatch(area.width, area.height, constants);
+    });
     return value;
 }
 

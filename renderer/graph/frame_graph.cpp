@@ -8,7 +8,10 @@
 namespace ssgi::graph {
 
 const vk::Image& PassContext::image(ImageRef ref) const {
-    return graph.image(ref);
+    for (const ImageUse& use : uses)
+        if (use.image.kind == ref.kind && use.image.index == ref.index) return graph.image(ref);
+    throw std::logic_error("pass " + pass + " reaches for an image it did not declare (" +
+                           (ref.valid() ? graph.image(ref).name : std::string("none")) + ")");
 }
 
 TimestampMode timestampModeFor(VkPhysicalDeviceType deviceType) {
@@ -172,7 +175,7 @@ void FrameGraph::record(VkCommandBuffer cmd) {
             ctx_.cmdBeginLabel(cmd, &label);
         }
         writeTimestamp(cmd, 2 * p, pass.name);
-        pass.record(PassContext{cmd, *this});
+        pass.record(PassContext{cmd, *this, pass.name, pass.uses});
         lastCommands_.push_back({RecordedCommand::Kind::Pass, pass.name});
         writeTimestamp(cmd, 2 * p + 1, pass.name);
         if (ctx_.cmdEndLabel) ctx_.cmdEndLabel(cmd);

@@ -57,10 +57,14 @@ struct BarrierRecord {
 
 class FrameGraph;
 
-// What a pass's record function gets: the command buffer and the images behind its refs.
+// What a pass's record function gets: the command buffer and the images behind the refs it
+// declared. A ref the pass did not declare is refused (std::logic_error naming the pass): no
+// barrier was derived for it.
 struct PassContext {
     VkCommandBuffer cmd;
     const FrameGraph& graph;
+    const std::string& pass;
+    const std::vector<ImageUse>& uses;
     const vk::Image& image(ImageRef ref) const;
 };
 

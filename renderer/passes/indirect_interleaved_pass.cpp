@@ -46,13 +46,10 @@ graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& 
             area = {area.width + 2 * widen, area.height + 2 * widen};
         return area;
     };
-    const vk::Pipeline gather = s.computePipeline(
-        "indirect_interleaved.comp", 7, 2, sizeof(shader::IndirectConstants),
-        vk::Specialization{{vpls, int(s.model.settings.indirect_visibility),
-                            int(s.model.settings.indirect_visibility_steps), k, radius}});
-    const vk::Pipeline filter =
-        s.computePipeline("indirect_reconstruct.comp", 6, 2, sizeof(shader::IndirectConstants),
-                          vk::Specialization{{k, radius}});
+    const vk::Specialization gatherSpec{{vpls, int(s.model.settings.indirect_visibility),
+                                         int(s.model.settings.indirect_visibility_steps), k,
+                                         radius}};
+    const vk::Specialization filterSpec{{k, radius}};
 
     const CacheInputs history = cacheInputs(s, cache, in.gbuffer.position);
     auto constants = [&s, cache](glm::ivec2 axis) {
@@ -71,33 +68,23 @@ graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& 
 
     addKeepPass(s, cache, {subsets, subsetsDirectional, across, acrossDirectional});
     using graph::Use;
-    s.graph.addPass("indirect", graph::PassKind::Compute,
-                    {{in.gbuffer.position, Use::Sampled},
-                     {in.gbuffer.normal, Use::Sampled},
-                     {in.rsm.position, Use::Sampled},
-                     {in.rsm.normal, Use::Sampled},
-                     {in.rsm.third, Use::Sampled},
-                     {history.position, Use::Sampled},
-                     {history.count, Use::Sampled},
-                     {subsets, Use::StorageWrite},
-                     {subsetsDirectional, Use::StorageWrite}},
-                    [&s, in, history, subsets, subsetsDirectional, gather, dispatchArea, margin,
-                     constants](const graph::PassContext& pc) {
-                        vk::Descriptors()
-                            .uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size)
-                            .sampledImage(1, pc.image(in.gbuffer.position).view, s.nearestSampler)
-                            .sampledImage(2, pc.image(in.gbuffer.normal).view, s.nearestSampler)
-                            .sampledImage(3, pc.image(in.rsm.position).view, s.nearestSampler)
-                            .sampledImage(4, pc.image(in.rsm.normal).view, s.nearestSampler)
-                            .sampledImage(5, pc.image(in.rsm.third).view, s.nearestSampler)
-                            .sampledImage(6, pc.image(history.position).view, s.nearestSampler)
-                            .sampledImage(7, pc.image(history.count).view, s.nearestSampler)
-                            .storageImage(8, pc.image(subsets).view)
-                            .storageImage(9, pc.image(subsetsDirectional).view)
-                            .push(s.ctx, pc.cmd, gather);
-                        const VkExtent2D area = dispatchArea(margin);
-                        vk::dispatch(pc.cmd, gather, area.width, area.height, constants({0, 0}));
-                    });
+    ComputePassDesc gather{"indirect", "indirect_interleaved.comp"};
+    gather.images = {{"gbufferPosition", in.gbuffer.position, Use::Sampled},
+                     {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
+                     {"rsmPosition", in.rsm.position, Use::Sampled},
+                     {"rsmNormal", in.rsm.normal, Use::Sampled},
+                     {"rsmFlux", in.rsm.third, Use::Sampled},
+                     {"historyPosition", history.position, Use::Sampled},
+                     {"historyCount", history.count, Use::Sampled},
+                     {"interleavedIndirect", subsets, Use::StorageWrite},
+                     {"interleavedDirectional", subsetsDirectional, Use::StorageWrite}};
+    gather.pushSize = sizeof(shader::IndirectConstants);
+    gather.spec = gatherSpec;
+    addComputePass(s, std::move(gather),
+                   [dispatchArea, margin, constants](const ComputeRecorder& r) {
+                       const VkExtent2D area = dispatchArea(margin);
+                       r.dispatch(area.width, area.height, constants({0, 0}));
+                   });
     // The filter, one axis a pass: x from the subsets, y from x's result.
     struct Axis {
         const char* pass;
@@ -108,32 +95,22 @@ graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& 
         {"indirect.filter_x", {1, 0}, subsets, subsetsDirectional, across, acrossDirectional},
         {"indirect.filter_y", {0, 1}, across, acrossDirectional, subsets, subsetsDirectional}};
     for (const Axis& a : axes) {
-        s.graph.addPass(
-            a.pass, graph::PassKind::Compute,
-            {{in.gbuffer.position, Use::Sampled},
-             {in.gbuffer.normal, Use::Sampled},
-             {history.position, Use::Sampled},
-             {history.count, Use::Sampled},
-             {a.source, Use::Sampled},
-             {a.sourceDirectional, Use::Sampled},
-             {a.target, Use::StorageWrite},
-             {a.targetDirectional, Use::StorageWrite}},
-            [&s, in, history, a, filter, constants, dispatchArea,
-             margin](const graph::PassContext& pc) {
-                vk::Descriptors()
-                    .uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size)
-                    .sampledImage(1, pc.image(in.gbuffer.position).view, s.nearestSampler)
-                    .sampledImage(2, pc.image(in.gbuffer.normal).view, s.nearestSampler)
-                    .sampledImage(3, pc.image(history.position).view, s.nearestSampler)
-                    .sampledImage(4, pc.image(history.count).view, s.nearestSampler)
-                    .sampledImage(5, pc.image(a.source).view, s.nearestSampler)
-                    .sampledImage(6, pc.image(a.sourceDirectional).view, s.nearestSampler)
-                    .storageImage(7, pc.image(a.target).view)
-                    .storageImage(8, pc.image(a.targetDirectional).view)
-                    .push(s.ctx, pc.cmd, filter);
-                const VkExtent2D area = dispatchArea(a.axis.x == 1 ? margin : 0);
-                vk::dispatch(pc.cmd, filter, area.width, area.height, constants(a.axis));
-            });
+        ComputePassDesc filter{a.pass, "indirect_reconstruct.comp"};
+        filter.images = {{"gbufferPosition", in.gbuffer.position, Use::Sampled},
+                         {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
+                         {"historyPosition", history.position, Use::Sampled},
+                         {"historyCount", history.count, Use::Sampled},
+                         {"estimates", a.source, Use::Sampled},
+                         {"directionals", a.sourceDirectional, Use::Sampled},
+                         {"filtered", a.target, Use::StorageWrite},
+                         {"filteredDirectional", a.targetDirectional, Use::StorageWrite}};
+        filter.pushSize = sizeof(shader::IndirectConstants);
+        filter.spec = filterSpec;
+        addComputePass(s, std::move(filter),
+                       [axis = a.axis, dispatchArea, margin, constants](const ComputeRecorder& r) {
+                           const VkExtent2D area = dispatchArea(axis.x == 1 ? margin : 0);
+                           r.dispatch(area.width, area.height, constants(axis));
+                       });
     }
     return subsets; // the y axis's result
 }

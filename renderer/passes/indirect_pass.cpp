@@ -19,11 +19,6 @@ graph::ImageRef addIndirectPasses(PassSetup& s, const GBufferAndRsm& in, EffectC
         {int(s.model.settings.indirect_vpls), int(s.model.settings.indirect_visibility),
          int(s.model.settings.indirect_visibility_steps), int(s.model.settings.indirect_half_res)}};
     const bool halfRes = s.model.settings.indirect_half_res;
-    const vk::Pipeline gather =
-        s.computePipeline("indirect.comp", 7, 1, sizeof(shader::IndirectConstants), spec);
-    const vk::Pipeline upsample =
-        s.computePipeline("upsample.comp", 8, 1, sizeof(shader::IndirectConstants), spec);
-
     const CacheInputs history = cacheInputs(s, cache, in.gbuffer.position);
     auto constants = [&s, halfSize, cache]() {
         shader::IndirectConstants c{};
@@ -36,51 +31,37 @@ graph::ImageRef addIndirectPasses(PassSetup& s, const GBufferAndRsm& in, EffectC
         c.cache = cacheConstants(s, cache);
         return c;
     };
-    auto sceneInputs = [&s, in, history](const graph::PassContext& pc, vk::Descriptors& d) {
-        d.uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size)
-            .sampledImage(1, pc.image(in.gbuffer.position).view, s.nearestSampler)
-            .sampledImage(2, pc.image(in.gbuffer.normal).view, s.nearestSampler)
-            .sampledImage(3, pc.image(in.rsm.position).view, s.nearestSampler)
-            .sampledImage(4, pc.image(in.rsm.normal).view, s.nearestSampler)
-            .sampledImage(5, pc.image(in.rsm.third).view, s.nearestSampler)
-            .sampledImage(6, pc.image(history.position).view, s.nearestSampler)
-            .sampledImage(7, pc.image(history.count).view, s.nearestSampler);
-    };
 
     addKeepPass(s, cache, {half, full});
     using graph::Use;
-    const std::vector<graph::ImageUse> reads = {
-        {in.gbuffer.position, Use::Sampled}, {in.gbuffer.normal, Use::Sampled},
-        {in.rsm.position, Use::Sampled},     {in.rsm.normal, Use::Sampled},
-        {in.rsm.third, Use::Sampled},        {history.position, Use::Sampled},
-        {history.count, Use::Sampled}};
-    std::vector<graph::ImageUse> gatherUses = reads;
-    gatherUses.push_back({half, Use::StorageWrite});
-    s.graph.addPass(
-        "indirect", graph::PassKind::Compute, gatherUses,
-        [&s, cache, half, gather, constants, sceneInputs](const graph::PassContext& pc) {
-            vk::Descriptors d;
-            sceneInputs(pc, d);
-            d.storageImage(8, pc.image(half).view).push(s.ctx, pc.cmd, gather);
+    const std::vector<ShaderImage> reads = {{"gbufferPosition", in.gbuffer.position, Use::Sampled},
+                                            {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
+                                            {"rsmPosition", in.rsm.position, Use::Sampled},
+                                            {"rsmNormal", in.rsm.normal, Use::Sampled},
+                                            {"rsmFlux", in.rsm.third, Use::Sampled},
+                                            {"historyPosition", history.position, Use::Sampled},
+                                            {"historyCount", history.count, Use::Sampled}};
+    ComputePassDesc gather{"indirect", "indirect.comp", reads};
+    gather.images.push_back({"halfIndirect", half, Use::StorageWrite});
+    gather.pushSize = sizeof(shader::IndirectConstants);
+    gather.spec = spec;
+    addComputePass(
+        s, std::move(gather),
+        [&s, cache, constants](const ComputeRecorder& r) {
             const VkExtent2D area = cacheDispatch(s, cache, s.size, 2);
-            vk::dispatch(pc.cmd, gather, area.width, area.height, constants());
+            r.dispatch(area.width, area.height, constants());
         },
         [halfRes] { return halfRes; }); // at full resolution, upsample gathers every pixel
 
-    std::vector<graph::ImageUse> upsampleUses = reads;
-    upsampleUses.push_back({half, Use::Sampled});
-    upsampleUses.push_back({full, Use::StorageWrite});
-    s.graph.addPass(
-        "upsample", graph::PassKind::Compute, upsampleUses,
-        [&s, cache, half, full, upsample, constants, sceneInputs](const graph::PassContext& pc) {
-            vk::Descriptors d;
-            sceneInputs(pc, d);
-            d.sampledImage(8, pc.image(half).view, s.nearestSampler)
-                .storageImage(9, pc.image(full).view)
-                .push(s.ctx, pc.cmd, upsample);
-            const VkExtent2D area = cacheDispatch(s, cache, s.size);
-            vk::dispatch(pc.cmd, upsample, area.width, area.height, constants());
-        });
+    ComputePassDesc upsample{"upsample", "upsample.comp", reads};
+    upsample.images.push_back({"halfIndirect", half, Use::Sampled});
+    upsample.images.push_back({"indirectImage", full, Use::StorageWrite});
+    upsample.pushSize = sizeof(shader::IndirectConstants);
+    upsample.spec = spec;
+    addComputePass(s, std::move(upsample), [&s, cache, constants](const ComputeRecorder& r) {
+        const VkExtent2D area = cacheDispatch(s, cache, s.size);
+        r.dispatch(area.width, area.height, constants());
+    });
     return full;
 }
 

@@ -2,14 +2,18 @@
 
 namespace ssgi {
 
-const vk::Pipeline& PassSetup::computePipeline(const std::string& shader, uint32_t sampled,
-                                               uint32_t storage, uint32_t pushSize,
-                                               const vk::Specialization& spec, uint32_t uniforms) {
-    std::vector<VkDescriptorType> bindings = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER};
-    bindings.insert(bindings.end(), sampled, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
-    bindings.insert(bindings.end(), storage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
-    bindings.insert(bindings.end(), uniforms, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
-    pipelines.push_back(vk::createComputePipeline(ctx, shader, bindings, pushSize, spec));
+const vk::Pipeline& PassSetup::computePipeline(const ComputePassDesc& desc,
+                                               const std::vector<vk::LayoutBinding>& layout) {
+    std::string key = desc.shader + " push " + std::to_string(desc.pushSize) + " spec";
+    for (int32_t v : desc.spec.values)
+        key += " " + std::to_string(v);
+    for (const vk::LayoutBinding& b : layout)
+        key += " " + std::to_string(int(b.type)) + ":" + b.name;
+    const auto found = computePipelines.find(key);
+    if (found != computePipelines.end()) return pipelines[found->second];
+    pipelines.push_back(
+        vk::createComputePipeline(ctx, desc.shader, layout, desc.pushSize, desc.spec));
+    computePipelines[key] = pipelines.size() - 1;
     return pipelines.back();
 }
 

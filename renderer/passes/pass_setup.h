@@ -5,11 +5,13 @@
 
 #include "cache/cache.h"
 #include "graph/frame_graph.h"
+#include "passes/compute_pass.h"
 #include "scene_gpu.h"
 #include "shared.h"
 #include "vk/pipeline.h"
 
 #include <deque>
+#include <map>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -29,7 +31,8 @@ struct PassSetup {
     glm::dvec3 gpuOrigin{0.0};           // the world point at the GPU's origin (renderer.cpp)
     VkExtent2D rsmSize{};                // the reflective shadow map
     std::vector<vk::Pipeline> pipelines; // destroyed with the renderer
-    std::vector<vk::Buffer> buffers;     // likewise (the sky maps' views)
+    std::map<std::string, size_t> computePipelines; // computePipeline()'s, by what makes them
+    std::vector<vk::Buffer> buffers;                // likewise (the sky maps' views)
     // This frame's turn and scale of every sampling pattern (thesis 3.1.2); set by the renderer.
     float patternRotation = 0.0f;
     float patternScale = 1.0f;
@@ -53,12 +56,10 @@ struct PassSetup {
     // What the composite shows (a VIEW_* value); the renderer may change it between frames.
     int view = 0;
 
-    // A compute pipeline whose bindings are set 0's: binding 0 the frame uniforms, then
-    // `sampled` combined image samplers, then `storage` storage images, then `uniforms` more
-    // uniform buffers (the pass's own tables).
-    const vk::Pipeline& computePipeline(const std::string& shader, uint32_t sampled,
-                                        uint32_t storage, uint32_t pushSize,
-                                        const vk::Specialization& spec = {}, uint32_t uniforms = 0);
+    // A compute pipeline for `desc` (compute_pass.cpp), made once and shared by every pass that
+    // asks for the same shader, layout and specialization (the interleaved filter's two axes).
+    const vk::Pipeline& computePipeline(const ComputePassDesc& desc,
+                                        const std::vector<vk::LayoutBinding>& layout);
     // Where the output ("hdr", "ldr") lies in the screen images: the guard band in from each edge.
     VkRect2D output() const {
         return {{int32_t(guardBand), int32_t(guardBand)},

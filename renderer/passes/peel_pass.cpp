@@ -19,8 +19,9 @@ graph::ImageRef addPeelPass(PassSetup& s, const GBufferAndRsm& in) {
     desc.fragmentShader = "peel.frag";
     desc.colorFormats = {VK_FORMAT_R32G32B32A32_SFLOAT};
     desc.depthFormat = VK_FORMAT_D32_SFLOAT;
-    desc.bindings = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
+    desc.bindings = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, "FrameBlock"},
+                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, "baseColorTexture"},
+                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, "firstLayerPosition"}};
     desc.pushConstantSize = sizeof(shader::DrawConstants);
     s.pipelines.push_back(vk::createGraphicsPipeline(s.ctx, desc));
     const vk::Pipeline pipeline = s.pipelines.back();

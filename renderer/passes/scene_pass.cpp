@@ -34,7 +34,8 @@ SceneTargets addScenePass(PassSetup& s, const std::string& name, const std::stri
     desc.fragmentShader = shader + ".frag";
     desc.colorFormats = {VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_R16G16B16A16_SFLOAT, thirdFormat};
     desc.depthFormat = VK_FORMAT_D32_SFLOAT;
-    desc.bindings = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
+    desc.bindings = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, "FrameBlock"},
+                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, "baseColorTexture"}};
     desc.pushConstantSize = sizeof(shader::DrawConstants);
     s.pipelines.push_back(vk::createGraphicsPipeline(s.ctx, desc));
     const vk::Pipeline pipeline = s.pipelines.back();

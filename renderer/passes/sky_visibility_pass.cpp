@@ -112,7 +112,8 @@ graph::ImageRef addSkyVisibilityPasses(PassSetup& s, const GBufferAndRsm& in) {
     desc.vertexShader = "sky_depth.vert";
     desc.fragmentShader = "sky_depth.frag";
     desc.depthFormat = VK_FORMAT_D32_SFLOAT;
-    desc.bindings = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
+    desc.bindings = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, "MapBlock"},
+                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, "baseColorTexture"}};
     desc.pushConstantSize = sizeof(shader::DrawConstants);
     s.pipelines.push_back(vk::createGraphicsPipeline(s.ctx, desc));
     const vk::Pipeline draw = s.pipelines.back();
@@ -150,13 +151,9 @@ graph::ImageRef addSkyVisibilityPasses(PassSetup& s, const GBufferAndRsm& in) {
     const graph::ImageRef visibility =
         s.graph.createImage("sky_visibility", VK_FORMAT_R16G16B16A16_SFLOAT, s.size,
                             VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, true);
-    // After the output, binding 5: the exact triangles.
-    const vk::Pipeline lookup = s.computePipeline("sky_visibility.comp", 3, 1,
-                                                  sizeof(shader::SkyVisibilityConstants), {}, 1);
     s.buffers.push_back(vk::createBuffer(s.ctx, sizeof(shader::SkyTriangles),
                                          VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true));
     std::memcpy(s.buffers.back().mapped, &occluders.exact, sizeof(occluders.exact));
-    const vk::Buffer triangles = s.buffers.back();
     // Occluders nearer than the AO's radius are the AO's; with no AO, only a few texels' worth
     // of nearness is left out (the map's own resolution).
     const float texel = 2.0f * radius / float(tileSize);
@@ -165,22 +162,17 @@ graph::ImageRef addSkyVisibilityPasses(PassSetup& s, const GBufferAndRsm& in) {
     const float nearest = m.settings.ao && !m.settings.ssdo ? aoRadius(m) : 0.0f;
     constants.aoReach = std::max(nearest, 3.0f * texel);
     constants.normalOffset = 1.5f * texel;
-    s.graph.addPass(
-        "sky_visibility", graph::PassKind::Compute,
-        {{in.gbuffer.position, Use::Sampled},
-         {in.gbuffer.normal, Use::Sampled},
-         {maps, Use::Sampled},
-         {visibility, Use::StorageWrite}},
-        [&s, in, maps, visibility, lookup, constants, triangles](const graph::PassContext& pc) {
-            vk::Descriptors()
-                .uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size)
-                .sampledImage(1, pc.image(in.gbuffer.position).view, s.nearestSampler)
-                .sampledImage(2, pc.image(in.gbuffer.normal).view, s.nearestSampler)
-                .sampledImage(3, pc.image(maps).view, s.nearestSampler)
-                .storageImage(4, pc.image(visibility).view)
-                .uniformBuffer(5, triangles.buffer, triangles.size)
-                .push(s.ctx, pc.cmd, lookup);
-            vk::dispatch(pc.cmd, lookup, s.size.width, s.size.height, constants);
+    ComputePassDesc pass{"sky_visibility", "sky_visibility.comp"};
+    pass.images = {{"gbufferPosition", in.gbuffer.position, Use::Sampled},
+                   {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
+                   {"skyMaps", maps, Use::Sampled},
+                   {"visibilityImage", visibility, Use::StorageWrite}};
+    pass.uniforms = {{"TrianglesBlock", s.buffers.back()}}; // the exact triangles
+    pass.pushSize = sizeof(shader::SkyVisibilityConstants);
+    addComputePass(
+        s, std::move(pass),
+        [&s, constants](const ComputeRecorder& r) {
+            r.dispatch(s.size.width, s.size.height, constants);
         },
         // The same camera over the same maps looks up the same values.
         [&s] { return !s.cameraStill || s.skyMapsStale; });

@@ -18,7 +18,7 @@ static const EmbeddedShader& findShader(const std::string& name) {
 }
 
 // Set 0's bindings as the shader declares them.
-static std::map<uint32_t, VkDescriptorType> declaredBindings(const std::string& name) {
+static std::map<uint32_t, ShaderBinding> declaredBindings(const std::string& name) {
     const EmbeddedShader& shader = findShader(name);
     return shaderBindings(shader.code, shader.bytes / sizeof(uint32_t), 0);
 }
@@ -33,11 +33,11 @@ static VkShaderModule loadShader(const Context& ctx, const std::string& name) {
     return module;
 }
 
-static void createLayout(Context& ctx, Pipeline& p, const std::vector<VkDescriptorType>& bindings,
+static void createLayout(Context& ctx, Pipeline& p, const std::vector<LayoutBinding>& bindings,
                          VkDescriptorSetLayout textureSet, uint32_t pushSize) {
     std::vector<VkDescriptorSetLayoutBinding> layoutBindings;
     for (uint32_t i = 0; i < bindings.size(); ++i)
-        layoutBindings.push_back({i, bindings[i], 1, p.stages, nullptr});
+        layoutBindings.push_back({i, bindings[i].type, 1, p.stages, nullptr});
     VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     setInfo.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
     setInfo.bindingCount = uint32_t(layoutBindings.size());
@@ -56,7 +56,7 @@ static void createLayout(Context& ctx, Pipeline& p, const std::vector<VkDescript
 }
 
 Pipeline createComputePipeline(Context& ctx, const std::string& shader,
-                               const std::vector<VkDescriptorType>& bindings,
+                               const std::vector<LayoutBinding>& bindings,
                                uint32_t pushConstantSize, const Specialization& spec) {
     checkBindings(shader, declaredBindings(shader), bindings);
     Pipeline p;
@@ -87,7 +87,7 @@ Pipeline createComputePipeline(Context& ctx, const std::string& shader,
 }
 
 Pipeline createGraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& desc) {
-    std::map<uint32_t, VkDescriptorType> declared = declaredBindings(desc.vertexShader);
+    std::map<uint32_t, ShaderBinding> declared = declaredBindings(desc.vertexShader);
     declared.merge(declaredBindings(desc.fragmentShader)); // a binding both read is the same
     checkBindings(desc.vertexShader + " + " + desc.fragmentShader, declared, desc.bindings);
     Pipeline p;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "vk/context.h"
+#include "vk/shader_bindings.h"
 
 #include <deque>
 #include <string>
@@ -24,8 +25,10 @@ struct Specialization {
     std::vector<int32_t> values;
 };
 
+// Set 0's layout is `bindings` (binding i is bindings[i]); the shader's own declarations must
+// agree with it, names included where given (checkBindings), or this throws naming both.
 Pipeline createComputePipeline(Context& ctx, const std::string& shader,
-                               const std::vector<VkDescriptorType>& bindings,
+                               const std::vector<LayoutBinding>& bindings,
                                uint32_t pushConstantSize, const Specialization& spec = {});
 
 // The vertex buffer's layout at binding 0: its stride and attributes. The caller's to give
@@ -40,7 +43,7 @@ struct GraphicsPipelineDesc {
     VertexInput vertices;
     std::vector<VkFormat> colorFormats;
     VkFormat depthFormat = VK_FORMAT_UNDEFINED;
-    std::vector<VkDescriptorType> bindings;                  // set 0, push descriptors
+    std::vector<LayoutBinding> bindings;                     // set 0, push descriptors
     VkDescriptorSetLayout textureSetLayout = VK_NULL_HANDLE; // set 1, optional
     uint32_t pushConstantSize = 0;
 };

@@ -10,6 +10,7 @@ namespace {
 
 // The SPIR-V instructions read here (SPIR-V specification, section 3).
 enum Op : uint32_t {
+    OpName = 5,
     OpTypeImage = 25,
     OpTypeSampledImage = 27,
     OpTypeArray = 28,
@@ -28,9 +29,21 @@ enum StorageClass : uint32_t { UniformConstant = 0, Uniform = 2, StorageBuffer =
 
 } // namespace
 
-std::map<uint32_t, VkDescriptorType> shaderBindings(const uint32_t* code, size_t words,
-                                                    uint32_t set) {
+// A literal string operand: UTF-8 bytes packed four to a word, NUL-terminated.
+static std::string literalString(const uint32_t* words, size_t count) {
+    std::string s;
+    for (size_t i = 0; i < count; ++i)
+        for (int b = 0; b < 4; ++b) {
+            const char c = char((words[i] >> (8 * b)) & 0xff);
+            if (c == 0) return s;
+            s += c;
+        }
+    return s;
+}
+
+std::map<uint32_t, ShaderBinding> shaderBindings(const uint32_t* code, size_t words, uint32_t set) {
     std::map<uint32_t, uint32_t> bindingOf, setOf;
+    std::map<uint32_t, std::string> nameOf;
     std::set<uint32_t> bufferBlocks;         // structs decorated BufferBlock (old-style SSBOs)
     std::map<uint32_t, uint32_t> imageUsage; // OpTypeImage id -> Sampled operand (1 or 2)
     std::set<uint32_t> sampledImages;        // OpTypeSampledImage ids
@@ -42,6 +55,9 @@ std::map<uint32_t, VkDescriptorType> shaderBindings(const uint32_t* code, size_t
         if (count == 0 || i + count > words) break;
         const uint32_t* w = code + i + 1;
         switch (op) {
+        case OpName:
+            nameOf[w[0]] = literalString(w + 1, count - 2);
+            break;
         case OpDecorate:
             if (w[1] == Binding) bindingOf[w[0]] = w[2];
             if (w[1] == Set) setOf[w[0]] = w[2];
@@ -68,7 +84,7 @@ std::map<uint32_t, VkDescriptorType> shaderBindings(const uint32_t* code, size_t
         }
         i += count;
     }
-    std::map<uint32_t, VkDescriptorType> result;
+    std::map<uint32_t, ShaderBinding> result;
     for (const auto& [id, pointerType] : variables) {
         if (!bindingOf.count(id) || (setOf.count(id) ? setOf[id] : 0) != set) continue;
         const auto pointer = pointers.find(pointerType);
@@ -89,7 +105,9 @@ std::map<uint32_t, VkDescriptorType> shaderBindings(const uint32_t* code, size_t
                                                : VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE;
         else
             continue;
-        result[bindingOf[id]] = descriptor;
+        std::string name = nameOf.count(id) ? nameOf[id] : "";
+        if (name.empty() && nameOf.count(type)) name = nameOf[type]; // an anonymous block
+        result[bindingOf[id]] = {descriptor, name};
     }
     return result;
 }
@@ -111,23 +129,29 @@ std::string descriptorTypeName(VkDescriptorType type) {
     }
 }
 
-void checkBindings(const std::string& shader, const std::map<uint32_t, VkDescriptorType>& declared,
-                   const std::vector<VkDescriptorType>& layout) {
-    for (const auto& [binding, type] : declared) {
+void checkBindings(const std::string& shader, const std::map<uint32_t, ShaderBinding>& declared,
+                   const std::vector<LayoutBinding>& layout) {
+    auto named = [](const std::string& name) { return name.empty() ? "" : " " + name; };
+    for (const auto& [binding, found] : declared) {
+        const std::string what = descriptorTypeName(found.type) + named(found.name);
         if (binding >= layout.size())
-            throw VulkanError(shader + " reads binding " + std::to_string(binding) + " (" +
-                              descriptorTypeName(type) + ") of set 0, which the pass's layout (" +
+            throw VulkanError(shader + " reads binding " + std::to_string(binding) + " (" + what +
+                              ") of set 0, which the pass's layout (" +
                               std::to_string(layout.size()) + " bindings) lacks");
-        if (layout[binding] != type)
-            throw VulkanError(shader + " binding " + std::to_string(binding) + " is " +
-                              descriptorTypeName(type) + ", the pass's layout makes it " +
-                              descriptorTypeName(layout[binding]));
+        const LayoutBinding& expected = layout[binding];
+        if (expected.type != found.type)
+            throw VulkanError(shader + " binding " + std::to_string(binding) + " is " + what +
+                              ", the pass's layout makes it " + descriptorTypeName(expected.type) +
+                              named(expected.name));
+        if (!expected.name.empty() && expected.name != found.name)
+            throw VulkanError(shader + " binding " + std::to_string(binding) + " is " + what +
+                              ", the pass declares " + expected.name + " there");
     }
     for (uint32_t binding = 0; binding < layout.size(); ++binding)
         if (!declared.count(binding))
             throw VulkanError("the pass's layout has binding " + std::to_string(binding) + " (" +
-                              descriptorTypeName(layout[binding]) + ") that " + shader +
-                              " never declares");
+                              descriptorTypeName(layout[binding].type) +
+                              named(layout[binding].name) + ") that " + shader + " never declares");
 }
 
 } // namespace ssgi::vk

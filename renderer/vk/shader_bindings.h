@@ -1,7 +1,7 @@
 // What a shader itself declares in a descriptor set, read from its SPIR-V (the binding and
-// descriptor-set decorations of its resource variables), so that a pipeline's layout can be
-// held to it: a pass's declared bindings and the shader's `layout(binding = N)` are written in
-// two places, and this is where they must agree (the pipelines check it when they are made).
+// descriptor-set decorations of its resource variables, and their names), so that a pipeline's
+// layout can be held to it: a pass declares its bindings in C++ and the shader declares them in
+// GLSL, and this is where the two must agree (the pipelines check it when they are made).
 #pragma once
 
 #include <vulkan/vulkan.h>
@@ -14,16 +14,32 @@
 
 namespace ssgi::vk {
 
-// Binding number -> descriptor type of every resource in descriptor set `set` (uniform buffers,
-// storage buffers, combined image samplers, sampled and storage images).
-std::map<uint32_t, VkDescriptorType> shaderBindings(const uint32_t* code, size_t words,
-                                                    uint32_t set);
+// One resource of a descriptor set: its descriptor type and the name the shader gives it (the
+// variable's; for a uniform or storage block, whose variable is usually anonymous, the block's).
+struct ShaderBinding {
+    VkDescriptorType type;
+    std::string name;
+};
 
-// Throws VulkanError naming the shader and the binding where `layout` (binding i has type
-// layout[i]) and `declared` (what the shaders read) disagree: a binding of another type, one the
-// shader reads that the layout lacks, or one the layout has that the shader never declares.
-void checkBindings(const std::string& shader, const std::map<uint32_t, VkDescriptorType>& declared,
-                   const std::vector<VkDescriptorType>& layout);
+// Binding number -> every resource in descriptor set `set` (uniform buffers, storage buffers,
+// combined image samplers, sampled and storage images).
+std::map<uint32_t, ShaderBinding> shaderBindings(const uint32_t* code, size_t words, uint32_t set);
+
+// One binding of a pipeline's layout: its type and, where the caller names it, the name the
+// shader must give it (empty: only the type is checked).
+struct LayoutBinding {
+    LayoutBinding(VkDescriptorType type, std::string name = {})
+        : type(type), name(std::move(name)) {}
+    VkDescriptorType type;
+    std::string name;
+};
+
+// Throws VulkanError naming the shader and the binding where `layout` (binding i is layout[i])
+// and `declared` (what the shaders read) disagree: a binding of another type or another name,
+// one the shader reads that the layout lacks, or one the layout has that the shader never
+// declares.
+void checkBindings(const std::string& shader, const std::map<uint32_t, ShaderBinding>& declared,
+                   const std::vector<LayoutBinding>& layout);
 
 std::string descriptorTypeName(VkDescriptorType type);
 

@@ -1,0 +1,58 @@
+#include "passes/compute_pass.h"
+
+#include "passes/pass_setup.h"
+
+namespace ssgi {
+
+static bool isSampled(graph::Use use) {
+    return use == graph::Use::Sampled;
+}
+
+static bool isStorage(graph::Use use) {
+    return use == graph::Use::StorageWrite || use == graph::Use::StorageReadWrite;
+}
+
+void ComputeRecorder::dispatch(uint32_t width, uint32_t height, const void* constants,
+                               uint32_t size) const {
+    const PassSetup& s = setup_;
+    vk::Descriptors d;
+    d.uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size);
+    uint32_t binding = 1;
+    for (const ShaderImage& i : desc_.images) {
+        const VkImageView view = pass_.image(i.image).view;
+        if (isSampled(i.use))
+            d.sampledImage(binding++, view, i.sampler ? i.sampler : s.nearestSampler);
+        else
+            d.storageImage(binding++, view);
+    }
+    for (const ShaderBuffer& b : desc_.uniforms)
+        d.uniformBuffer(binding++, b.buffer.buffer, b.buffer.size);
+    d.push(s.ctx, pass_.cmd, pipeline_);
+    vk::dispatch(pass_.cmd, pipeline_, width, height, constants, size);
+}
+
+void addComputePass(PassSetup& s, ComputePassDesc desc, ComputeRecordFn record,
+                    std::function<bool()> enabled) {
+    std::vector<vk::LayoutBinding> layout = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, "FrameBlock"}};
+    std::vector<graph::ImageUse> uses;
+    for (const ShaderImage& i : desc.images) {
+        if (!isSampled(i.use) && !isStorage(i.use))
+            throw std::logic_error("pass " + desc.name + " binds " + i.name +
+                                   " for a use a compute shader cannot bind");
+        layout.push_back({isSampled(i.use) ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER
+                                           : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                          i.name});
+        uses.push_back({i.image, i.use});
+    }
+    for (const ShaderBuffer& b : desc.uniforms)
+        layout.push_back({VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, b.name});
+    const vk::Pipeline pipeline = s.computePipeline(desc, layout);
+    const std::string name = desc.name;
+    s.graph.addPass(
+        name, graph::PassKind::Compute, std::move(uses),
+        [&s, desc = std::move(desc), record = std::move(record), pipeline](
+            const graph::PassContext& pc) { record(ComputeRecorder(s, pc, desc, pipeline)); },
+        std::move(enabled));
+}
+
+} // namespace ssgi

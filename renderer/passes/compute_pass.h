@@ -1,0 +1,72 @@
+// A compute pass declared once. The pass lists the images it binds, in the order of its shader's
+// bindings, each with the name the shader gives it and how the pass uses it; its uniform buffers
+// follow. From that one list come the pipeline's layout (binding 0 the frame's uniforms, then the
+// images: a sampled use is a sampler2D, a storage use an image2D, then the buffers), the
+// descriptors pushed each frame, and the graph's barriers. When the pipeline is made, the
+// shader's own declarations (read from its SPIR-V) are held to the list, names included: a
+// binding the shader calls otherwise, types that differ, or a count that differs is an error
+// naming the shader, the binding and both names (vk/shader_bindings.h).
+#pragma once
+
+#include "graph/frame_graph.h"
+#include "vk/pipeline.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace ssgi {
+
+struct PassSetup;
+
+// One image a compute pass binds.
+struct ShaderImage {
+    std::string name;                   // the shader's variable
+    graph::ImageRef image;              // the image behind it this frame
+    graph::Use use;                     // Sampled, StorageWrite or StorageReadWrite
+    VkSampler sampler = VK_NULL_HANDLE; // for a sampled use: the setup's nearest unless given
+};
+
+// One uniform buffer a compute pass binds, after its images.
+struct ShaderBuffer {
+    std::string name; // the shader's uniform block
+    vk::Buffer buffer;
+};
+
+struct ComputePassDesc {
+    std::string name;   // the pass, as the graph, the profile and the debug labels name it
+    std::string shader; // e.g. "ao.comp"
+    std::vector<ShaderImage> images;
+    std::vector<ShaderBuffer> uniforms;
+    uint32_t pushSize = 0; // the shader's push-constant block, bytes
+    vk::Specialization spec;
+};
+
+// What a compute pass's record function gets: dispatch() pushes the declared descriptors, then
+// the constants, and dispatches enough 8x8 groups to cover width x height.
+class ComputeRecorder {
+public:
+    ComputeRecorder(const PassSetup& setup, const graph::PassContext& pass,
+                    const ComputePassDesc& desc, const vk::Pipeline& pipeline)
+        : setup_(setup), pass_(pass), desc_(desc), pipeline_(pipeline) {}
+    template <typename T> void dispatch(uint32_t width, uint32_t height, const T& constants) const {
+        dispatch(width, height, &constants, sizeof(T));
+    }
+    void dispatch(uint32_t width, uint32_t height) const { dispatch(width, height, nullptr, 0); }
+
+private:
+    void dispatch(uint32_t width, uint32_t height, const void* constants, uint32_t size) const;
+    const PassSetup& setup_;
+    const graph::PassContext& pass_;
+    const ComputePassDesc& desc_;
+    const vk::Pipeline& pipeline_;
+};
+
+using ComputeRecordFn = std::function<void(const ComputeRecorder&)>;
+
+// Makes the pipeline (checked against the shader as above) and adds the pass to the graph, its
+// uses those of `desc.images`. `enabled` as FrameGraph::addPass.
+void addComputePass(PassSetup& setup, ComputePassDesc desc, ComputeRecordFn record,
+                    std::function<bool()> enabled = {});
+
+} // namespace ssgi
