@@ -258,13 +258,19 @@ def table_4_1(walk):
 
 
 def memory_totals(sweep):
-    return {size: sum(e["bytes"] for e in images) for size, images in sweep["memory"].items()}
+    """What the frame graph holds: every image not in the transient images' shared block, and the
+    block (a run before the block existed lists neither)."""
+    return {size: sum(e["bytes"] for e in images if not e.get("shared"))
+            for size, images in sweep["memory"].items()}
 
 
 def memory_by_resource(images):
-    """History pairs ("X A", "X B") summed under X, largest first."""
+    """History pairs ("X A", "X B") summed under X, largest first; an image in the shared block
+    is marked, its bytes counted in the block's row."""
     grouped = {}
     for e in images:
         name = e["image"][:-2] + " (pair)" if e["image"][-2:] in (" A", " B") else e["image"]
+        if e.get("shared"):
+            name += " (in the shared block)"
         grouped[name] = grouped.get(name, 0) + e["bytes"]
     return sorted(grouped.items(), key=lambda kv: -kv[1])

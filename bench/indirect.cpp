@@ -169,7 +169,8 @@ Json indirectComparison(vk::Context& ctx, const Scene& scene, const Options& opt
         Scene onceScene =
             withSettings(scene, methods[m].settings); // the renderer keeps a reference
         onceScene.settings.cache = false;
-        Renderer single(ctx, onceScene, RenderOptions{errorSize.width, errorSize.height, "final"});
+        Renderer single(ctx, onceScene,
+                        RenderOptions{errorSize.width, errorSize.height, "final", {"indirect"}});
         single.renderFrame(scene.camera);
         if (geometry.empty()) {
             const std::vector<float> position = single.readImage("gbuffer.position");

@@ -6,6 +6,7 @@
 #include "metrics/metrics.h"
 #include "reference/cache.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <memory>
@@ -139,9 +140,15 @@ Json deviceJson(const vk::Context& ctx) {
 
 Json memoryJson(const Renderer& renderer) {
     const graph::FrameGraph& graph = renderer.frameGraph();
+    const graph::FrameGraph::SharedMemory shared = graph.sharedMemory();
     Json list = Json::array();
-    for (const auto& [name, bytes] : graph.imageMemory())
-        list.push_back({{"image", name}, {"bytes", bytes}});
+    for (const auto& [name, bytes] : graph.imageMemory()) {
+        const bool inBlock =
+            std::find(shared.images.begin(), shared.images.end(), name) != shared.images.end();
+        list.push_back({{"image", name}, {"bytes", bytes}, {"shared", inBlock}});
+    }
+    // The transient images' one block: with the images not in it, what the graph holds.
+    list.push_back({{"image", "shared block"}, {"bytes", shared.bytes}, {"block", true}});
     return list;
 }
 

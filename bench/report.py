@@ -98,7 +98,7 @@ def targets(sweeps, walks, size):
                          "%.2fx; %.4f off, %.4f on" % (speed, e_off, e_on), "yes" if ok else "no"])
     mem = {s: analysis.memory_totals(sweeps[s][size]).get("1920x1080") for s in sweeps}
     worst = max(v for v in mem.values() if v)
-    rows.append(["all", "GPU memory of the frame's images at 1920x1080 (cache on)", "<= 256 MB",
+    rows.append(["all", "GPU memory the frame graph holds at 1920x1080 (cache on)", "<= 256 MB",
                  "%.0f MB (%.0f MiB)" % (worst / 1e6, worst / MIB),
                  "yes" if worst <= 256e6 else "no"])
     return table(["scene", "target", "wanted", "measured", "met"], rows)
@@ -199,7 +199,8 @@ def tables(sweeps, walks, size, note):
     for scene, w in walks.items():
         md.append(walkthrough_tables(scene, w, "Table 4.1"))
 
-    md.append("\n### GPU memory of the frame graph's images (cache on), MiB\n\n")
+    md.append("\n### GPU memory the frame graph holds (cache on; transient images share one "
+              "block), MiB\n\n")
     sizes_seen = sorted(next(iter(sweeps.values()))[size]["memory"],
                         key=lambda z: int(z.split("x")[0]) * int(z.split("x")[1]))
     md.append(table(["scene"] + sizes_seen, [

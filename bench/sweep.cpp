@@ -87,7 +87,8 @@ Json sweep(vk::Context& ctx, const Scene& scene, const Options& options) {
     if (options.series) result["series"] = cachedSeries(ctx, scene, options, reference, progress);
 
     // Memory of the default frame with the cache on (every history), here and at 720p and 1080p;
-    // images are allocated when the renderer is built, so no frame is needed.
+    // images are allocated, the transient ones placed in their shared block, when the renderer
+    // is built, so no frame is needed.
     progress.step("memory");
     const Scene cached = withSettings(scene, {{"cache", 1}});
     for (VkExtent2D size : {VkExtent2D{options.width, options.height}, VkExtent2D{1280, 720},

@@ -132,6 +132,11 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
 
         setup_->view = view;
         addFramePasses(*setup_);
+        for (const std::string& name : options.keep) {
+            if (name == "*") graph_->keepAll();
+            if (const graph::ImageRef ref = imageNamed(name); ref.valid()) graph_->keep(ref);
+        }
+        graph_->allocateTransients();
     } catch (...) {
         release();
         throw;

@@ -19,6 +19,11 @@ const std::vector<std::string>& viewNames();
 struct RenderOptions {
     uint32_t width = 512, height = 512;
     std::string view = "final";
+    // Images readImage() must find whole after a frame although a later pass reuses their memory
+    // (FrameGraph::keep): an effect's raw output ("ao", "indirect", ...), for tests and the
+    // benchmarks; "*" keeps every image. Names the frame lacks are passed over. What needs no
+    // keeping: the outputs, the G-buffer, the histories, and whatever the last passes wrote.
+    std::vector<std::string> keep;
 };
 
 class Renderer {

@@ -25,7 +25,9 @@ std::string sceneModel(const std::string& name) {
 }
 
 Frame render(const Scene& scene, uint32_t width, uint32_t height, uint32_t frames) {
-    Renderer renderer(context(), scene, {width, height, "final"});
+    // The effects' raw outputs share memory with later passes' images: kept to be read.
+    Renderer renderer(context(), scene,
+                      {width, height, "final", {"direct", "ao", "indirect", "ssdo", "shadow"}});
     for (uint32_t i = 0; i < frames; ++i)
         renderer.renderFrame(scene.camera);
     Frame f;

@@ -82,7 +82,7 @@ TEST_F(CacheTest, AccumulatedAoConvergesTowardsAManySampleImage) {
 TEST_F(CacheTest, ConvergedPixelsAreSkippedAndTheRefreshTileVisitsEveryTile) {
     scene.settings.indirect = false;
     scene.settings.cache_tile_ao = 32; // 4 x 4 tiles at 128 x 128
-    Renderer renderer(test::context(), scene, {128, 128, "final"});
+    Renderer renderer(test::context(), scene, {128, 128, "final", {"ao"}});
     double firstFrame = 0.0;
     std::set<int> refreshed;
     for (int frame = 1; frame <= 80; ++frame) {
@@ -152,7 +152,7 @@ TEST_F(CacheTest, DisoccludedPixelsStartOverAndTheRestContinue) {
 
 // Moving the light restarts the shadow (and the indirect light) but not the AO.
 TEST_F(CacheTest, AMovedLightResetsTheShadowButNotTheAo) {
-    Renderer renderer(test::context(), scene, {96, 96, "final"});
+    Renderer renderer(test::context(), scene, {96, 96, "final", {"ao", "shadow", "indirect"}});
     for (int frame = 0; frame < 40; ++frame)
         renderer.renderFrame(scene.camera);
     EXPECT_LT(computedFraction(renderer, "shadow"), 0.5);

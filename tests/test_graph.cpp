@@ -1,5 +1,7 @@
-// The frame graph: declared image uses -> emitted barriers (CPU), and history pairs on the device.
+// The frame graph: declared image uses -> emitted barriers (CPU), where transient images lie in
+// memory (CPU), and history pairs and shared memory on the device.
 #include "graph/frame_graph.h"
+#include "graph/transient_memory.h"
 #include "support.h"
 
 using namespace ssgi;
@@ -105,6 +107,35 @@ TEST(Barriers, DepthAttachmentUsesBothFragmentTestStages) {
     EXPECT_TRUE(info.writes);
 }
 
+// Transient images whose lifetimes do not overlap share bytes; those that overlap do not.
+TEST(TransientMemory, ImagesThatNeverLiveAtOnceShareTheirBytes) {
+    // a: passes 0-1, b: 2-3 (after a), c: 1-2 (beside both).
+    const std::vector<TransientImage> images = {
+        {100, 1, ~0u, 0, 1}, {100, 1, ~0u, 2, 3}, {50, 1, ~0u, 1, 2}};
+    const TransientPlan plan = planTransientMemory(images);
+    ASSERT_TRUE(plan.offsets[0] && plan.offsets[1] && plan.offsets[2]);
+    EXPECT_EQ(*plan.offsets[0], *plan.offsets[1]) << "a and b take turns";
+    EXPECT_FALSE(shareMemory(*plan.offsets[2], 50, *plan.offsets[0], 100));
+    EXPECT_EQ(plan.blockSize, 150u) << "the block holds the most that lives at once";
+}
+
+TEST(TransientMemory, OffsetsKeepEachImagesAlignment) {
+    const std::vector<TransientImage> images = {{100, 64, ~0u, 0, 0}, {10, 256, ~0u, 0, 0}};
+    const TransientPlan plan = planTransientMemory(images);
+    ASSERT_TRUE(plan.offsets[0] && plan.offsets[1]);
+    EXPECT_EQ(*plan.offsets[1] % 256, 0u);
+    EXPECT_FALSE(shareMemory(*plan.offsets[0], 100, *plan.offsets[1], 10));
+}
+
+TEST(TransientMemory, AnImageOfAnotherMemoryTypeGetsItsOwn) {
+    const std::vector<TransientImage> images = {{100, 1, 0b01, 0, 0}, {100, 1, 0b10, 1, 1}};
+    const TransientPlan plan = planTransientMemory(images);
+    EXPECT_EQ(plan.memoryTypeBits, 0b01u);
+    EXPECT_TRUE(plan.offsets[0]);
+    EXPECT_FALSE(plan.offsets[1]);
+    EXPECT_EQ(plan.blockSize, 100u);
+}
+
 // History on the device: each frame clears the current image to the frame number and copies
 // the previous one into a plain image; contents must survive the swap, under sync validation.
 class HistoryTest : public test::VulkanTest {};
@@ -176,6 +207,54 @@ TEST_F(HistoryTest, APassReachesOnlyTheImagesItDeclared) {
     graph.endFrame();
     EXPECT_NE(refusal.find("pass clear"), std::string::npos) << refusal;
     EXPECT_NE(refusal.find("other"), std::string::npos) << refusal;
+}
+
+// Two transient images used one after the other share memory on the device: the second's
+// first use waits for the first's (synchronization validation would report the hazard), the
+// first can no longer be read after the frame unless kept, and a kept one holds its contents.
+TEST_F(HistoryTest, TransientImagesTakeTurnsInOneBlockOfMemory) {
+    vk::Context& ctx = test::context();
+    for (bool keepFirst : {false, true}) {
+        FrameGraph graph(ctx);
+        const VkImageUsageFlags usage = VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+        const ImageRef first =
+            graph.createImage("first", VK_FORMAT_R32G32B32A32_SFLOAT, {8, 8}, usage);
+        const ImageRef second =
+            graph.createImage("second", VK_FORMAT_R32G32B32A32_SFLOAT, {8, 8}, usage);
+        auto clearTo = [](ImageRef ref, float value) {
+            return [ref, value](const PassContext& pc) {
+                VkClearColorValue color{{value, 0, 0, 1}};
+                VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+                vkCmdClearColorImage(pc.cmd, pc.image(ref).image,
+                                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &color, 1, &range);
+            };
+        };
+        graph.addPass("clear first", PassKind::Transfer, {{first, Use::TransferDst}},
+                      clearTo(first, 1.0f));
+        graph.addPass("clear second", PassKind::Transfer, {{second, Use::TransferDst}},
+                      clearTo(second, 2.0f));
+        if (keepFirst) graph.keep(first);
+        for (int frame = 0; frame < 2; ++frame) {
+            ctx.submitAndWait([&](VkCommandBuffer cmd) { graph.record(cmd); });
+            graph.endFrame();
+        }
+        EXPECT_FLOAT_EQ(graph.download(second)[0], 2.0f);
+        if (keepFirst) {
+            EXPECT_EQ(graph.sharedMemory().bytes, 2 * graph.image(first).memorySize);
+            EXPECT_FLOAT_EQ(graph.download(first)[0], 1.0f);
+            continue;
+        }
+        EXPECT_EQ(graph.sharedMemory().bytes, graph.image(first).memorySize) << "one image's worth";
+        EXPECT_EQ(graph.sharedMemory().images.size(), 2u);
+        try {
+            graph.download(first);
+            ADD_FAILURE() << "read although the second image wrote over it";
+        } catch (const std::logic_error& e) {
+            EXPECT_NE(std::string(e.what()).find("first shares its memory with second"),
+                      std::string::npos)
+                << e.what();
+        }
+    }
 }
 
 // Timestamps (issue 16): on a CPU device (lavapipe) a full barrier follows every stamp, so the

@@ -35,7 +35,8 @@ const char* kUsage = R"(usage: render [SCENE] [options]
                         every frame, warm-up ones marked (open in ui.perfetto.dev)
   --warmup W            frames left out of the timings (default 1 when more than one frame is
                         rendered: the first compiles shader variants and starts the caches)
-  --memory              print the device memory of every image of the frame, and the total
+  --memory              print the device memory of every image of the frame (after the
+                        frames), the block the transient ones share, and what is held in all
   --list-settings       print every method setting (type, default, range, meaning) as the
                         table in docs/settings.md, and exit
 )";
@@ -100,22 +101,33 @@ Args parseArgs(int argc, char** argv) {
     return a;
 }
 
+// What the frame graph holds, image by image (a pair as two), the transient images that share
+// one block marked; then what it holds in all.
+void printMemory(const graph::FrameGraph& graph, uint32_t width, uint32_t height) {
+    const graph::FrameGraph::SharedMemory shared = graph.sharedMemory();
+    const auto isShared = [&](const std::string& name) {
+        return std::find(shared.images.begin(), shared.images.end(), name) != shared.images.end();
+    };
+    constexpr double MiB = 1048576.0;
+    double total = 0.0;
+    for (const auto& [name, bytes] : graph.imageMemory()) {
+        std::printf("%-34s %9.1f MiB%s\n", name.c_str(), double(bytes) / MiB,
+                    isShared(name) ? "  (shared)" : "");
+        total += double(bytes);
+    }
+    std::printf("%-34s %9.1f MiB (%ux%u)\n", "all images", total / MiB, width, height);
+    std::printf("%-34s %9.1f MiB: %zu transient images in one block where their lifetimes in "
+                "the frame do not overlap\n",
+                "shared block", double(shared.bytes) / MiB, shared.images.size());
+    std::printf("%-34s %9.1f MiB\n", "held", double(graph.heldMemory()) / MiB);
+}
+
 int run(int argc, char** argv) {
     const Args args = parseArgs(argc, argv);
     const cli::CommonArgs& common = args.common;
     const Scene scene = cli::loadSceneWithSettings(common);
     vk::Context ctx({common.validation, common.device});
     Renderer renderer(ctx, scene, {common.width, common.height, args.view});
-    if (args.memory) { // what the frame graph holds, image by image (a pair as two)
-        double total = 0.0;
-        for (const auto& [name, bytes] : renderer.frameGraph().imageMemory()) {
-            std::printf("%-34s %9.1f MiB\n", name.c_str(), double(bytes) / 1048576.0);
-            total += double(bytes);
-        }
-        std::printf("%-34s %9.1f MiB (%ux%u)\n", "all images", total / 1048576.0, common.width,
-                    common.height);
-    }
-
     Camera camera = scene.camera;
     if (args.time >= 0.0f) {
         if (scene.cameraPath.empty() && scene.objectPaths.empty())
@@ -153,6 +165,7 @@ int run(int argc, char** argv) {
                 exrPath.c_str(), common.width, common.height, args.frames,
                 args.frames == 1 ? "" : "s", common.scene.c_str());
 
+    if (args.memory) printMemory(renderer.frameGraph(), common.width, common.height);
     const std::string device = std::string(ctx.properties.deviceName) + " (" + ctx.driverName + ")";
     if (args.profile) std::printf("%s", log.table(device).c_str());
     if (!args.profileJson.empty()) {

@@ -1,7 +1,10 @@
 #include "graph/frame_graph.h"
 
+#include "graph/transient_memory.h"
+
 #include <glm/gtc/packing.hpp>
 
+#include <algorithm>
 #include <cstring>
 #include <stdexcept>
 
@@ -28,13 +31,17 @@ FrameGraph::~FrameGraph() {
     vkDeviceWaitIdle(ctx_.device);
     for (Resource& r : resources_)
         vk::destroyImage(ctx_, r.image);
+    if (sharedBlock_) vkFreeMemory(ctx_.device, sharedBlock_, nullptr);
     if (queryPool_) vkDestroyQueryPool(ctx_.device, queryPool_, nullptr);
 }
 
 uint32_t FrameGraph::addResource(const std::string& name, VkFormat format, VkExtent2D extent,
                                  VkImageUsageFlags usage, bool transient) {
     Resource r;
-    r.image = vk::createImage(ctx_, name, format, extent, usage | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+    usage |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    // A transient image gets its memory when the first frame is recorded (allocateTransients).
+    r.image = transient && !allocated_ ? vk::createUnboundImage(ctx_, name, format, extent, usage)
+                                       : vk::createImage(ctx_, name, format, extent, usage);
     r.transient = transient;
     resources_.push_back(r);
     return uint32_t(resources_.size() - 1);
@@ -86,6 +93,92 @@ ImageRef FrameGraph::find(const std::string& name) const {
     return {};
 }
 
+void FrameGraph::keep(ImageRef ref) {
+    if (allocated_) throw std::logic_error("FrameGraph::keep after the first frame");
+    resources_[resolve(ref)].kept = true;
+}
+
+void FrameGraph::keepAll() {
+    if (allocated_) throw std::logic_error("FrameGraph::keepAll after the first frame");
+    keepAll_ = true;
+}
+
+void FrameGraph::allocateTransients() {
+    if (allocated_) return;
+    allocated_ = true;
+    const uint32_t frameEnd = uint32_t(passes_.size());
+    std::vector<uint32_t> ids; // the transient resources some pass uses
+    std::vector<TransientImage> images;
+    std::vector<uint32_t> first(resources_.size(), UINT32_MAX), last(resources_.size(), 0);
+    for (uint32_t p = 0; p < passes_.size(); ++p)
+        for (const ImageUse& use : passes_[p].uses) {
+            if (use.image.kind != ImageRef::Kind::Plain) continue; // histories persist
+            first[use.image.index] = std::min(first[use.image.index], p);
+            last[use.image.index] = std::max(last[use.image.index], p);
+        }
+    for (uint32_t id = 0; id < resources_.size(); ++id) {
+        Resource& r = resources_[id];
+        if (!r.transient || r.image.memory) continue;
+        if (first[id] == UINT32_MAX) { // no pass uses it: memory of its own
+            vk::bindImage(ctx_, r.image,
+                          vk::allocateDeviceMemory(ctx_, r.image.requirements.size,
+                                                   r.image.requirements.memoryTypeBits),
+                          0);
+            continue;
+        }
+        ids.push_back(id);
+        images.push_back({r.image.requirements.size, r.image.requirements.alignment,
+                          r.image.requirements.memoryTypeBits, first[id],
+                          r.kept || keepAll_ ? frameEnd : last[id]});
+        r.firstPass = first[id];
+    }
+    const TransientPlan plan = planTransientMemory(images);
+    if (plan.blockSize > 0)
+        sharedBlock_ = vk::allocateDeviceMemory(ctx_, plan.blockSize, plan.memoryTypeBits);
+    sharedBytes_ = plan.blockSize;
+    for (size_t i = 0; i < ids.size(); ++i) {
+        Resource& r = resources_[ids[i]];
+        if (plan.offsets[i]) {
+            vk::bindImage(ctx_, r.image, sharedBlock_, *plan.offsets[i]);
+            r.image.ownsMemory = false;
+            r.shared = true;
+        } else {
+            vk::bindImage(ctx_, r.image,
+                          vk::allocateDeviceMemory(ctx_, r.image.requirements.size,
+                                                   r.image.requirements.memoryTypeBits),
+                          0);
+        }
+    }
+    for (size_t i = 0; i < ids.size(); ++i)
+        for (size_t j = 0; j < ids.size(); ++j)
+            if (i != j && plan.offsets[i] && plan.offsets[j] &&
+                shareMemory(*plan.offsets[i], images[i].size, *plan.offsets[j], images[j].size))
+                resources_[ids[i]].sharesWith.push_back(ids[j]);
+}
+
+void FrameGraph::checkReadable(const Resource& r) const {
+    for (uint32_t q : r.sharesWith)
+        if (resources_[q].firstPass > r.firstPass)
+            throw std::logic_error(
+                r.image.name + " shares its memory with " + resources_[q].image.name +
+                ", which a later pass of the frame writes: keep it (FrameGraph::keep, "
+                "RenderOptions::keep) to read it after the frame");
+}
+
+FrameGraph::SharedMemory FrameGraph::sharedMemory() const {
+    SharedMemory shared{sharedBytes_, {}};
+    for (const Resource& r : resources_)
+        if (r.shared) shared.images.push_back(r.image.name);
+    return shared;
+}
+
+VkDeviceSize FrameGraph::heldMemory() const {
+    VkDeviceSize bytes = sharedBytes_;
+    for (const Resource& r : resources_)
+        if (r.image.image && !r.shared) bytes += r.image.memorySize;
+    return bytes;
+}
+
 std::vector<std::pair<std::string, VkDeviceSize>> FrameGraph::imageMemory() const {
     std::vector<std::pair<std::string, VkDeviceSize>> list;
     for (const Resource& r : resources_)
@@ -124,6 +217,7 @@ void FrameGraph::writeTimestamp(VkCommandBuffer cmd, uint32_t query, const std::
 }
 
 void FrameGraph::record(VkCommandBuffer cmd) {
+    allocateTransients();
     const uint32_t queriesNeeded = uint32_t(2 * passes_.size());
     if (queryCapacity_ < queriesNeeded) {
         if (queryPool_) vkDestroyQueryPool(ctx_.device, queryPool_, nullptr);
@@ -154,6 +248,14 @@ void FrameGraph::record(VkCommandBuffer cmd) {
             Resource& r = resources_[id];
             const bool discard = r.transient && !touched[id];
             touched[id] = true;
+            // Memory another image used before: its first use here waits for every use of
+            // theirs (the write and the reads since), as it would for its own.
+            if (discard)
+                for (uint32_t q : r.sharesWith) {
+                    const ImageState& other = resources_[q].state;
+                    r.state.writeStages |= other.writeStages | other.readStages;
+                    r.state.writeAccess |= other.writeAccess;
+                }
             if (auto b = transition(r.state, use.use, pass.kind, discard, r.image.image,
                                     r.image.aspect)) {
                 barriers.push_back(*b);
@@ -218,13 +320,17 @@ void FrameGraph::transferBarrier(VkCommandBuffer cmd, Resource& r, Use use, bool
 }
 
 const vk::Image& FrameGraph::prepareTransferSource(VkCommandBuffer cmd, ImageRef ref) {
+    allocateTransients(); // an image read before any frame holds nothing, but has memory
     Resource& r = resources_[resolve(ref)];
+    checkReadable(r);
     transferBarrier(cmd, r, Use::TransferSrc, false);
     return r.image;
 }
 
 std::vector<uint8_t> FrameGraph::readTexels(ImageRef ref, std::optional<VkRect2D> area) {
+    allocateTransients();
     Resource& r = resources_[resolve(ref)];
+    checkReadable(r);
     const VkRect2D a = area.value_or(VkRect2D{{0, 0}, r.image.extent});
     const VkDeviceSize size =
         VkDeviceSize(a.extent.width) * a.extent.height * vk::formatTexelSize(r.image.format);

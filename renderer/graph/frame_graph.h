@@ -79,10 +79,22 @@ public:
     FrameGraph(const FrameGraph&) = delete;
     FrameGraph& operator=(const FrameGraph&) = delete;
 
-    // An image whose contents live within one frame: the graph discards them at its first use.
-    // A persistent image keeps its contents from frame to frame (a pass may skip rewriting it).
+    // An image whose contents live within one frame: the graph discards them at its first use,
+    // and it shares memory with the other transient images whose lifetimes (from the first pass
+    // that uses one to the last) do not overlap its own (transient_memory.h; placed when the
+    // first frame is recorded). A persistent image keeps its contents from frame to frame (a
+    // pass may skip rewriting it) and its memory to itself.
     ImageRef createImage(const std::string& name, VkFormat format, VkExtent2D extent,
                          VkImageUsageFlags usage, bool persistent = false);
+    // A transient image that must still hold this frame's contents after the frame (to be
+    // downloaded): its lifetime runs to the frame's end. keepAll() does so for every image.
+    // Before the first frame only; an image a later pass of the frame overwrote cannot be read
+    // (download() says so, naming both).
+    void keep(ImageRef ref);
+    void keepAll();
+    // Places and binds the transient images (planTransientMemory), once every pass is added;
+    // the first record() does it if nobody did.
+    void allocateTransients();
     // A history pair: previous() is last frame's current(); contents are never discarded.
     uint32_t createHistory(const std::string& name, VkFormat format, VkExtent2D extent,
                            VkImageUsageFlags usage);
@@ -129,14 +141,26 @@ public:
     // transfer source, keeping the graph's record of its state (the viewer copies the frame out).
     const vk::Image& prepareTransferSource(VkCommandBuffer cmd, ImageRef ref);
     ImageRef find(const std::string& name) const;
-    // Every image the graph owns (history pairs as two), with the device memory it holds.
+    // Every image the graph owns (history pairs as two), with the device memory it needs.
     std::vector<std::pair<std::string, VkDeviceSize>> imageMemory() const;
+    // The transient images that share one block of memory, and the block's size (0 before the
+    // first frame); the memory the graph holds is that block plus every other image's own.
+    struct SharedMemory {
+        VkDeviceSize bytes = 0;
+        std::vector<std::string> images;
+    };
+    SharedMemory sharedMemory() const;
+    VkDeviceSize heldMemory() const;
 
 private:
     struct Resource {
         vk::Image image;
         ImageState state;
         bool transient = true;
+        bool kept = false;                // keep(): lives to the frame's end
+        bool shared = false;              // bound into sharedBlock_
+        std::vector<uint32_t> sharesWith; // the resources whose bytes overlap its own
+        uint32_t firstPass = 0;           // its lifetime within the frame (shared ones)
     };
     struct History {
         uint32_t resources[2];
@@ -158,6 +182,8 @@ private:
     void writeTimestamp(VkCommandBuffer cmd, uint32_t query, const std::string& pass);
     uint32_t addResource(const std::string& name, VkFormat format, VkExtent2D extent,
                          VkImageUsageFlags usage, bool transient);
+    // Throws std::logic_error where a later pass of the frame writes over `r`'s memory.
+    void checkReadable(const Resource& r) const;
 
     vk::Context& ctx_;
     std::vector<Resource> resources_;
@@ -170,6 +196,10 @@ private:
     std::vector<bool> ran_; // per pass, in the last recorded frame
     VkQueryPool queryPool_ = VK_NULL_HANDLE;
     uint32_t queryCapacity_ = 0;
+    bool allocated_ = false; // allocateTransients() has run
+    bool keepAll_ = false;
+    VkDeviceMemory sharedBlock_ = VK_NULL_HANDLE;
+    VkDeviceSize sharedBytes_ = 0;
 };
 
 } // namespace ssgi::graph

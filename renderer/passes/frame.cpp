@@ -1,8 +1,8 @@
 // The frame, pass by pass, in order: rasterise the camera's and the light's views; the shadow
-// term and the direct light; ambient occlusion (or SSDO in its place); the indirect light
+// term; ambient occlusion (or the direct light and SSDO in its place); the indirect light
 // (interleaved VPL subsets and their filter, or the thesis's half-resolution gather and its
-// upsampling); the sky's visibility; composite and tonemap. Which passes there are follows from
-// the scene's settings; docs/frame.md draws the frame this builds.
+// upsampling); the direct light; the sky's visibility; composite and tonemap. Which passes there
+// are follows from the scene's settings; docs/frame.md draws the frame this builds.
 #include "passes/pass_setup.h"
 
 namespace ssgi {
@@ -25,8 +25,8 @@ void addFramePasses(PassSetup& s) {
         terms.secondLayer = addPeelPass(s, scenes);
     if (m.contact_shadows)
         terms.shadow = addContactPass(s, scenes, terms.shadow, terms.secondLayer);
-    terms.direct = addDirectPass(s, scenes, terms.shadow);
     if (m.ssdo) {
+        terms.direct = addDirectPass(s, scenes, terms.shadow); // SSDO's bounce reads it
         EffectCache* cache =
             createCache(s, "ssdo", {m.cache_ssdo, m.cache_tile_ssdo, m.cache_blur_ssdo}, true);
         terms.ssdo = addTemporalPass(
@@ -48,6 +48,10 @@ void addFramePasses(PassSetup& s) {
                                              : addIndirectPasses(s, scenes, cache);
         terms.indirect = addTemporalPass(s, cache, indirect, scenes);
     }
+    // Without SSDO only the composite reads the direct light: made once the indirect light's
+    // working images are gone, it shares their memory instead of adding to it (FrameGraph's
+    // transient images).
+    if (!terms.direct.valid()) terms.direct = addDirectPass(s, scenes, terms.shadow);
     // The sky's visibility beyond the screen, for the sky term beside the AO (none to see
     // under a black sky, as in the Cornell boxes).
     const bool blackSky = model.sky.zenith == glm::vec3(0.0f) &&

@@ -6,6 +6,12 @@ namespace ssgi::stability {
 
 namespace detail {
 
+// Every image kept whole after the frame (none shares its memory with a later pass's), so
+// that countNonFiniteImages reads them all.
+RenderOptions rendererOptions(uint32_t width, uint32_t height) {
+    return {width, height, "final", {"*"}};
+}
+
 // Every image of the last frame (a history pair's written side), counted for NaN/Inf. The
 // light-view images change only when the light moves, so `withRsm` says whether to read them.
 size_t countNonFiniteImages(Renderer& r, bool withRsm, std::set<std::string>& offenders) {
@@ -185,7 +191,7 @@ CaseResult runCase(vk::Context& ctx, const Case& c, const RunOptions& o,
         const Step& s = steps[i];
         const bool fresh = !a || a->size().width != s.width || a->size().height != s.height;
         if (fresh) { // the first frame, or a resize: the new size goes on from the old
-            auto next = std::make_unique<Renderer>(ctx, scene, RenderOptions{s.width, s.height});
+            auto next = std::make_unique<Renderer>(ctx, scene, rendererOptions(s.width, s.height));
             if (a) next->continueFrom(*a);
             a = std::move(next);
         }
@@ -221,7 +227,7 @@ CaseResult runCase(vk::Context& ctx, const Case& c, const RunOptions& o,
 
     // A fresh renderer with the tested settings at the final camera, light and size: how a
     // start without history fares, and the flicker of a still camera once converged.
-    Renderer f(ctx, scene, {last.width, last.height});
+    Renderer f(ctx, scene, rendererOptions(last.width, last.height));
     f.setLight(last.light);
     f.setTime(last.time);
     std::vector<Pixels> freshFrames;
@@ -249,7 +255,7 @@ CaseResult runCase(vk::Context& ctx, const Case& c, const RunOptions& o,
     twice.indirect_vpls = std::min(2 * scene.settings.indirect_vpls, 1024);
     twice.ssdo_samples = std::min(2 * scene.settings.ssdo_samples, 64);
     twice.shadow_taps = std::min(2 * scene.settings.shadow_taps, 64);
-    Renderer r(ctx, meanScene, {last.width, last.height});
+    Renderer r(ctx, meanScene, rendererOptions(last.width, last.height));
     r.setLight(last.light);
     r.setTime(last.time);
     View converged;

@@ -81,12 +81,13 @@ uint32_t formatTexelSize(VkFormat format) {
     }
 }
 
-Image createImage(const Context& ctx, const std::string& name, VkFormat format, VkExtent2D extent,
-                  VkImageUsageFlags usage) {
+Image createUnboundImage(const Context& ctx, const std::string& name, VkFormat format,
+                         VkExtent2D extent, VkImageUsageFlags usage) {
     Image img;
     img.name = name;
     img.format = format;
     img.extent = extent;
+    img.usage = usage;
     img.aspect = isDepthFormat(format) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
     VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
     info.imageType = VK_IMAGE_TYPE_2D;
@@ -99,31 +100,46 @@ Image createImage(const Context& ctx, const std::string& name, VkFormat format, 
     info.usage = usage;
     info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
     VK_CHECK(vkCreateImage(ctx.device, &info, nullptr, &img.image));
-    VkMemoryRequirements req;
-    vkGetImageMemoryRequirements(ctx.device, img.image, &req);
-    img.memory = allocate(ctx, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    img.memorySize = req.size;
-    VK_CHECK(vkBindImageMemory(ctx.device, img.image, img.memory, 0));
+    vkGetImageMemoryRequirements(ctx.device, img.image, &img.requirements);
+    img.memorySize = img.requirements.size;
+    ctx.nameObject(VK_OBJECT_TYPE_IMAGE, uint64_t(img.image), name);
+    return img;
+}
 
+VkDeviceMemory allocateDeviceMemory(const Context& ctx, VkDeviceSize size, uint32_t typeBits) {
+    VkMemoryRequirements req{};
+    req.size = size;
+    req.memoryTypeBits = typeBits;
+    return allocate(ctx, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+}
+
+void bindImage(const Context& ctx, Image& img, VkDeviceMemory memory, VkDeviceSize offset) {
+    VK_CHECK(vkBindImageMemory(ctx.device, img.image, memory, offset));
+    img.memory = memory;
     // Images used only for copies and clears have no view.
     const VkImageUsageFlags viewUsage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT |
                                         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT |
                                         VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
-    ctx.nameObject(VK_OBJECT_TYPE_IMAGE, uint64_t(img.image), name);
-    if (!(usage & viewUsage)) return img;
+    if (!(img.usage & viewUsage)) return;
     VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
     viewInfo.image = img.image;
     viewInfo.viewType = VK_IMAGE_VIEW_TYPE_2D;
-    viewInfo.format = format;
+    viewInfo.format = img.format;
     viewInfo.subresourceRange = {img.aspect, 0, 1, 0, 1};
     VK_CHECK(vkCreateImageView(ctx.device, &viewInfo, nullptr, &img.view));
+}
+
+Image createImage(const Context& ctx, const std::string& name, VkFormat format, VkExtent2D extent,
+                  VkImageUsageFlags usage) {
+    Image img = createUnboundImage(ctx, name, format, extent, usage);
+    bindImage(ctx, img, allocate(ctx, img.requirements, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT), 0);
     return img;
 }
 
 void destroyImage(const Context& ctx, Image& img) {
     if (img.view) vkDestroyImageView(ctx.device, img.view, nullptr);
     if (img.image) vkDestroyImage(ctx.device, img.image, nullptr);
-    if (img.memory) vkFreeMemory(ctx.device, img.memory, nullptr);
+    if (img.memory && img.ownsMemory) vkFreeMemory(ctx.device, img.memory, nullptr);
     img = {};
 }
 

@@ -1,5 +1,7 @@
 // Buffers and images with their own memory (one allocation each: our scenes need a few dozen
-// resources, so a sub-allocator would be code without benefit), upload and readback.
+// resources, so a sub-allocator would be code without benefit), upload and readback. The one
+// exception is the frame graph's transient images, which it binds into one block of its own
+// where their lifetimes within a frame do not overlap (createUnboundImage, bindImage).
 #pragma once
 
 #include "vk/context.h"
@@ -23,8 +25,11 @@ struct Image {
     VkDeviceMemory memory = VK_NULL_HANDLE;
     VkFormat format = VK_FORMAT_UNDEFINED;
     VkExtent2D extent{};
+    VkImageUsageFlags usage = 0;
     VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
-    VkDeviceSize memorySize = 0; // bytes of device memory it holds
+    VkDeviceSize memorySize = 0; // bytes of device memory it needs
+    VkMemoryRequirements requirements{};
+    bool ownsMemory = true; // false: bound into memory someone else allocated (bindImage)
 };
 
 uint32_t findMemoryType(const Context& ctx, uint32_t typeBits, VkMemoryPropertyFlags flags);
@@ -39,6 +44,14 @@ Buffer createBufferWithData(Context& ctx, const void* data, VkDeviceSize size,
 
 Image createImage(const Context& ctx, const std::string& name, VkFormat format, VkExtent2D extent,
                   VkImageUsageFlags usage);
+// The same image without memory (nor a view) yet: its `requirements` say what it needs.
+Image createUnboundImage(const Context& ctx, const std::string& name, VkFormat format,
+                         VkExtent2D extent, VkImageUsageFlags usage);
+// Binds an unbound image at `offset` of `memory`, which the caller owns and frees, and makes its
+// view.
+void bindImage(const Context& ctx, Image& image, VkDeviceMemory memory, VkDeviceSize offset);
+// Device-local memory of `size` bytes of a type in `typeBits`.
+VkDeviceMemory allocateDeviceMemory(const Context& ctx, VkDeviceSize size, uint32_t typeBits);
 void destroyImage(const Context& ctx, Image& image);
 
 // Records one layout transition of a single-level, single-layer image with its dependency.
