@@ -1,0 +1,76 @@
+// What a program reads of the renderer's last frame: its images by name, a cache's count beside
+// the shared positions, the viewer's copy source, the cached effects and their refresh tiles.
+#include "renderer.h"
+
+namespace ssgi {
+
+graph::ImageRef Renderer::imageNamed(const std::string& name) const {
+    using graph::FrameGraph;
+    // After the frame every pair has swapped: what it wrote is now the "previous" side.
+    if (setup_->positionHistory && name == "gbuffer.position")
+        return FrameGraph::previous(*setup_->positionHistory);
+    for (const EffectCache& cache : setup_->caches) {
+        if (name == cache.name + ".history") return FrameGraph::previous(cache.value);
+        if (name == cache.name + ".count") return FrameGraph::previous(cache.count);
+    }
+    return graph_->find(name);
+}
+
+const EffectCache* Renderer::metaOf(const std::string& name) const {
+    for (const EffectCache& cache : setup_->caches)
+        if (name == cache.name + ".meta") return &cache;
+    return nullptr;
+}
+
+std::vector<float> Renderer::readImage(const std::string& name) {
+    if (const EffectCache* cache = metaOf(name)) { // the shared positions, the count in alpha
+        std::vector<float> meta = readImage("gbuffer.position");
+        const std::vector<float> count = readImage(cache->name + ".count");
+        for (size_t i = 0; i < meta.size(); i += 4)
+            meta[i + 3] = count[i];
+        return meta;
+    }
+    const graph::ImageRef ref = imageNamed(name);
+    if (!ref.valid()) throw InputError("no image named '" + name + "' in the frame");
+    // A screen image is read where the output lies in it: its guard band left out.
+    const VkExtent2D e = graph_->image(ref).extent;
+    const bool screen = e.width == setup_->size.width && e.height == setup_->size.height;
+    return graph_->download(ref, screen ? std::optional(setup_->output()) : std::nullopt);
+}
+
+bool Renderer::hasImage(const std::string& name) const {
+    return metaOf(name) || imageNamed(name).valid();
+}
+
+const vk::Image& Renderer::prepareCopySource(VkCommandBuffer cmd, const std::string& name) {
+    const graph::ImageRef ref = imageNamed(name);
+    if (!ref.valid()) throw InputError("no image named '" + name + "' in the frame");
+    return graph_->prepareTransferSource(cmd, ref);
+}
+
+std::vector<std::string> Renderer::cachedEffects() const {
+    std::vector<std::string> names;
+    for (const EffectCache& cache : setup_->caches)
+        names.push_back(cache.name);
+    return names;
+}
+
+VkRect2D Renderer::refreshedTile(const std::string& effect) const {
+    for (const EffectCache& cache : setup_->caches) {
+        if (cache.name != effect || !cache.refresh || cache.refreshTile < 0) continue;
+        const TileRect tile = cache.refresh->rect(uint32_t(cache.refreshTile));
+        // In the output's pixels: the tile less what of it lies in the guard band.
+        const VkRect2D v = setup_->output();
+        const int32_t x0 = std::max(int32_t(tile.x), v.offset.x);
+        const int32_t y0 = std::max(int32_t(tile.y), v.offset.y);
+        const int32_t x1 =
+            std::min(int32_t(tile.x + tile.width), v.offset.x + int32_t(v.extent.width));
+        const int32_t y1 =
+            std::min(int32_t(tile.y + tile.height), v.offset.y + int32_t(v.extent.height));
+        if (x1 <= x0 || y1 <= y0) return {};
+        return {{x0 - v.offset.x, y0 - v.offset.y}, {uint32_t(x1 - x0), uint32_t(y1 - y0)}};
+    }
+    return {};
+}
+
+} // namespace ssgi
