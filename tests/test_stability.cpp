@@ -1,7 +1,9 @@
 // The stability suite's cases (renderer/stability/cases.h) at a small size, each measure held
 // within a bound set from the value measured when it was written (80x60, lavapipe, the thesis
-// rule, the quick timeline: 37 frames of warm-up, hold and reference; 2 CPU cores). The whole
-// file takes about 50 s of CPU.
+// rule unless a test says otherwise, the quick timeline: 37 frames of warm-up, hold and
+// reference; 2 CPU cores). Where issue 20 sets a target (still flicker at most 1e-4, the first 8
+// frames after a change within 1.5x a fresh start's error), the test holds the target. The
+// whole file takes about 130 s of CPU.
 #include "stability/run.h"
 #include "support.h"
 
@@ -134,7 +136,7 @@ TEST_F(StabilityTest, ACameraCutRestartsEveryHistory) {
         if (f.sinceChange >= 0 && f.sinceChange < 8) tested += f.errorRest, fresh += f.freshRest;
     std::printf("cut: error over a fresh start's in the first 8 frames %.2fx\n", tested / fresh);
     EXPECT_LT(tested, 1.5 * fresh);
-    EXPECT_LE(r.stillFlicker, 1e-4); // measured 0 (2.5e-4 while the refresh blended)
+    EXPECT_LE(r.stillFlicker, 1e-4); // measured 1e-5 (2.5e-4 while the refresh blended)
 }
 
 // A pillar leaves the screen as the camera slides: the AO history near it held its occlusion,
