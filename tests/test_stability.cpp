@@ -1,7 +1,9 @@
 // The stability suite's cases (renderer/stability/cases.h) at a small size, each measure held
 // within a bound set from the value measured when it was written (80x60, lavapipe, the thesis
-// rule, the quick timeline: 37 frames of warm-up, hold and reference; 2 CPU cores). The whole
-// file takes about 50 s of CPU.
+// rule unless a test says otherwise, the quick timeline: 37 frames of warm-up, hold and
+// reference; 2 CPU cores). Where issue 20 sets a target (still flicker at most 1e-4, the first 8
+// frames after a change within 1.5x a fresh start's error), the test holds the target. The
+// whole file takes about 130 s of CPU.
 #include "stability/run.h"
 #include "support.h"
 
@@ -19,19 +21,23 @@ RunOptions quick() {
     return o;
 }
 
-// Each case runs once per process; the tests read its figures.
-const CaseResult& result(const std::string& name) {
-    static std::map<std::string, CaseResult> results;
-    auto it = results.find(name);
+// Each case runs once per process and cache rule (cache_method 0, the thesis's, or 1, the
+// running mean); the tests read its figures.
+const CaseResult& result(const std::string& name, int method = 0) {
+    static std::map<std::pair<std::string, int>, CaseResult> results;
+    auto it = results.find({name, method});
     if (it == results.end()) {
-        it = results.emplace(name, runCase(test::context(), findCase(name), quick())).first;
+        RunOptions o = quick();
+        if (method != 0) o.settings = {{"cache_method", method}};
+        it = results.emplace(std::pair{name, method}, runCase(test::context(), findCase(name), o))
+                 .first;
         const CaseResult& r = it->second;
-        std::printf("%s: region %zu px, NaN/Inf %zu, still flicker %.2g, recovery %d, settled "
-                    "%.3g / elsewhere %.3g (a fresh start %.3g), over fresh %.3gx, AO kept %.3f, "
-                    "stale %.3g\n",
-                    name.c_str(), r.regionPixels, r.nonFinite, r.stillFlicker, r.recoveryFrames,
-                    r.convergedError, r.restError, r.freshSettledError, r.excessOverFresh + 1.0,
-                    r.reusedAtChange, r.staleAfter);
+        std::printf("%s (cache_method %d): region %zu px, NaN/Inf %zu, still flicker %.2g, "
+                    "recovery %d, settled %.3g / elsewhere %.3g (a fresh start %.3g), over fresh "
+                    "%.3gx, AO kept %.3f, stale %.3g\n",
+                    name.c_str(), method, r.regionPixels, r.nonFinite, r.stillFlicker,
+                    r.recoveryFrames, r.convergedError, r.restError, r.freshSettledError,
+                    r.excessOverFresh + 1.0, r.reusedAtChange, r.staleAfter);
     }
     return it->second;
 }
@@ -72,9 +78,10 @@ TEST_F(StabilityTest, ADisocclusionRecoversWithinFiveFrames) {
     EXPECT_LE(r.recoveryFrames, 8);
     EXPECT_LT(r.excessOverFresh, 0.5);
     EXPECT_LT(r.convergedError, 2.0 * r.freshSettledError);
-    // Measured 0.9e-4 to 1.4e-4: the refresh tile's fresh samples are the only change on a
-    // still camera.
-    EXPECT_LT(r.stillFlicker, 5e-4);
+    // Issue 20's target for a still camera: at most 1e-4 (measured 0: a converged history that
+    // no motion blurred is kept as it is by the refresh tile; 0.9e-4 to 1.4e-4 while the tile
+    // blended its fresh samples in).
+    EXPECT_LE(r.stillFlicker, 1e-4);
 }
 
 // The Cornell box, the spot light sliding along the ceiling for 8 frames, then still.
@@ -92,7 +99,7 @@ TEST_F(StabilityTest, AMovedLightLeavesNoStaleLightingAfterOneFrame) {
     // Measured: the region's error is 0.85x a fresh renderer's (the AO, which the light does
     // not touch, keeps its converged history).
     EXPECT_LT(r.excessOverFresh, 0.2);
-    EXPECT_LT(r.stillFlicker, 5e-4); // measured 2.6e-4 to 3.6e-4
+    EXPECT_LE(r.stillFlicker, 1e-4); // measured 0 (2.6e-4 to 3.6e-4 while the refresh blended)
 }
 
 // The Cornell box, the short block sliding 11 cm along its object path for 8 frames, then
@@ -110,7 +117,7 @@ TEST_F(StabilityTest, AMovedObjectLeavesNoStaleLightingAfterOneFrame) {
     // rest keep their converged history).
     EXPECT_LT(r.convergedError, 2.5 * r.restError);
     EXPECT_LT(r.excessOverFresh, 1.0);
-    EXPECT_LT(r.stillFlicker, 5e-4); // measured 2.1e-4
+    EXPECT_LE(r.stillFlicker, 1e-4); // measured 0 (2.1e-4 while the refresh blended)
 }
 
 // Sponza, a cut from the west end of the atrium to the east end looking back (its path key is
@@ -129,7 +136,23 @@ TEST_F(StabilityTest, ACameraCutRestartsEveryHistory) {
         if (f.sinceChange >= 0 && f.sinceChange < 8) tested += f.errorRest, fresh += f.freshRest;
     std::printf("cut: error over a fresh start's in the first 8 frames %.2fx\n", tested / fresh);
     EXPECT_LT(tested, 1.5 * fresh);
-    EXPECT_LT(r.stillFlicker, 5e-4); // measured 2.5e-4
+    EXPECT_LE(r.stillFlicker, 1e-4); // measured 1e-5 (2.5e-4 while the refresh blended)
+}
+
+// A pillar leaves the screen as the camera slides: the AO history near it held its occlusion,
+// which no frame at the final view can compute (cache_screen_edge restarts the pixels whose AO
+// radius the screen's edge crossed while the camera moved). Issue 20's target, for both cache
+// rules: over the first 8 frames after the camera stopped, the region's error at most 1.5x a
+// fresh start's at the final camera (96x72, --quick: 2.49x and 3.11x before the rule, 1.19x
+// and 0.70x with it).
+TEST_F(StabilityTest, AnOccluderThatLeftTheScreenLeavesNoGhost) {
+    for (int method : {0, 1}) {
+        const CaseResult& r = result("screen-edge", method);
+        EXPECT_EQ(r.nonFinite, 0u) << "cache_method " << method;
+        EXPECT_GT(r.regionPixels, 100u) << "the pillar's receivers must be on screen";
+        EXPECT_LE(r.excessOverFresh + 1.0, 1.5) << "cache_method " << method;
+        EXPECT_LE(r.stillFlicker, 1e-4) << "cache_method " << method;
+    }
 }
 
 } // namespace

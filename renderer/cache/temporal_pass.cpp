@@ -45,7 +45,8 @@ shader::CacheConstants cacheConstants(const PassSetup& s, const EffectCache* cac
     c.motionTest = cache->motionTest;
     c.motionReach = cache->motionReach;
     c.blurBudget = cache->blurBudget;
-    c.thinGeometry = s.model.settings.cache_thin_geometry ? 1 : 0;
+    c.reprojection = (s.model.settings.cache_thin_geometry ? REPROJECT_THIN_GEOMETRY : 0) |
+                     (s.model.settings.cache_screen_edge ? REPROJECT_SCREEN_EDGE : 0);
     return c;
 }
 

@@ -61,6 +61,12 @@ SSGI_CHECK_SIZE(DrawConstants, 96);
 #define MOTION_NEAR_BOX 1    // the pixels within motionReach of a moved box (occlusion)
 #define MOTION_LIGHT_PATH 2  // the pixels whose path to the light passes within motionReach of one
 
+// What the reprojection does beyond the thesis (CacheConstants.reprojection): where the nearest
+// history texel lies behind, also try the texels beside it (thin geometry); where the camera
+// moved the screen's edges across the radius the effect gathers within, start over.
+#define REPROJECT_THIN_GEOMETRY 1
+#define REPROJECT_SCREEN_EDGE 2
+
 // The temporal cache of one effect (thesis 3.1; docs/temporal-cache.md), as its passes see it
 // each frame. Push constants (std430) pack these scalars as C++ does.
 struct CacheConstants {
@@ -77,8 +83,7 @@ struct CacheConstants {
     float motionReach;    // scene units
     float blurBudget;     // the resampling blur (squared pixels) a cached value may carry:
                           // beyond it the history's weight is cut and the pixel recomputed
-    int thinGeometry;     // 1: where the nearest history texel lies behind, the test also tries
-                          // the texels beside it (temporal.glsl reproject)
+    int reprojection;     // REPROJECT_* flags (temporal.glsl reproject)
 };
 SSGI_CHECK_SIZE(CacheConstants, 48);
 

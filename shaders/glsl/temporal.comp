@@ -8,7 +8,8 @@
 // frame's values around the pixel. A pixel the effect skipped (converged) keeps its history; a
 // disoccluded pixel starts over from V_t. The refresh tile was computed although converged, and
 // its fresh value is blended in like any other, which pulls back what the bilinear resampling
-// of the history has blurred without restarting the tile's accumulation. Beyond the thesis, the
+// of the history has blurred without restarting the tile's accumulation (where nothing blurred
+// it, on a still camera, the history is kept as it is). Beyond the thesis, the
 // history's alpha holds that blur (squared pixels), and the effect's budget bounds it: a moving
 // camera's history loses weight, and converged pixels are computed again, before their blur
 // exceeds it (a budget of 0: computed anew while the camera moves, accumulated while still).
@@ -77,8 +78,13 @@ vec4 historyAt(Reprojection r, vec3 world, out float spread) {
         spread = dot(d, d);
         v = texelFetch(historyValue, r.texel, 0);
     }
-    // Offsets below a thirtieth of a pixel are rounding (a still camera): no blur.
-    if (spread < 1e-3) spread = 0.0;
+    // Offsets below a thirtieth of a pixel are rounding (a still camera): no blur, and the
+    // texel itself, unfiltered, so that a still camera carries its history over exactly (the
+    // rounding's tiny weights on the neighbours changed a half float's last digit now and then).
+    if (spread < 1e-3) {
+        spread = 0.0;
+        v = texelFetch(historyValue, r.texel, 0);
+    }
     return vec4(v.rgb, v.a + spread);
 }
 
@@ -153,6 +159,14 @@ void main() {
             count = 2.0;
         } else if (spread == 0.0 && history.a > 0.0) {
             fresh = max(fresh, 1.0 / (r.count + 1.0));
+        } else if (spread == 0.0 && r.count >= rotations) {
+            // The refresh tile on a still camera, over a converged history that no motion
+            // resampled: it holds `rotations` frames at exactly this pixel, and the refresh, which
+            // exists to pull back resampling blur (thesis ch. 4), has none to pull back. Blending
+            // one noisy frame in there was all the flicker of a still camera (up to 3.7e-4 a
+            // frame, the stability suite's pine), so the history is kept as it is.
+            fresh = 0.0;
+            count = r.count;
         }
         // ...and at least enough that the blended value's blur stays within the budget. Where
         // that cuts the history's weight, the count becomes the blend's effective number of

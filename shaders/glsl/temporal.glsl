@@ -50,6 +50,34 @@ bool movedNearby(vec3 world, CacheConstants cache) {
     return false;
 }
 
+// Beyond the thesis, the screen's edge: an effect that gathers from the screen within a radius
+// (the AO: MOTION_NEAR_BOX, motionReach) sees only the part of that radius on screen. Where the
+// camera moved the image's edges across the radius around W_t (the part cut off by an edge grew
+// or shrank since the history was computed), the history saw another part of the scene than
+// this frame can (an occluder that has left the screen, or one that has come on), so it starts
+// over, as a still camera at this view has it. The image's edges are the rendered ones, guard
+// band included; an edge that moved along itself (a sideways pan, for the top and bottom) cuts
+// off the same part and keeps the history.
+// Changes below a thirtieth of a pixel are rounding.
+const float EDGE_TOLERANCE = 1.0 / 30.0;
+bool gatherMeetsEdge(vec3 world, vec4 previousClip, CacheConstants cache) {
+    if ((cache.reprojection & REPROJECT_SCREEN_EDGE) == 0 || cache.motionTest != MOTION_NEAR_BOX ||
+        cache.motionReach <= 0.0)
+        return false;
+    if (frame.viewProjection == frame.previousViewProjection) return false;
+    vec4 clip = frame.viewProjection * vec4(world, 1.0);
+    vec2 size = frame.viewport.xy;
+    float pixelsAtUnitDepth = abs(frame.projection[1][1]) * 0.5 * size.y;
+    vec2 now = (clip.xy / clip.w * 0.5 + 0.5) * size;
+    vec2 then = (previousClip.xy / previousClip.w * 0.5 + 0.5) * size;
+    float reachNow = cache.motionReach * pixelsAtUnitDepth / max(clip.w, 1e-6);
+    float reachThen = cache.motionReach * pixelsAtUnitDepth / max(previousClip.w, 1e-6);
+    // How far the radius reaches past each edge (left and top, right and bottom), in pixels.
+    vec4 cutNow = max(vec4(reachNow - now, now + reachNow - size), 0.0);
+    vec4 cutThen = max(vec4(reachThen - then, then + reachThen - size), 0.0);
+    return any(greaterThan(abs(cutNow - cutThen), vec4(EDGE_TOLERANCE)));
+}
+
 // C = P_{t-1} V_{t-1} W_t (1), divided by w and mapped to texture space; valid where the
 // history holds a world position within epsilon of W_t (2-3). Epsilon is a number of pixel
 // footprints at W_t, so one setting serves every scene scale, widened where the surface is seen
@@ -75,7 +103,7 @@ Reprojection reproject(vec3 world, vec3 normal, CacheConstants cache) {
     float epsilon = cache.epsilon / (pixelsPerUnit(viewDepth(world)) * max(facing, 0.1));
     r.epsilon = epsilon;
     float nearest = meta.w > 0.0 ? distance(meta.xyz, world) : 1e30;
-    if (nearest > epsilon && cache.thinGeometry != 0 &&
+    if (nearest > epsilon && (cache.reprojection & REPROJECT_THIN_GEOMETRY) != 0 &&
         (meta.w == 0.0 || (frame.previousViewProjection * vec4(meta.xyz, 1.0)).w > clip.w)) {
         ivec2 centre = r.texel;
         for (int y = -1; y <= 1; ++y)
@@ -90,7 +118,7 @@ Reprojection reproject(vec3 world, vec3 normal, CacheConstants cache) {
                 }
             }
     }
-    r.valid = nearest <= epsilon;
+    r.valid = nearest <= epsilon && !gatherMeetsEdge(world, clip, cache);
     r.count = r.valid ? meta.w : 0.0;
     return r;
 }
