@@ -26,6 +26,7 @@ std::vector<Method> methodsOf(const Options& options) {
     if (options.methods.empty()) {
         methods.push_back({"thesis: half resolution, 512 VPLs", {{"indirect_method", 0}}});
         methods.push_back({"interleaved", {{"indirect_method", 1}}});
+        methods.push_back({"importance", {{"indirect_method", 2}}});
     }
     for (const auto& [label, settings] : options.methods)
         methods.push_back({label, settings});

@@ -40,8 +40,11 @@ def main():
               first["commit"], first["date"][:10], first["device"]["name"],
               first["device"]["driver"], args.note) + "\n",
           "Methods: **off** (no bounce), **thesis** (`indirect_method=0`: 512 VPLs per "
-          "half-resolution pixel, upsampled), **interleaved** (`indirect_method=1`, the default: "
-          "4×4 subsets of the same 512 VPLs at full resolution, geometry-aware filter; "
+          "half-resolution pixel, upsampled), **interleaved** (`indirect_method=1`, the "
+          "default: 4×4 subsets of the same 512 VPLs at full resolution, geometry-aware "
+          "filter), **importance** (`indirect_method=2`: the same subsets and filter over the "
+          "RSM clustered 4×4 texels to a VPL, 64 more VPLs a block drawn in proportion to their "
+          "flux, the visibility test on 6 VPLs a pixel drawn by their light; "
           "[effects.md](effects.md)). Cost: the frame's median over %d timed frames after %d "
           "warm-up at %dx%d, cache off, the methods' frames interleaved; *cost* is (frame − "
           "frame without the bounce) / frame without it. On lavapipe every time is CPU time: "
@@ -94,29 +97,30 @@ def main():
         md.append(table(["method", "bounce, 1 frame", "bounce, converged", "bounce band, 1 frame",
                          "bounce band, converged", "direct", "bounce", "sky"], rows))
         by = {m["label"].split(":")[0]: m for m in methods}
-        off, thesis, inter = by.get("off"), by.get("thesis"), by.get("interleaved")
-        if off and thesis and inter:
+        off, thesis = by.get("off"), by.get("thesis")
+        news = [by[k] for k in ("interleaved", "importance") if k in by]
+        if off and thesis and news:
+            def figure(m, key):
+                return m[key]["all"]["relmse"] if key != "one_frame_vs_converged" \
+                    else m[key]["relmse"]
+            def chain(key, fmt):
+                return " → ".join(fmt % figure(m, key) for m in [thesis] + news)
             summary.append([
-                scene, "%.2f → %.2f (%.1f×)" % (thesis["cost_relative"], inter["cost_relative"],
-                                                 thesis["cost_relative"] / inter["cost_relative"]),
-                "%.4f / %.4f / %.4f" % (off["one_frame"]["all"]["relmse"],
-                                        thesis["one_frame"]["all"]["relmse"],
-                                        inter["one_frame"]["all"]["relmse"]),
-                "%.4f / %.4f / %.4f" % (off["converged"]["all"]["relmse"],
-                                        thesis["converged"]["all"]["relmse"],
-                                        inter["converged"]["all"]["relmse"]),
-                "%.5f → %.5f (%.2f×)" % (
-                    thesis["one_frame_vs_converged"]["relmse"],
-                    inter["one_frame_vs_converged"]["relmse"],
-                    inter["one_frame_vs_converged"]["relmse"] /
-                    thesis["one_frame_vs_converged"]["relmse"]),
-                "%.4f → %.4f" % (thesis["bounce"]["one_frame_edge_band"]["relmse"],
-                                 inter["bounce"]["one_frame_edge_band"]["relmse"])])
+                scene,
+                " → ".join("%.2f" % m["cost_relative"] for m in [thesis] + news),
+                "%.4f / " % off["one_frame"]["all"]["relmse"] + chain("one_frame", "%.4f"),
+                "%.4f / " % off["converged"]["all"]["relmse"] + chain("converged", "%.4f"),
+                chain("one_frame_vs_converged", "%.5f"),
+                " → ".join("%.4f" % m["bounce"]["one_frame_edge_band"]["relmse"]
+                           for m in [thesis] + news)])
     if summary:
+        names = " → ".join(["thesis"] + [k for k in ("interleaved", "importance")
+                                         if any(k == m["label"].split(":")[0]
+                                                for r in runs for m in r["indirect"]["methods"])])
         md.insert(3, "## In short\n\n" + table(
-            ["scene", "cost: thesis → interleaved", "image 1 frame: off / thesis / interleaved",
-             "image converged: off / thesis / interleaved", "1 frame vs converged",
-             "bounce band, 1 frame"], summary))
+            ["scene", "cost: " + names, "image 1 frame: off / " + names,
+             "image converged: off / " + names, "1 frame vs converged: " + names,
+             "bounce band, 1 frame: " + names], summary))
     with open(args.doc, "w") as f:
         f.write("".join(md))
     print("wrote " + args.doc)

@@ -43,9 +43,12 @@ void addFramePasses(PassSetup& s) {
     if (m.indirect) {
         EffectCache* cache = createCache(
             s, "indirect", {m.cache_indirect, m.cache_tile_indirect, m.cache_blur_indirect}, true);
-        const graph::ImageRef indirect = m.indirect_method == 1
-                                             ? addInterleavedIndirectPasses(s, scenes, cache)
-                                             : addIndirectPasses(s, scenes, cache);
+        std::optional<FluxVpls> vpls;
+        if (m.indirect_method == 2) vpls = addFluxVplPasses(s, scenes, cache);
+        const graph::ImageRef indirect =
+            m.indirect_method >= 1
+                ? addInterleavedIndirectPasses(s, scenes, cache, vpls ? &*vpls : nullptr)
+                : addIndirectPasses(s, scenes, cache);
         terms.indirect = addTemporalPass(s, cache, indirect, scenes);
     }
     // Without SSDO only the composite reads the direct light: made once the indirect light's

@@ -20,7 +20,7 @@
 namespace ssgi {
 
 graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& in,
-                                             EffectCache* cache) {
+                                             EffectCache* cache, const FluxVpls* fluxVpls) {
     const VkImageUsageFlags usage =
         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     auto image = [&](const char* name) {
@@ -46,9 +46,16 @@ graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& 
             area = {area.width + 2 * widen, area.height + 2 * widen};
         return area;
     };
-    const vk::Specialization gatherSpec{{vpls, int(s.model.settings.indirect_visibility),
-                                         int(s.model.settings.indirect_visibility_steps), k,
-                                         radius}};
+    const Settings& m = s.model.settings;
+    vk::Specialization gatherSpec{
+        {vpls, int(m.indirect_visibility), int(m.indirect_visibility_steps), k, radius}};
+    if (fluxVpls) { // method 2: the VPL map's side, its flux-drawn VPLs, the tests drawn
+        const int cluster = int(m.indirect_vpl_cluster);
+        gatherSpec.values.push_back(int(m.indirect_flux_vpls));
+        gatherSpec.values.push_back(int(m.indirect_visibility_tests));
+        gatherSpec.values.push_back(int(std::max(m.indirect_flux_pool, m.indirect_flux_vpls)));
+        gatherSpec.values.push_back((int(s.rsmSize.width) + cluster - 1) / cluster);
+    }
     const vk::Specialization filterSpec{{k, radius}};
 
     const CacheInputs history = cacheInputs(s, cache, in.gbuffer.position);
@@ -68,16 +75,26 @@ graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& 
 
     addKeepPass(s, cache, {subsets, subsetsDirectional, across, acrossDirectional});
     using graph::Use;
-    ComputePassDesc gather{"indirect", "indirect_interleaved.comp"};
+    // Method 1 gathers the RSM's texels; method 2 the VPL map's, and the flux's list.
+    ComputePassDesc gather{"indirect",
+                           fluxVpls ? "indirect_importance.comp" : "indirect_interleaved.comp"};
     gather.images = {{"gbufferPosition", in.gbuffer.position, Use::Sampled},
-                     {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
-                     {"rsmPosition", in.rsm.position, Use::Sampled},
-                     {"rsmNormal", in.rsm.normal, Use::Sampled},
-                     {"rsmFlux", in.rsm.third, Use::Sampled},
-                     {"historyPosition", history.position, Use::Sampled},
-                     {"historyCount", history.count, Use::Sampled},
-                     {"interleavedIndirect", subsets, Use::StorageWrite},
-                     {"interleavedDirectional", subsetsDirectional, Use::StorageWrite}};
+                     {"gbufferNormal", in.gbuffer.normal, Use::Sampled}};
+    if (fluxVpls)
+        gather.images.insert(gather.images.end(),
+                             {{"vplPosition", fluxVpls->position, Use::Sampled},
+                              {"vplNormal", fluxVpls->normal, Use::Sampled},
+                              {"vplFlux", fluxVpls->flux, Use::Sampled},
+                              {"vplList", fluxVpls->list, Use::Sampled}});
+    else
+        gather.images.insert(gather.images.end(), {{"rsmPosition", in.rsm.position, Use::Sampled},
+                                                   {"rsmNormal", in.rsm.normal, Use::Sampled},
+                                                   {"rsmFlux", in.rsm.third, Use::Sampled}});
+    gather.images.insert(gather.images.end(),
+                         {{"historyPosition", history.position, Use::Sampled},
+                          {"historyCount", history.count, Use::Sampled},
+                          {"interleavedIndirect", subsets, Use::StorageWrite},
+                          {"interleavedDirectional", subsetsDirectional, Use::StorageWrite}});
     gather.pushSize = sizeof(shader::IndirectConstants);
     gather.spec = gatherSpec;
     addComputePass(s, std::move(gather),

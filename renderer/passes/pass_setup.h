@@ -109,10 +109,18 @@ graph::ImageRef addAoPass(PassSetup& setup, const GBufferAndRsm& inputs, EffectC
 graph::ImageRef addIndirectPasses(PassSetup& setup, const GBufferAndRsm& inputs,
                                   EffectCache* cache);
 
+// indirect.flux + indirect.vpls, indirect_method 2: the RSM clustered into a coarser map of
+// VPLs, and the list of VPLs drawn this frame in proportion to their flux.
+struct FluxVpls {
+    graph::ImageRef position, normal, flux, list;
+};
+FluxVpls addFluxVplPasses(PassSetup& setup, const GBufferAndRsm& inputs, EffectCache* cache);
+
 // indirect (interleaved VPL subsets) + indirect.filter_x + indirect.filter_y: the same light,
-// indirect_method 1.
+// indirect_method 1; with `fluxVpls` (method 2) the flux's VPLs beside the pattern's.
 graph::ImageRef addInterleavedIndirectPasses(PassSetup& setup, const GBufferAndRsm& inputs,
-                                             EffectCache* cache);
+                                             EffectCache* cache,
+                                             const FluxVpls* fluxVpls = nullptr);
 
 // ssdo: directionally occluded sky light plus one bounce, as radiance.
 // `secondLayer` (valid with depth peeling) makes its occlusion test two-layered.

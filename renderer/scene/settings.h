@@ -60,15 +60,26 @@ namespace ssgi {
       "SSDO's and the contact shadows' occlusion test between two depth layers")                   \
     X(indirect, bool, true, 0, 1, "Indirect light",                                                \
       "one-bounce indirect light from the RSM on or off")                                          \
-    X(indirect_method, int, 1, 0, 1, "Indirect light",                                             \
+    X(indirect_method, int, 1, 0, 2, "Indirect light",                                             \
       "0 the thesis's gather: every VPL per half-resolution pixel, upsampled; 1 interleaved: "     \
-      "each pixel of a k x k block gathers 1/k^2 of the VPLs, then a geometry-aware filter")       \
+      "each pixel of a k x k block gathers 1/k^2 of the RSM's texels, then a geometry-aware "     \
+      "filter; 2 importance: 1 from clustered VPLs, some drawn by flux, visibility tested on a "   \
+      "few drawn by their light")                                                                  \
     X(indirect_vpls, int, 512, 1, 1024, "Indirect light",                                          \
-      "VPLs of the pattern: method 0, gathered by every pixel; method 1, split among each block")  \
+      "VPLs of the pattern: method 0, gathered by every pixel; methods 1-2, split among a block")  \
+    X(indirect_flux_vpls, int, 64, 1, 512, "Indirect light",                                       \
+      "method 2: VPLs drawn by flux that each block gathers (split among it like the pattern's)")  \
+    X(indirect_flux_pool, int, 2048, 1, 16384, "Indirect light",                                   \
+      "method 2: VPLs drawn each frame in proportion to the RSM's flux; each 8 x 8 pixels take "  \
+      "a run of indirect_flux_vpls of them")                                                       \
+    X(indirect_vpl_cluster, int, 4, 1, 16, "Indirect light",                                       \
+      "method 2: RSM texels per VPL, per side (the RSM clustered into a coarser map of VPLs)")     \
+    X(indirect_visibility_tests, int, 6, 0, 1024, "Indirect light",                                \
+      "method 2: VPLs a pixel tests for visibility, drawn by their light; 0 = every one")          \
     X(indirect_interleave, int, 4, 1, 8, "Indirect light",                                         \
-      "method 1: k, the block side: k^2 subsets (lowered to the square root of indirect_vpls)")    \
+      "methods 1-2: k, the block side: k^2 subsets (at most the square root of indirect_vpls)")    \
     X(indirect_filter_radius, int, 8, 1, 32, "Indirect light",                                     \
-      "method 1: reach in pixels of the geometry-aware filter, per axis")                          \
+      "methods 1-2: reach in pixels of the geometry-aware filter, per axis")                       \
     X(indirect_radius, double, 0.0, 0, 2, "Indirect light",                                        \
       "VPL sampling radius in RSM uv; 0 = reach the whole map")                                    \
     X(indirect_visibility, bool, true, 0, 1, "Indirect light",                                     \

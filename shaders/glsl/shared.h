@@ -134,6 +134,19 @@ struct IndirectConstants {
 };
 SSGI_CHECK_SIZE(IndirectConstants, 80);
 
+// The VPLs of indirect_method 2 (indirect_vpls.comp): the RSM clustered into a coarser VPL
+// map, and a pyramid of the VPLs' flux luminance (level 0 the map padded to `paddedSize`, a
+// power of two; level `levels` the total) through which VPLs are drawn in proportion to it.
+struct VplDrawConstants {
+    int cached;     // 1: the draw's points move frame by frame; 0: every frame draws the same
+    int mapSize;    // the RSM's side, texels
+    int vplMapSize; // the VPL map's side: mapSize / indirect_vpl_cluster, rounded up
+    int paddedSize; // the pyramid's level 0 side: a power of two, at least vplMapSize and 8
+    int levels;     // log2(paddedSize)
+    int unused[3];
+};
+SSGI_CHECK_SIZE(VplDrawConstants, 32);
+
 struct SsdoConstants {
     float rotation, scale;
     float rMax;           // r_max (scene units)

@@ -1,0 +1,77 @@
+// indirect.flux + indirect.vpls (indirect_method 2): the VPLs of the importance gather. The RSM
+// clustered into a coarser map of VPLs, and a list of VPLs drawn this frame in proportion to
+// their flux, through a pyramid of its luminance (indirect_vpls.comp).
+//   reads:  rsm.position, rsm.normal, rsm.flux
+//   writes: indirect.vpl_position, .vpl_normal, .vpl_flux (the VPL map, RGBA32F, the RSM's
+//           side / indirect_vpl_cluster), indirect.flux_pyramid (R32F, the luminance's sums),
+//           indirect.vpl_list (RGBA32F, indirect_flux_pool + 1 columns, 3 rows)
+#include "passes/pass_setup.h"
+
+#include "shared.h"
+
+#include <algorithm>
+
+namespace ssgi {
+
+FluxVpls addFluxVplPasses(PassSetup& s, const GBufferAndRsm& in, EffectCache* cache) {
+    const Settings& m = s.model.settings;
+    const uint32_t mapSize = s.rsmSize.width;
+    const uint32_t clusterSide = uint32_t(m.indirect_vpl_cluster);
+    const uint32_t vplMapSize = (mapSize + clusterSide - 1) / clusterSide;
+    uint32_t padded = 8, levels = 3;
+    while (padded < vplMapSize) {
+        padded *= 2;
+        ++levels;
+    }
+    const int count = int(std::max(m.indirect_flux_pool, m.indirect_flux_vpls));
+    const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    // With the cache on, the VPL map is made again only when the RSM is drawn again (the light
+    // moved), so it and the pyramid's levels over it persist; the list is drawn every frame.
+    const bool persistent = s.model.settings.cache;
+    auto vplImage = [&](const char* name) {
+        return s.graph.createImage(name, VK_FORMAT_R32G32B32A32_SFLOAT, {vplMapSize, vplMapSize},
+                                   usage, persistent);
+    };
+    FluxVpls out;
+    out.position = vplImage("indirect.vpl_position");
+    out.normal = vplImage("indirect.vpl_normal");
+    out.flux = vplImage("indirect.vpl_flux");
+    const graph::ImageRef pyramid = s.graph.createImage(
+        "indirect.flux_pyramid", VK_FORMAT_R32_SFLOAT, {padded / 2, padded}, usage, persistent);
+    out.list = s.graph.createImage("indirect.vpl_list", VK_FORMAT_R32G32B32A32_SFLOAT,
+                                   {uint32_t(count) + 1, 3}, usage);
+
+    shader::VplDrawConstants c{};
+    c.cached = cache ? 1 : 0;
+    c.mapSize = int(mapSize);
+    c.vplMapSize = int(vplMapSize);
+    c.paddedSize = int(padded);
+    c.levels = int(levels);
+    using graph::Use;
+    for (int stage = 0; stage < 2; ++stage) {
+        // Stage 0 writes the VPL map, stage 1 reads it (imageLoad: the shader is one).
+        const Use map = stage == 0 ? Use::StorageWrite : Use::StorageReadWrite;
+        ComputePassDesc pass{stage == 0 ? "indirect.flux" : "indirect.vpls", "indirect_vpls.comp"};
+        pass.images = {
+            {"rsmPosition", in.rsm.position, Use::Sampled},
+            {"rsmNormal", in.rsm.normal, Use::Sampled},
+            {"rsmFlux", in.rsm.third, Use::Sampled},
+            {"vplPosition", out.position, map},
+            {"vplNormal", out.normal, map},
+            {"vplFlux", out.flux, map},
+            {"fluxPyramid", pyramid, stage == 0 ? Use::StorageWrite : Use::StorageReadWrite},
+            {"vplList", out.list, Use::StorageWrite}};
+        pass.pushSize = sizeof(shader::VplDrawConstants);
+        pass.spec = {{stage, count, int(clusterSide)}};
+        // Stage 0: an 8 x 8 group per 8 x 8 VPLs of the padded map; stage 1: one group.
+        const uint32_t side = stage == 0 ? padded : 8;
+        std::function<bool()> enabled;
+        if (stage == 0 && persistent) enabled = [&s] { return s.rsmStale; };
+        addComputePass(
+            s, std::move(pass), [side, c](const ComputeRecorder& r) { r.dispatch(side, side, c); },
+            std::move(enabled));
+    }
+    return out;
+}
+
+} // namespace ssgi
