@@ -98,8 +98,26 @@ float cluster(ivec2 vpl) {
     return lit ? luminance(flux) : 0.0;
 }
 
+// The pyramid's texels that no level holds (beside levels 2 and up, and its last row) set to
+// 0, so that the whole image holds defined values (the stability suite reads every image for
+// NaN and Inf); group (0, 0) does it when the VPL map is made.
+void clearUnused() {
+    int width = constants.paddedSize / 2;
+    int invocation = int(gl_LocalInvocationIndex);
+    for (int level = 2; level <= constants.levels; ++level) {
+        int side = constants.paddedSize >> level;
+        int columns = width - side;
+        for (int i = invocation; i < columns * side; i += 64)
+            imageStore(fluxPyramid, levelOrigin(level) + ivec2(side + i % columns, i / columns),
+                       vec4(0.0));
+    }
+    for (int x = invocation; x < width; x += 64)
+        imageStore(fluxPyramid, ivec2(x, constants.paddedSize - 1), vec4(0.0));
+}
+
 // The VPL map of one 8 x 8 tile, and the pyramid's levels 1-3 over it.
 void clusterTile() {
+    if (gl_WorkGroupID.xy == uvec2(0)) clearUnused();
     ivec2 local = ivec2(gl_LocalInvocationID.xy);
     ivec2 group = ivec2(gl_WorkGroupID.xy);
     ivec2 vpl = group * 8 + local;
@@ -159,7 +177,11 @@ void drawList() {
         barrier();
     }
     float total = levelSum(constants.levels, ivec2(0));
-    if (invocation == 0) imageStore(vplList, ivec2(FLUX_VPLS, 0), vec4(total));
+    if (invocation == 0) { // the last column's other rows hold nothing
+        imageStore(vplList, ivec2(FLUX_VPLS, 0), vec4(total));
+        imageStore(vplList, ivec2(FLUX_VPLS, 1), vec4(0.0));
+        imageStore(vplList, ivec2(FLUX_VPLS, 2), vec4(0.0));
+    }
     // Cached, the points move frame by frame (by two irrationals, so the shifts never repeat)
     // and the frames' lists together cover the flux; uncached, every frame draws the same.
     vec2 shift = constants.cached != 0 ? fract(frame.params.z * vec2(0.618034, 0.4142136))
