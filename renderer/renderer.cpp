@@ -132,6 +132,7 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
 
         setup_->view = view;
         addFramePasses(*setup_);
+        patternStart_ = options.patternStart;
         for (const std::string& name : options.keep) {
             if (name == "*") graph_->keepAll();
             if (const graph::ImageRef ref = imageNamed(name); ref.valid()) graph_->keep(ref);
@@ -217,8 +218,8 @@ void Renderer::updateUniforms(const Camera& worldCamera) {
     u.skyHorizon = glm::vec4(scene_.sky.horizon / scale, 0.0f);
     u.skyGround = glm::vec4(scene_.sky.ground / scale, 0.0f);
     u.viewport = glm::vec4(size.width, size.height, 1.0f / size.width, 1.0f / size.height);
-    u.params = glm::vec4(scene_.settings.exposure, scene_.settings.shadow_bias, float(frameIndex_),
-                         glm::length(scene_.bounds.size()));
+    u.params = glm::vec4(scene_.settings.exposure, scene_.settings.shadow_bias,
+                         float(patternFrame()), glm::length(scene_.bounds.size()));
     for (size_t i = 0; i < moved_.size(); ++i) {
         u.movedBoxes[2 * i] = glm::vec4(moved(moved_[i].min, origin_), 0.0f);
         u.movedBoxes[2 * i + 1] = glm::vec4(moved(moved_[i].max, origin_), 0.0f);
@@ -256,12 +257,12 @@ void Renderer::renderFrame(const Camera& camera) {
     // docs/temporal-cache.md).
     const float turn = glm::radians(float(scene_.settings.cache_rotation_deg));
     const float jitter = float(scene_.settings.cache_scale_jitter);
-    setup_->patternRotation = std::fmod(float(frameIndex_) * turn, 2.0f * glm::pi<float>());
-    setup_->patternScale =
-        1.0f + jitter * (2.0f * std::fmod(float(frameIndex_) * 0.618034f, 1.0f) - 1.0f);
+    const float frame = float(patternFrame());
+    setup_->patternRotation = std::fmod(frame * turn, 2.0f * glm::pi<float>());
+    setup_->patternScale = 1.0f + jitter * (2.0f * std::fmod(frame * 0.618034f, 1.0f) - 1.0f);
     // And moves each sample within its radial stratum (another low-discrepancy sequence, so
     // that offset and scale do not repeat together).
-    setup_->patternOffset = std::fmod(0.5f + float(frameIndex_) * 0.7548777f, 1.0f);
+    setup_->patternOffset = std::fmod(0.5f + frame * 0.7548777f, 1.0f);
     for (EffectCache& cache : setup_->caches)
         cache.refreshTile =
             cache.refresh && graph_->hasHistory(cache.value) ? int(cache.refresh->next()) : -1;
@@ -287,6 +288,7 @@ void Renderer::continueFrom(Renderer& previous) {
     cutRequested_ = previous.cutRequested_;
     cuts_ = previous.cuts_;
     frameIndex_ = previous.frameIndex_;
+    patternStart_ = previous.patternStart_;
     if (scene_.settings.cache_resize && frameIndex_ > 0) carryCaches(*previous.setup_, *setup_);
 }
 

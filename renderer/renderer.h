@@ -24,6 +24,10 @@ struct RenderOptions {
     // benchmarks; "*" keeps every image. Names the frame lacks are passed over. What needs no
     // keeping: the outputs, the G-buffer, the histories, and whatever the last passes wrote.
     std::vector<std::string> keep;
+    // The frame at which the sampling patterns' sequence (their turn, size and offsets, the
+    // VPL subsets' turn, the flux draw) starts. A reference renderer that must not share the
+    // samples of renderers started at 0 starts elsewhere (the stability suite's converged image).
+    uint32_t patternStart = 0;
 };
 
 class Renderer {
@@ -101,6 +105,8 @@ private:
     std::unique_ptr<PassSetup> setup_;
     SpotLight light_;
     uint32_t frameIndex_ = 0;
+    uint32_t patternStart_ = 0; // RenderOptions::patternStart
+    uint32_t patternFrame() const { return patternStart_ + frameIndex_; }
     vk::HostSpan lastSubmission_;
     uint32_t stillFrames_ = 0;          // frames in a row with this camera and light
     std::vector<glm::mat4> transforms_; // where the instances stand
