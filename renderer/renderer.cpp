@@ -218,8 +218,9 @@ void Renderer::updateUniforms(const Camera& worldCamera) {
     u.skyHorizon = glm::vec4(scene_.sky.horizon / scale, 0.0f);
     u.skyGround = glm::vec4(scene_.sky.ground / scale, 0.0f);
     u.viewport = glm::vec4(size.width, size.height, 1.0f / size.width, 1.0f / size.height);
-    u.params = glm::vec4(scene_.settings.exposure, scene_.settings.shadow_bias,
-                         float(patternFrame()), glm::length(scene_.bounds.size()));
+    u.exposure = float(scene_.settings.exposure);
+    u.patternFrame = float(patternFrame());
+    u.sceneDiagonal = glm::length(scene_.bounds.size());
     for (size_t i = 0; i < moved_.size(); ++i) {
         u.movedBoxes[2 * i] = glm::vec4(moved(moved_[i].min, origin_), 0.0f);
         u.movedBoxes[2 * i + 1] = glm::vec4(moved(moved_[i].max, origin_), 0.0f);

@@ -76,7 +76,7 @@ void main() {
 
     // A debug view replaces both outputs: the EXR holds the view's linear quantity (radiance,
     // visibility, normal, distance), the PNG its display encoding.
-    float exposure = frame.params.x;
+    float exposure = frame.exposure;
     vec3 value = hdr;
     int view = constants.view;
     if (view == VIEW_ALBEDO) value = albedo;
@@ -105,7 +105,7 @@ void main() {
     if (view == VIEW_NORMAL || view == VIEW_RSM_NORMAL)
         shown = position.w == 0.0 && view == VIEW_NORMAL ? vec3(0.0) : value * 0.5 + 0.5;
     if (view == VIEW_DEPTH || view == VIEW_PEEL)
-        shown = vec3(value.x == 0.0 ? 0.0 : max(1.0 - value.x / frame.params.w, 0.0));
+        shown = vec3(value.x == 0.0 ? 0.0 : max(1.0 - value.x / frame.sceneDiagonal, 0.0));
     if (view == VIEW_RSM_FLUX) shown = tonemap(value * exposure * 0.3);
     if (view == VIEW_SHADOW || view == VIEW_AO || view == VIEW_SKY_VISIBILITY) shown = value;
     // Lit white, shadowed black, and in red what contact shadows darkened.

@@ -93,7 +93,7 @@ shared uint listTexel[FLUX_VPLS];
 // one list's everywhere.
 void loadList(bool cached) {
     uint group = gl_WorkGroupID.x + gl_WorkGroupID.y * 4099u;
-    uint start = hash(group + (cached ? uint(frame.params.z) * 65521u : 0u)) % uint(POOL);
+    uint start = hash(group + (cached ? uint(frame.patternFrame) * 65521u : 0u)) % uint(POOL);
     for (int j = int(gl_LocalInvocationIndex); j < FLUX_VPLS; j += 64) {
         int k = int((start + uint(j)) % uint(POOL));
         vec4 row0 = texelFetch(vplList, ivec2(k, 0), 0);
@@ -125,7 +125,7 @@ void main() {
         return;
     }
     vec3 p = position.xyz;
-    int turn = cached ? int(fract(frame.params.z * 0.618034) * float(SUBSETS)) : 0;
+    int turn = cached ? int(fract(frame.patternFrame * 0.618034) * float(SUBSETS)) : 0;
     int subset = (vplSubset(pixel.x, pixel.y, INTERLEAVE) + turn) % SUBSETS;
 
     // The pattern around p's projection, as indirect_gather.glsl draws it.
@@ -215,7 +215,7 @@ void main() {
     int tests = 0;
     bool all = VISIBILITY == 0 || TESTS == 0 || lit <= TESTS;
     float step = lightSum / float(max(TESTS, 1));
-    float u = pixelRandom(pixel, cached ? uint(frame.params.z) : 0u);
+    float u = pixelRandom(pixel, cached ? uint(frame.patternFrame) : 0u);
     float before = 0.0;
     vec3 irradiance = vec3(0.0);
     for (int c = 0; c < patternCount + fluxCount; ++c) {

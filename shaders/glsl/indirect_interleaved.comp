@@ -57,7 +57,7 @@ void main() {
     // index), so that over frames every pixel gathers every subset; a single frame keeps its
     // place's own.
     int subsets = INTERLEAVE * INTERLEAVE;
-    int turn = constants.radialOffset < 0.0 ? 0 : int(fract(frame.params.z * 0.618034) * float(subsets));
+    int turn = constants.radialOffset < 0.0 ? 0 : int(fract(frame.patternFrame * 0.618034) * float(subsets));
     int subset = (vplSubset(pixel.x, pixel.y, INTERLEAVE) + turn) % subsets;
     vec4 directional;
     vec3 e = gatherIndirect(position.xyz, n, pixelRotation(pixel) + constants.rotation,

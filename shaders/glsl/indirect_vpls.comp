@@ -184,7 +184,7 @@ void drawList() {
     }
     // Cached, the points move frame by frame (by two irrationals, so the shifts never repeat)
     // and the frames' lists together cover the flux; uncached, every frame draws the same.
-    vec2 shift = constants.cached != 0 ? fract(frame.params.z * vec2(0.618034, 0.4142136))
+    vec2 shift = constants.cached != 0 ? fract(frame.patternFrame * vec2(0.618034, 0.4142136))
                                        : vec2(0.0);
     for (int j = invocation; j < FLUX_VPLS; j += 64) {
         // The R2 sequence (Roberts 2018): the golden ratio's 2-D generalisation.

@@ -36,7 +36,10 @@ struct FrameUniforms {
     vec4 skyHorizon;
     vec4 skyGround;
     vec4 viewport;       // x = width, y = height, z = 1/width, w = 1/height
-    vec4 params;         // x = exposure, y = shadow bias (texels), z = frame index, w = scene diagonal
+    float exposure;      // multiplies the radiance before tone mapping
+    float patternFrame;  // where the sampling patterns stand: RenderOptions::patternStart + frame
+    float sceneDiagonal; // length of the scene's bounding box's diagonal (world units)
+    float unused0;       // pads the four floats to a vec4's 16 bytes (std140)
     // Objects that moved since the last frame: box i spans movedBoxes[2i].xyz..movedBoxes[2i+1].xyz
     // (world space, old and new place together); motion.x = number of boxes (at most 4).
     vec4 movedBoxes[8];
