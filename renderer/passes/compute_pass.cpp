@@ -9,7 +9,8 @@ static bool isSampled(graph::Use use) {
 }
 
 static bool isStorage(graph::Use use) {
-    return use == graph::Use::StorageWrite || use == graph::Use::StorageReadWrite;
+    return use == graph::Use::StorageRead || use == graph::Use::StorageWrite ||
+           use == graph::Use::StorageReadWrite;
 }
 
 void ComputeRecorder::dispatch(uint32_t width, uint32_t height, const void* constants,

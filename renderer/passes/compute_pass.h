@@ -23,7 +23,7 @@ struct PassSetup;
 struct ShaderImage {
     std::string name;                   // the shader's variable
     graph::ImageRef image;              // the image behind it this frame
-    graph::Use use;                     // Sampled, StorageWrite or StorageReadWrite
+    graph::Use use; // Sampled, StorageRead (imageLoad only), StorageWrite or StorageReadWrite
     VkSampler sampler = VK_NULL_HANDLE; // for a sampled use: the setup's nearest unless given
 };
 

@@ -50,7 +50,7 @@ FluxVpls addFluxVplPasses(PassSetup& s, const GBufferAndRsm& in, EffectCache* ca
     using graph::Use;
     for (int stage = 0; stage < 2; ++stage) {
         // Stage 0 writes the VPL map, stage 1 reads it (imageLoad: the shader is one).
-        const Use map = stage == 0 ? Use::StorageWrite : Use::StorageReadWrite;
+        const Use map = stage == 0 ? Use::StorageWrite : Use::StorageRead;
         ComputePassDesc pass{stage == 0 ? "indirect.flux" : "indirect.vpls", "indirect_vpls.comp"};
         pass.images = {
             {"rsmPosition", in.rsm.position, Use::Sampled},
