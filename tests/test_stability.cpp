@@ -62,7 +62,7 @@ TEST_F(StabilityTest, NoNaNOrInfInAnyImageOfAnyCase) {
 }
 
 // Sponza, the camera sliding past a pillar: the wall it reveals has no history.
-TEST_F(StabilityTest, ADisocclusionRecoversWithinFiveFrames) {
+TEST_F(StabilityTest, ADisocclusionRecoversWithinEightFrames) {
     const CaseResult& r = result("pillar");
     EXPECT_EQ(r.nonFinite, 0u);
     EXPECT_GT(r.regionPixels, 200u) << "the pan must reveal something"; // measured 470
@@ -71,9 +71,10 @@ TEST_F(StabilityTest, ADisocclusionRecoversWithinFiveFrames) {
     // history was filtered over same-surface texels only: the bilinear fetch carried the
     // pillar's lit edge into the revealed wall, and the thesis's rule barely lets a small
     // difference through). Issue 20's targets: recovered within 8 frames, at most 1.5x a fresh
-    // start's error over the first 8 frames (measured 0.39x), and settled within 2x where a
-    // fresh start settles (measured 1.27x; `stability --quick`'s pillar went from 3.2x to 0.3x
-    // when histories that motion blurred began to accumulate again once the camera stopped).
+    // start's error over the first 8 frames (measured 0.40x), and settled within 2x where a
+    // fresh start settles (measured 0.91x; 1.27x while the converged reference shared the fresh
+    // start's samples; `stability --quick`'s pillar went from 3.2x to 0.3x when histories that
+    // motion blurred began to accumulate again once the camera stopped).
     EXPECT_GE(r.recoveryFrames, 0);
     EXPECT_LE(r.recoveryFrames, 8);
     EXPECT_LT(r.excessOverFresh, 0.5);
@@ -88,15 +89,16 @@ TEST_F(StabilityTest, ADisocclusionRecoversWithinFiveFrames) {
 TEST_F(StabilityTest, AMovedLightLeavesNoStaleLightingAfterOneFrame) {
     const CaseResult& r = result("moving-light");
     EXPECT_EQ(r.nonFinite, 0u);
-    EXPECT_GT(r.regionPixels, 1000u); // measured 2115 of 4800
-    // Measured: at most 0.0006 of the old-to-new change remains from the frame after the light
-    // stopped on (setLight restarts the shadow and the bounce light).
+    EXPECT_GT(r.regionPixels, 1000u); // measured 2063 of 4800
+    // Measured: at most 0.0032 of the old-to-new change remains from the frame after the light
+    // stopped on (setLight restarts the shadow and the bounce light; 0.0006 while the converged
+    // reference shared the fresh start's samples).
     EXPECT_LT(std::abs(r.staleAfter), 0.02);
-    // The region settles near the pixels the light did not change (measured 1.1x here, 1.7x
+    // The region settles near the pixels the light did not change (measured 0.84x here, 1.7x
     // at 96x72; so the frames until it stays within twice theirs vary with the size: 1 here,
     // 33 at 96x72, 1 at 160x120).
     EXPECT_LT(r.convergedError, 2.5 * r.restError);
-    // Measured: the region's error is 0.85x a fresh renderer's (the AO, which the light does
+    // Measured: the region's error is 0.78x a fresh renderer's (the AO, which the light does
     // not touch, keeps its converged history).
     EXPECT_LT(r.excessOverFresh, 0.2);
     EXPECT_LE(r.stillFlicker, 1e-4); // measured 0 (2.6e-4 to 3.6e-4 while the refresh blended)
@@ -109,10 +111,10 @@ TEST_F(StabilityTest, AMovedLightLeavesNoStaleLightingAfterOneFrame) {
 TEST_F(StabilityTest, AMovedObjectLeavesNoStaleLightingAfterOneFrame) {
     const CaseResult& r = result("moving-object");
     EXPECT_EQ(r.nonFinite, 0u);
-    EXPECT_GT(r.regionPixels, 300u); // measured 736 of 4800
-    // Measured: 0.0007 of the old-to-new change remains from the frame after the block stopped.
+    EXPECT_GT(r.regionPixels, 300u); // measured 613 of 4800
+    // Measured: 0.0051 of the old-to-new change remains from the frame after the block stopped.
     EXPECT_LT(std::abs(r.staleAfter), 0.02);
-    // Measured: 0.8x the pixels the move did not change, 1.27x a fresh renderer's
+    // Measured: 0.88x the pixels the move did not change, 0.72x a fresh renderer's
     // error over the first frames (the restarted pixels accumulate like a fresh start's; the
     // rest keep their converged history).
     EXPECT_LT(r.convergedError, 2.5 * r.restError);
@@ -129,7 +131,7 @@ TEST_F(StabilityTest, ACameraCutRestartsEveryHistory) {
     EXPECT_EQ(r.nonFinite, 0u);
     EXPECT_LT(r.reusedAtChange, 1e-3); // measured 0
     EXPECT_LT(r.keptUnseen, 1e-3);
-    // The first 8 frames after the cut against a fresh renderer's: measured 1.06x (each frame's
+    // The first 8 frames after the cut against a fresh renderer's: measured 1.24x (each frame's
     // pattern turn and scale differ between the two).
     double tested = 0.0, fresh = 0.0;
     for (const FrameRecord& f : r.frames)
@@ -143,8 +145,8 @@ TEST_F(StabilityTest, ACameraCutRestartsEveryHistory) {
 // which no frame at the final view can compute (cache_screen_edge restarts the pixels whose AO
 // radius the screen's edge crossed while the camera moved). Issue 20's target, for both cache
 // rules: over the first 8 frames after the camera stopped, the region's error at most 1.5x a
-// fresh start's at the final camera (96x72, --quick: 2.49x and 3.11x before the rule, 1.19x
-// and 0.70x with it).
+// fresh start's at the final camera (96x72, --quick: 2.49x and 3.11x before the rule, 1.14x
+// and 0.66x with it; here 1.22x and 0.62x).
 TEST_F(StabilityTest, AnOccluderThatLeftTheScreenLeavesNoGhost) {
     for (int method : {0, 1}) {
         const CaseResult& r = result("screen-edge", method);
