@@ -21,9 +21,10 @@ struct PassSetup;
 
 // One image a compute pass binds.
 struct ShaderImage {
-    std::string name;                   // the shader's variable
-    graph::ImageRef image;              // the image behind it this frame
-    graph::Use use; // Sampled, StorageRead (imageLoad only), StorageWrite or StorageReadWrite
+    std::string name;      // the shader's variable
+    graph::ImageRef image; // the image behind it this frame
+    // Sampled, StorageRead (imageLoad only), StorageWrite or StorageReadWrite.
+    graph::Use use;
     VkSampler sampler = VK_NULL_HANDLE; // for a sampled use: the setup's nearest unless given
 };
 

@@ -62,7 +62,7 @@ namespace ssgi {
       "one-bounce indirect light from the RSM on or off")                                          \
     X(indirect_method, int, 1, 0, 2, "Indirect light",                                             \
       "0 the thesis's gather: every VPL per half-resolution pixel, upsampled; 1 interleaved: "     \
-      "each pixel of a k x k block gathers 1/k^2 of the RSM's texels, then a geometry-aware "     \
+      "each pixel of a k x k block gathers 1/k^2 of the RSM's texels, then a geometry-aware "      \
       "filter; 2 importance: 1 from clustered VPLs, some drawn by flux, visibility tested on a "   \
       "few drawn by their light")                                                                  \
     X(indirect_vpls, int, 512, 1, 1024, "Indirect light",                                          \
@@ -70,7 +70,7 @@ namespace ssgi {
     X(indirect_flux_vpls, int, 64, 1, 512, "Indirect light",                                       \
       "method 2: VPLs drawn by flux that each block gathers (split among it like the pattern's)")  \
     X(indirect_flux_pool, int, 2048, 1, 16384, "Indirect light",                                   \
-      "method 2: VPLs drawn each frame in proportion to the RSM's flux; each 8 x 8 pixels take "  \
+      "method 2: VPLs drawn each frame in proportion to the RSM's flux; each 8 x 8 pixels take "   \
       "a run of indirect_flux_vpls of them")                                                       \
     X(indirect_vpl_cluster, int, 4, 1, 16, "Indirect light",                                       \
       "method 2: RSM texels per VPL, per side (the RSM clustered into a coarser map of VPLs)")     \
