@@ -55,11 +55,10 @@ TEST_P(SceneModels, LoadBareWithTheReadmeTriangleCount) {
 
 INSTANTIATE_TEST_SUITE_P(
     Readme, SceneModels,
-    ::testing::Values(SceneModel{"cornell-box.glb", 36},
-                      SceneModel{"cornell-box-sphere.glb", 2188}, SceneModel{"bunny.glb", 69451},
-                      SceneModel{"mori-knob.glb", 11970}, SceneModel{"sponza.glb", 66450},
-                      SceneModel{"sibenik.glb", 75283}, SceneModel{"conference.glb", 331179},
-                      SceneModel{"scrub-pine.glb", 527}),
+    ::testing::Values(SceneModel{"cornell-box.glb", 36}, SceneModel{"cornell-box-sphere.glb", 2188},
+                      SceneModel{"bunny.glb", 69451}, SceneModel{"mori-knob.glb", 11970},
+                      SceneModel{"sponza.glb", 66450}, SceneModel{"sibenik.glb", 75283},
+                      SceneModel{"conference.glb", 331179}, SceneModel{"scrub-pine.glb", 527}),
     [](const ::testing::TestParamInfo<SceneModel>& info) {
         std::string name = info.param.file;
         name = name.substr(0, name.find('.'));

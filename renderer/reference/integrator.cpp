@@ -19,7 +19,8 @@ constexpr int kRouletteFrom = 3;
 } // namespace
 
 const std::vector<std::string>& modeNames() {
-    static const std::vector<std::string> names = {"direct", "ao", "indirect", "full", "multi", "sky"};
+    static const std::vector<std::string> names = {"direct", "ao",    "indirect",
+                                                   "full",   "multi", "sky"};
     return names;
 }
 

@@ -16,7 +16,7 @@ enum class Mode {
     Indirect, // radiance of spot light reflected exactly once before the visible surface
     Full,     // direct + that one bounce + sky light on the visible surface + the sky itself
     Multi,    // every bounce of spot and sky light (Russian roulette), for information
-    Sky,      // the sky's light alone on the visible surface, with visibility (no bounce), + the sky
+    Sky, // the sky's light alone on the visible surface, with visibility (no bounce), + the sky
 };
 
 const std::vector<std::string>& modeNames();

@@ -105,7 +105,7 @@ SSGI_CHECK_SIZE(ShadowConstants, 64);
 
 struct AoConstants {
     float rotation, scale, radius, radialOffset; // radius: the AO radius (scene units)
-    float falloffA, falloffB; // D(d) = 1 + a d + b d^2 (d in AO radii)
+    float falloffA, falloffB;                    // D(d) = 1 + a d + b d^2 (d in AO radii)
     float unused[2];
     CacheConstants cache;
 };
