@@ -409,8 +409,9 @@ TEST_F(BadInput, BrightScenesGiveFiniteImages) {
     const std::vector<float> bright = readImage((dir_ / "bright-sky.exr").string(), w, h);
     ASSERT_EQ(unit.size(), bright.size());
     for (size_t i = 0; i < unit.size(); ++i)
-        if (i % 4 != 3) // alpha is 1
+        if (i % 4 != 3) { // alpha is 1
             ASSERT_NEAR(bright[i], unit[i] * 1024.0f, 2e-3f * unit[i] * 1024.0f) << i;
+        }
     // The final guard: a NaN or Inf is a renderer's failure (exit status 1), and nothing lands.
     const std::vector<float> bad = {0.5f, NAN, 0.5f, 1.0f};
     for (const char* name : {"nan.exr", "nan.png"}) {

@@ -169,7 +169,9 @@ TEST_F(CacheTest, AMovedLightResetsTheShadowButNotTheAo) {
     EXPECT_LT(computedFraction(renderer, "ao"), 0.5);
     const std::vector<float> meta = renderer.readImage("shadow.meta");
     for (size_t i = 3; i < meta.size(); i += 4)
-        if (meta[i] != 0.0f) ASSERT_EQ(meta[i], 1.0f) << "every shadow pixel starts over";
+        if (meta[i] != 0.0f) {
+            ASSERT_EQ(meta[i], 1.0f) << "every shadow pixel starts over";
+        }
 }
 
 } // namespace

@@ -149,10 +149,11 @@ TEST_F(Cli, ProfileTraceHoldsEveryPassInOrderWithoutOverlap) {
                 ++next;
             ASSERT_LT(next, declared.size()) << name << " out of order or undeclared";
             ++next;
-            if (i > 0)
+            if (i > 0) {
                 EXPECT_LE(events[i - 1]["ts"].get<double>() + events[i - 1]["dur"].get<double>(),
                           events[i]["ts"].get<double>() + 1e-3)
                     << events[i - 1]["name"] << " overlaps " << name;
+            }
         }
         // The passes that always run are all there.
         for (const char* pass : {"gbuffer", "shadow", "direct", "ao", "composite"})

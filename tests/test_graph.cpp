@@ -176,7 +176,9 @@ TEST_F(HistoryTest, PairSwapsKeepsContentsAndReportsNoHistoryFirst) {
         EXPECT_TRUE(graph.hasHistory(history));
         // After the swap, previous() is what this frame wrote.
         EXPECT_FLOAT_EQ(graph.download(FrameGraph::previous(history))[0], float(frame));
-        if (frame >= 2) EXPECT_FLOAT_EQ(graph.download(copy)[0], float(frame - 1));
+        if (frame >= 2) {
+            EXPECT_FLOAT_EQ(graph.download(copy)[0], float(frame - 1));
+        }
     }
     graph.resetHistory();
     EXPECT_FALSE(graph.hasHistory(history));

@@ -38,7 +38,9 @@ TEST(ObjectPaths, MoveTheNamedObjectLinearlyAndHoldBeyondTheEnds) {
     EXPECT_LE(scene.bounds.min.z, after.min.z);
     // Nothing else moved.
     for (size_t i = 0; i < scene.instances.size(); ++i)
-        if (i != block) EXPECT_EQ(posed.instances[i].transform, scene.instances[i].transform);
+        if (i != block) {
+            EXPECT_EQ(posed.instances[i].transform, scene.instances[i].transform);
+        }
 }
 
 TEST(ObjectPaths, BadPathsAreRefusedWithTheirKey) {

@@ -79,8 +79,12 @@ TEST_F(ResizeTest, TheResizedImageKeepsUpWithAFreshStart) {
             carried->renderFrame(scene.camera);
             fresh.renderFrame(scene.camera);
             const double a = relMse(hdr(*carried), truth), b = relMse(hdr(fresh), truth);
-            if (frame == 0 && method == 1) EXPECT_LE(a, b) << "first frame";
-            if (frame == 7) EXPECT_LE(a, 2.0 * b) << "eighth frame";
+            if (frame == 0 && method == 1) {
+                EXPECT_LE(a, b) << "first frame";
+            }
+            if (frame == 7) {
+                EXPECT_LE(a, 2.0 * b) << "eighth frame";
+            }
         }
     }
 }

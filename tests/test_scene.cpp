@@ -224,7 +224,9 @@ TEST_F(SceneFiles, TriangleStripsAndFansAreTriangles) {
                             c = mesh.vertices[mesh.indices[t + 2]].position;
             const glm::vec3 doubled = glm::cross(b - a, c - a);
             area += 0.5f * glm::length(doubled);
-            if (glm::length(doubled) > 0.0f) EXPECT_GT(doubled.z, 0.0f) << "triangle " << t / 3;
+            if (glm::length(doubled) > 0.0f) {
+                EXPECT_GT(doubled.z, 0.0f) << "triangle " << t / 3;
+            }
         }
         EXPECT_NEAR(area, 1.0f, 1e-6f);
     }
