@@ -11,7 +11,8 @@ import statistics
 FLOOR_PASSES = ("gbuffer", "direct", "composite")
 # The passes in the order a frame runs them (tables and charts list them so).
 FRAME_ORDER = ("gbuffer", "rsm", "shadow", "shadow.temporal", "shadow.keep", "direct", "ao",
-               "ssdo", "ao.temporal", "ao.keep", "ssdo.temporal", "ssdo.keep", "indirect",
+               "ssdo", "ao.temporal", "ao.keep", "ssdo.temporal", "ssdo.keep", "indirect.flux",
+               "indirect.vpls", "indirect",
                "upsample", "indirect.filter_x", "indirect.filter_y", "indirect.temporal", "indirect.keep", "composite")
 
 
@@ -181,11 +182,17 @@ def value_taps(axis, settings):
         return (1 if taps == 1 else 2 * taps), 0  # blocker search + filter
     if axis == "indirect" and settings.get("indirect"):
         vpls = settings["indirect_vpls"]
-        if settings.get("indirect_method", 0) == 1:  # interleaved: a k x k block shares them
+        method = settings.get("indirect_method", 0)
+        tested = None
+        if method in (1, 2):  # interleaved: a k x k block shares them
             k = settings.get("indirect_interleave", 4)
             vpls = max(1, vpls // (k * k))
+        if method == 2:  # importance: the flux's VPLs beside them, a few of all tested
+            vpls += max(1, settings.get("indirect_flux_vpls", 64) // (k * k))
+            tested = min(vpls, settings.get("indirect_visibility_tests", 6))
         # position, normal and flux of each VPL in the RSM; the visibility march in the G-buffer
-        return VISIBILITY_STEPS * vpls * settings["indirect_visibility"], 3 * vpls
+        marched = vpls if tested is None else tested
+        return VISIBILITY_STEPS * marched * settings["indirect_visibility"], 3 * vpls
     return None
 
 

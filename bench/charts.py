@@ -25,7 +25,7 @@ PASS_COLOURS = {
     "gbuffer": "#4e79a7", "rsm": "#a0cbe8", "shadow": "#59a14f", "shadow.temporal": "#8cd17d",
     "shadow.keep": "#c7e9c0", "direct": "#b6992d", "ao": "#e15759", "ssdo": "#d37295",
     "ao.temporal": "#ff9d9a", "ao.keep": "#fcd0cf", "ssdo.temporal": "#fabfd2",
-    "indirect": "#f28e2b", "upsample": "#ffbe7d", "indirect.filter_x": "#ffbe7d",
+    "indirect.flux": "#d4a373", "indirect.vpls": "#e9c46a", "indirect": "#f28e2b", "upsample": "#ffbe7d", "indirect.filter_x": "#ffbe7d",
     "indirect.filter_y": "#ffd8a8", "indirect.temporal": "#f1ce63",
     "indirect.keep": "#f7e3a8", "composite": "#79706e",
 }

@@ -24,14 +24,25 @@ std::vector<Axis> makeAxes() {
     ao.values.push_back({"no AO", {{"ao", 0}, {"ssdo", 0}}});
     ao.off = ao.values.size() - 1;
 
-    Axis indirect{
-        "indirect", {"indirect", "upsample", "indirect.filter_x", "indirect.filter_y"}, {}};
+    // The gather first: the ceiling table times the first of these a configuration runs.
+    Axis indirect{"indirect",
+                  {"indirect", "upsample", "indirect.filter_x", "indirect.filter_y",
+                   "indirect.flux", "indirect.vpls"},
+                  {}};
     // Interleaved subsets of 4 x 4 with the geometry-aware filter (indirect_method 1, the
     // default: the axis's first value): the same VPL sets at 1/16 of the VPLs per pixel.
     for (int vpls : {512, 256, 128})
         indirect.values.push_back({std::to_string(vpls) + " VPLs + visibility, interleaved",
                                    {{"indirect", 1},
                                     {"indirect_method", 1},
+                                    {"indirect_vpls", vpls},
+                                    {"indirect_visibility", 1}}});
+    // Importance (indirect_method 2): the same subsets over the RSM clustered into a VPL map,
+    // beside VPLs drawn by flux, the visibility test on the candidates with the most light.
+    for (int vpls : {512, 256, 128})
+        indirect.values.push_back({std::to_string(vpls) + " VPLs + visibility, importance",
+                                   {{"indirect", 1},
+                                    {"indirect_method", 2},
                                     {"indirect_vpls", vpls},
                                     {"indirect_visibility", 1}}});
     // The thesis's gather (indirect_method 0). 1024 VPLs only without the visibility test: with
