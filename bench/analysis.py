@@ -183,15 +183,14 @@ def value_taps(axis, settings):
     if axis == "indirect" and settings.get("indirect"):
         vpls = settings["indirect_vpls"]
         method = settings.get("indirect_method", 0)
-        tested = None
         if method in (1, 2):  # interleaved: a k x k block shares them
             k = settings.get("indirect_interleave", 4)
             vpls = max(1, vpls // (k * k))
+        marched = vpls  # VPLs whose visibility is tested
         if method == 2:  # importance: the flux's VPLs beside them, a few of all tested
             vpls += max(1, settings.get("indirect_flux_vpls", 64) // (k * k))
-            tested = min(vpls, settings.get("indirect_visibility_tests", 6))
+            marched = min(vpls, settings.get("indirect_visibility_tests", 6))
         # position, normal and flux of each VPL in the RSM; the visibility march in the G-buffer
-        marched = vpls if tested is None else tested
         return VISIBILITY_STEPS * marched * settings["indirect_visibility"], 3 * vpls
     return None
 

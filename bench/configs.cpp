@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <utility>
 
 namespace ssgi::bench {
 
@@ -30,21 +31,17 @@ std::vector<Axis> makeAxes() {
                    "indirect.flux", "indirect.vpls"},
                   {}};
     // Interleaved subsets of 4 x 4 with the geometry-aware filter (indirect_method 1, the
-    // default: the axis's first value): the same VPL sets at 1/16 of the VPLs per pixel.
-    for (int vpls : {512, 256, 128})
-        indirect.values.push_back({std::to_string(vpls) + " VPLs + visibility, interleaved",
-                                   {{"indirect", 1},
-                                    {"indirect_method", 1},
-                                    {"indirect_vpls", vpls},
-                                    {"indirect_visibility", 1}}});
-    // Importance (indirect_method 2): the same subsets over the RSM clustered into a VPL map,
+    // default: the axis's first value): the same VPL sets at 1/16 of the VPLs per pixel. Then
+    // importance (indirect_method 2): the same subsets over the RSM clustered into a VPL map,
     // beside VPLs drawn by flux, the visibility test on the candidates with the most light.
-    for (int vpls : {512, 256, 128})
-        indirect.values.push_back({std::to_string(vpls) + " VPLs + visibility, importance",
-                                   {{"indirect", 1},
-                                    {"indirect_method", 2},
-                                    {"indirect_vpls", vpls},
-                                    {"indirect_visibility", 1}}});
+    const std::pair<int, const char*> subsetMethods[] = {{1, "interleaved"}, {2, "importance"}};
+    for (const auto& [method, name] : subsetMethods)
+        for (int vpls : {512, 256, 128})
+            indirect.values.push_back({std::to_string(vpls) + " VPLs + visibility, " + name,
+                                       {{"indirect", 1},
+                                        {"indirect_method", method},
+                                        {"indirect_vpls", vpls},
+                                        {"indirect_visibility", 1}}});
     // The thesis's gather (indirect_method 0). 1024 VPLs only without the visibility test: with
     // it, one frame costs as much as all the other rows together on lavapipe, and the thesis
     // stops at 512.

@@ -93,7 +93,7 @@ static void checkImageMemory(const vk::Context& ctx, uint32_t width, uint32_t he
 }
 
 Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& options)
-    : ctx_(ctx), scene_(scene), light_(scene.light) {
+    : ctx_(ctx), scene_(scene), light_(scene.light), patternStart_(options.patternStart) {
     const uint32_t limit = ctx.properties.limits.maxImageDimension2D;
     // The screen images hold the output and the guard band on each side (PassSetup::output).
     const uint32_t band = uint32_t(scene.settings.guard_band);
@@ -132,7 +132,6 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
 
         setup_->view = view;
         addFramePasses(*setup_);
-        patternStart_ = options.patternStart;
         for (const std::string& name : options.keep) {
             if (name == "*") graph_->keepAll();
             if (const graph::ImageRef ref = imageNamed(name); ref.valid()) graph_->keep(ref);
