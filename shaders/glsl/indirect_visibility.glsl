@@ -23,8 +23,10 @@ bool vplVisible(vec3 p, vec3 q) {
         // than this step can have crossed: the step's length, over the cosine at which the
         // camera sees that surface (a slanted surface's depth changes across the step's
         // pixels; at most doubled, which keeps 97.5% of the wall's leak out and leaves the
-        // Cornell box's VPLs seen past the blocks alone). Farther behind, the segment passes behind the object in open space (a
-        // thickness guess: without it every VPL seen past a silhouette is lost).
+        // Cornell box's VPLs seen past the blocks alone). Farther behind, the segment passes
+        // behind the object in open space (a thickness guess: without it every VPL seen past a
+        // silhouette is lost). The normal is fetched only where the step lies within twice its
+        // length behind, the most the cosine can allow.
         float behind = projected.z - viewDepth(stored.xyz);
         if (behind <= 0.01 * projected.z || behind >= 2.0 * stepLength) continue;
         vec3 surfaceNormal = texelFetch(gbufferNormal, ivec2(projected.xy), 0).xyz;
