@@ -2,6 +2,8 @@
 #include "cache/cache.h"
 #include "passes/pass_setup.h"
 
+#include <glm/gtc/packing.hpp>
+
 #include <algorithm>
 #include <cstring>
 
@@ -31,11 +33,11 @@ void carryCaches(PassSetup& from, PassSetup& to) {
             // frames (docs/temporal-cache.md, "Resize"). The shadow, which allows no blur, starts
             // over; the others blend the new frames into the resampled image.
             std::vector<uint8_t> count = last(old.count);
-            for (size_t i = 0; i + 4 <= count.size(); i += 4) { // R32F
-                float n = 0.0f;
-                std::memcpy(&n, &count[i], 4);
-                n = std::min(n, 1.0f);
-                std::memcpy(&count[i], &n, 4);
+            for (size_t i = 0; i + 2 <= count.size(); i += 2) { // R16F
+                uint16_t n = 0;
+                std::memcpy(&n, &count[i], 2);
+                n = glm::packHalf1x16(std::min(glm::unpackHalf1x16(n), 1.0f));
+                std::memcpy(&count[i], &n, 2);
             }
             to.graph.carryHistory(cache.count, from.size, count);
             carried = true;

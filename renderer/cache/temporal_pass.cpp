@@ -16,7 +16,9 @@ EffectCache* createCache(PassSetup& s, const std::string& name, const EffectCach
     c.name = name;
     c.value =
         s.graph.createHistory(name + ".history", VK_FORMAT_R16G16B16A16_SFLOAT, s.size, usage);
-    c.count = s.graph.createHistory(name + ".count", VK_FORMAT_R32_SFLOAT, s.size, usage);
+    // Counts are whole numbers up to cache_rotations, or a blend's effective number of samples:
+    // a half float holds them to 1/1000 of their value.
+    c.count = s.graph.createHistory(name + ".count", VK_FORMAT_R16_SFLOAT, s.size, usage);
     if (s.model.settings.cache_refresh)
         c.refresh = std::make_unique<TileRefresh>(
             s.size.width, s.size.height, uint32_t(settings.tileSize), uint32_t(s.caches.size()));

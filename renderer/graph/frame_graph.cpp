@@ -304,6 +304,16 @@ std::vector<float> FrameGraph::download(ImageRef ref, std::optional<VkRect2D> ar
                 out[c] = glm::unpackHalf1x16(h[c]);
             break;
         }
+        case VK_FORMAT_R16G16_SFLOAT:
+        case VK_FORMAT_R16_SFLOAT: {
+            const int channels = image.format == VK_FORMAT_R16_SFLOAT ? 1 : 2;
+            uint16_t h[2];
+            std::memcpy(h, bytes + 2 * channels * i, 2 * channels);
+            for (int c = 0; c < channels; ++c)
+                out[c] = glm::unpackHalf1x16(h[c]);
+            out[3] = 1.0f;
+            break;
+        }
         case VK_FORMAT_R8G8B8A8_UNORM:
         case VK_FORMAT_R8G8B8A8_SRGB:
             for (int c = 0; c < 4; ++c)

@@ -87,6 +87,11 @@ static VkPhysicalDevice pickDevice(VkInstance instance, const std::string& wante
             !hasDeviceExtension(device, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME))
             continue;
         if (surface && !hasDeviceExtension(device, VK_KHR_SWAPCHAIN_EXTENSION_NAME)) continue;
+        VkPhysicalDeviceFeatures features;
+        vkGetPhysicalDeviceFeatures(device, &features);
+        if (!features.shaderStorageImageExtendedFormats ||
+            !features.shaderStorageImageWriteWithoutFormat)
+            continue;
         uint32_t familyCount = 0;
         vkGetPhysicalDeviceQueueFamilyProperties(device, &familyCount, nullptr);
         std::vector<VkQueueFamilyProperties> families(familyCount);
@@ -111,7 +116,8 @@ static VkPhysicalDevice pickDevice(VkInstance instance, const std::string& wante
         std::string msg = "no usable Vulkan device";
         if (!wanted.empty()) msg += " named '" + wanted + "'";
         msg += " (need Vulkan 1.3, a graphics+compute queue with timestamps, "
-               "VK_KHR_push_descriptor";
+               "VK_KHR_push_descriptor, storage images of half floats (r16f, rg16f) and storage "
+               "writes without a format";
         msg += surface ? ", VK_KHR_swapchain and presentation to the window)" : ")";
         msg += seen.empty() ? "; no Vulkan device found at all (is mesa-vulkan-drivers installed?)"
                             : "; devices seen: " + seen;
@@ -202,7 +208,10 @@ Context::Context(const ContextOptions& options) {
     features13.maintenance4 = VK_TRUE; // required in 1.3; SPIR-V for 1.3 uses LocalSizeId
     VkPhysicalDeviceFeatures2 features2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
     features2.pNext = &features13;
-    features2.features.shaderStorageImageWriteWithoutFormat = VK_FALSE;
+    // The caches' counts are r16f and the scalar effects' histories rg16f (extended formats); the
+    // temporal pass writes either kind of history through one binding (no format).
+    features2.features.shaderStorageImageExtendedFormats = VK_TRUE;
+    features2.features.shaderStorageImageWriteWithoutFormat = VK_TRUE;
 
     const char* deviceExtensions[] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME,
                                       VK_KHR_SWAPCHAIN_EXTENSION_NAME};

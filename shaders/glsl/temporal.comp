@@ -33,7 +33,7 @@ layout(set = 0, binding = 4) uniform sampler2D historyValue;
 layout(set = 0, binding = 5) uniform sampler2D historyPosition;
 layout(set = 0, binding = 6) uniform sampler2D historyCount;
 layout(set = 0, binding = 7, rgba16f) uniform writeonly image2D newValue;
-layout(set = 0, binding = 8, r32f) uniform writeonly image2D newCount;
+layout(set = 0, binding = 8, r16f) uniform writeonly image2D newCount;
 layout(push_constant) uniform TemporalBlock { TemporalConstants constants; };
 
 #include "screen_space.glsl"
