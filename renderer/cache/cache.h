@@ -31,6 +31,9 @@ struct EffectCache {
     std::unique_ptr<TileRefresh> refresh;
     int refreshTile = -1;        // this frame's
     bool lightDependent = false; // reset when the light changes
+    // A scalar effect (the shadow, the AO): its history holds value and blur in two half
+    // floats (RG16F) rather than an RGB value and its blur (RGBA16F).
+    bool scalar = false;
     // What an object that moved restarts (shared.h MOTION_*): the whole history; per pixel,
     // those within `motionReach` of it, or those whose path to the light passes near it.
     int motionTest = MOTION_RESTART_ALL;
@@ -46,9 +49,15 @@ struct EffectCacheSettings {
     int tileSize;      // of its tiled refresh
     double blurBudget; // squared pixels
 };
+// What an effect is: whether a moved light restarts its cache, and whether its value is one
+// number (EffectCache::scalar) or a colour.
+struct EffectKind {
+    bool lightDependent;
+    bool scalar;
+};
 // The temporal cache of an effect, when caching is on (nullptr otherwise).
 EffectCache* createCache(PassSetup& setup, const std::string& name,
-                         const EffectCacheSettings& settings, bool lightDependent);
+                         const EffectCacheSettings& settings, EffectKind kind);
 // What an effect pass binds as its "historyPosition" and "historyCount" inputs (temporal.glsl):
 // last frame's world positions and its cache's rotation counts, or `fallback` (any image the
 // pass reads anyway) without a cache.

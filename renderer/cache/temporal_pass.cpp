@@ -9,20 +9,22 @@
 namespace ssgi {
 
 EffectCache* createCache(PassSetup& s, const std::string& name, const EffectCacheSettings& settings,
-                         bool lightDependent) {
+                         EffectKind kind) {
     if (!s.model.settings.cache || !settings.cached) return nullptr;
     const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     EffectCache& c = s.caches.emplace_back();
     c.name = name;
-    c.value =
-        s.graph.createHistory(name + ".history", VK_FORMAT_R16G16B16A16_SFLOAT, s.size, usage);
+    c.scalar = kind.scalar;
+    c.value = s.graph.createHistory(
+        name + ".history", c.scalar ? VK_FORMAT_R16G16_SFLOAT : VK_FORMAT_R16G16B16A16_SFLOAT,
+        s.size, usage);
     // Counts are whole numbers up to cache_rotations, or a blend's effective number of samples:
     // a half float holds them to 1/1000 of their value.
     c.count = s.graph.createHistory(name + ".count", VK_FORMAT_R16_SFLOAT, s.size, usage);
     if (s.model.settings.cache_refresh)
         c.refresh = std::make_unique<TileRefresh>(
             s.size.width, s.size.height, uint32_t(settings.tileSize), uint32_t(s.caches.size()));
-    c.lightDependent = lightDependent;
+    c.lightDependent = kind.lightDependent;
     c.blurBudget = float(settings.blurBudget);
     return &c;
 }
@@ -113,6 +115,7 @@ graph::ImageRef addTemporalPass(PassSetup& s, EffectCache* cache, graph::ImageRe
                    {"newValue", value, Use::StorageWrite},
                    {"newCount", FrameGraph::current(cache->count), Use::StorageWrite}};
     pass.pushSize = sizeof(shader::TemporalConstants);
+    pass.spec = {{cache->scalar ? 1 : 0}};
     addComputePass(s, std::move(pass), [&s, cache](const ComputeRecorder& r) {
         shader::TemporalConstants constants{cacheConstants(s, cache)};
         const VkExtent2D area = cacheDispatch(s, cache, s.size);

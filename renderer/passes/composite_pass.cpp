@@ -34,7 +34,8 @@ CompositeOutputs addCompositePass(PassSetup& s, const GBufferAndRsm& in,
                    {"ldrImage", out.ldr, Use::StorageWrite}};
     pass.pushSize = sizeof(shader::CompositeConstants);
     pass.spec = {{terms.ao.valid() ? 1 : 0, terms.indirect.valid() ? 1 : 0,
-                  terms.ssdo.valid() ? 1 : 0, terms.skyVisibility.valid() ? 1 : 0}};
+                  terms.ssdo.valid() ? 1 : 0, terms.skyVisibility.valid() ? 1 : 0,
+                  s.model.settings.contact_shadows ? 1 : 0}};
     addComputePass(s, std::move(pass), [&s, output](const ComputeRecorder& r) {
         shader::CompositeConstants constants{};
         constants.view = s.view;

@@ -17,7 +17,8 @@ void addFramePasses(PassSetup& s) {
     // that into the history, and the consumers read the blended value.
     LightingTerms terms;
     EffectCache* shadowCache =
-        createCache(s, "shadow", {m.cache_shadow, m.cache_tile_shadow, m.cache_blur_shadow}, true);
+        createCache(s, "shadow", {m.cache_shadow, m.cache_tile_shadow, m.cache_blur_shadow},
+                    {.lightDependent = true, .scalar = true});
     if (shadowCache) shadowCache->motionTest = MOTION_LIGHT_PATH;
     terms.shadow = addTemporalPass(s, shadowCache, addShadowPass(s, scenes, shadowCache), scenes);
     // Depth peeling's second layer serves SSDO's occlusion test and the contact shadows'.
@@ -28,12 +29,13 @@ void addFramePasses(PassSetup& s) {
     if (m.ssdo) {
         terms.direct = addDirectPass(s, scenes, terms.shadow); // SSDO's bounce reads it
         EffectCache* cache =
-            createCache(s, "ssdo", {m.cache_ssdo, m.cache_tile_ssdo, m.cache_blur_ssdo}, true);
+            createCache(s, "ssdo", {m.cache_ssdo, m.cache_tile_ssdo, m.cache_blur_ssdo},
+                        {.lightDependent = true, .scalar = false});
         terms.ssdo = addTemporalPass(
             s, cache, addSsdoPass(s, scenes, terms.direct, terms.secondLayer, cache), scenes);
     } else if (m.ao) {
-        EffectCache* cache =
-            createCache(s, "ao", {m.cache_ao, m.cache_tile_ao, m.cache_blur_ao}, false);
+        EffectCache* cache = createCache(s, "ao", {m.cache_ao, m.cache_tile_ao, m.cache_blur_ao},
+                                         {.lightDependent = false, .scalar = true});
         if (cache) { // the farthest an AO sample reaches, its pattern at its largest
             cache->motionTest = MOTION_NEAR_BOX;
             cache->motionReach = aoRadius(model) * (1.0f + float(m.cache_scale_jitter));
@@ -42,7 +44,8 @@ void addFramePasses(PassSetup& s) {
     }
     if (m.indirect) {
         EffectCache* cache = createCache(
-            s, "indirect", {m.cache_indirect, m.cache_tile_indirect, m.cache_blur_indirect}, true);
+            s, "indirect", {m.cache_indirect, m.cache_tile_indirect, m.cache_blur_indirect},
+            {.lightDependent = true, .scalar = false});
         std::optional<FluxVpls> vpls;
         if (m.indirect_method == 2) vpls = addFluxVplPasses(s, scenes, cache);
         const graph::ImageRef indirect =

@@ -11,6 +11,7 @@ layout(constant_id = 0) const int HAS_AO = 0;
 layout(constant_id = 1) const int HAS_INDIRECT = 0;
 layout(constant_id = 2) const int HAS_SSDO = 0;
 layout(constant_id = 3) const int HAS_SKY_VISIBILITY = 0;
+layout(constant_id = 4) const int HAS_CONTACT = 0; // shadowImage is the contact pass's (r, g)
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
 layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
@@ -94,8 +95,10 @@ void main() {
     if (view == VIEW_INDIRECT) value = indirect * unit;
     if (view == VIEW_SSDO) value = ssdo * unit;
     if (view == VIEW_SKY_VISIBILITY) value = skyVisibility;
-    // The contact pass keeps the shadow map's term in g: what contact shadows took away.
-    if (view == VIEW_CONTACT) value = vec3(shadow.r, max(shadow.g - shadow.r, 0.0), 0.0);
+    // The contact pass keeps the shadow map's term in g: what contact shadows took away (the
+    // shadow's own history holds its blur in g: without contact shadows, nothing taken away).
+    float mapped = HAS_CONTACT != 0 ? shadow.g : shadow.r;
+    if (view == VIEW_CONTACT) value = vec3(shadow.r, max(mapped - shadow.r, 0.0), 0.0);
     if (view == VIEW_PEEL) {
         vec4 second = texelFetch(secondLayer, pixel, 0);
         value = vec3(second.w == 0.0 ? 0.0 : distance(second.xyz, frame.cameraPosition.xyz));

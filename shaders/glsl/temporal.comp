@@ -17,6 +17,9 @@
 #include "common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
+// 1: a scalar effect's history (the shadow, the AO): rg16f, its value in r and its blur in g;
+// 0: rgba16f, the value in rgb and the blur in alpha (EffectCache::scalar).
+layout(constant_id = 0) const int SCALAR_HISTORY = 0;
 // Once the camera holds still, a converged history that motion resampled with more than
 // RESTART_BLUR (squared pixels) starts its accumulation over; one with more than
 // REACCUMULATE_BLUR keeps being computed and blended until its blur falls below it. After a
@@ -32,12 +35,22 @@ layout(set = 0, binding = 3) uniform sampler2D current; // a = 1 computed this f
 layout(set = 0, binding = 4) uniform sampler2D historyValue;
 layout(set = 0, binding = 5) uniform sampler2D historyPosition;
 layout(set = 0, binding = 6) uniform sampler2D historyCount;
-layout(set = 0, binding = 7, rgba16f) uniform writeonly image2D newValue;
+layout(set = 0, binding = 7) uniform writeonly image2D newValue; // rgba16f or rg16f
 layout(set = 0, binding = 8, r16f) uniform writeonly image2D newCount;
 layout(push_constant) uniform TemporalBlock { TemporalConstants constants; };
 
 #include "screen_space.glsl"
 #include "temporal.glsl"
+
+// A history texel as value (rgb) and blur (a), whichever layout holds it; and the other way.
+vec4 historyTexel(ivec2 q) {
+    vec4 t = texelFetch(historyValue, q, 0);
+    return SCALAR_HISTORY != 0 ? vec4(t.rrr, t.g) : t;
+}
+void storeHistory(ivec2 pixel, vec3 value, float blur) {
+    imageStore(newValue, pixel, SCALAR_HISTORY != 0 ? vec4(value.r, blur, 0.0, 0.0)
+                                                    : vec4(value, blur));
+}
 
 // The history at the reprojected point, filtered bilinearly over the four texels around it that
 // hold the same surface (their world positions pass the reprojection test), so that across a
@@ -64,7 +77,7 @@ vec4 historyAt(Reprojection r, vec3 world, out float spread) {
         if (meta.w == 0.0 || distance(meta.xyz, world) > r.epsilon) continue;
         float w = (offset.x == 1 ? f.x : 1.0 - f.x) * (offset.y == 1 ? f.y : 1.0 - f.y);
         vec2 d = (vec2(offset) - f) * toPixels;
-        vec4 v = texelFetch(historyValue, q, 0);
+        vec4 v = historyTexel(q);
         sum += w * v;
         spread += w * dot(d, d);
         weights += w;
@@ -76,14 +89,14 @@ vec4 historyAt(Reprojection r, vec3 world, out float spread) {
     } else { // no texel around passed: the one that did (the nearest, or one beside it)
         vec2 d = (vec2(r.texel) + 0.5 - r.uv * size) * toPixels;
         spread = dot(d, d);
-        v = texelFetch(historyValue, r.texel, 0);
+        v = historyTexel(r.texel);
     }
     // Offsets below a thirtieth of a pixel are rounding (a still camera): no blur, and the
     // texel itself, unfiltered, so that a still camera carries its history over exactly (the
     // rounding's tiny weights on the neighbours changed a half float's last digit now and then).
     if (spread < 1e-3) {
         spread = 0.0;
-        v = texelFetch(historyValue, r.texel, 0);
+        v = historyTexel(r.texel);
     }
     return vec4(v.rgb, v.a + spread);
 }
@@ -93,7 +106,7 @@ void main() {
     if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
     vec4 position = texelFetch(gbufferPosition, pixel, 0);
     if (position.w == 0.0) {
-        imageStore(newValue, pixel, vec4(texelFetch(current, pixel, 0).rgb, 0.0));
+        storeHistory(pixel, texelFetch(current, pixel, 0).rgb, 0.0);
         imageStore(newCount, pixel, vec4(0.0));
         return;
     }
@@ -185,6 +198,6 @@ void main() {
     if (blur + spread > budget && count >= rotations) count = rotations - 1.0;
     if (spread == 0.0 && blur > REACCUMULATE_BLUR && count >= rotations) count = rotations - 1.0;
     if (blur < 1e-3) blur = 0.0; // below a thirtieth of a pixel: gone
-    imageStore(newValue, pixel, vec4(value, blur));
+    storeHistory(pixel, value, blur);
     imageStore(newCount, pixel, vec4(max(min(count, rotations), 1.0)));
 }
