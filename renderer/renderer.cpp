@@ -45,6 +45,29 @@ static glm::mat4 moved(const glm::mat4& m, const glm::dvec3& origin) {
     return glm::mat4(d);
 }
 
+// FrameUniforms::pixelToWorld: for the pixel centre p (in pixels of a `size` image) and the view
+// depth d there, M (p.x d, p.y d, d, 1) is the world position. The view-space ray through p,
+// scaled to reach one unit along the view axis, is affine in p for a perspective projection;
+// its three coefficients are found by unprojecting three pixels, in double precision, and
+// turned into the world by the view's rotation; the fourth column is the camera's position.
+static glm::mat4 pixelToWorld(const glm::mat4& view, const glm::mat4& projection, VkExtent2D size) {
+    const glm::dmat4 inverseProjection = glm::inverse(glm::dmat4(projection));
+    auto rayAt = [&](double x, double y) { // in view space, at view depth 1
+        const glm::dvec4 ndc(2.0 * x / size.width - 1.0, 2.0 * y / size.height - 1.0, 0.5, 1.0);
+        const glm::dvec4 q = inverseProjection * ndc;
+        return glm::dvec3(q) / -q.z;
+    };
+    const glm::dvec3 origin = rayAt(0.0, 0.0);
+    const glm::dmat4 toWorld = glm::inverse(glm::dmat4(view));
+    const glm::dmat3 rotation(toWorld);
+    glm::dmat4 m(1.0);
+    m[0] = glm::dvec4(rotation * (rayAt(1.0, 0.0) - origin), 0.0);
+    m[1] = glm::dvec4(rotation * (rayAt(0.0, 1.0) - origin), 0.0);
+    m[2] = glm::dvec4(rotation * origin, 0.0);
+    m[3] = toWorld[3];
+    return glm::mat4(m);
+}
+
 const std::vector<std::string>& viewNames() {
     // Order matches the VIEW_* values in shared.h.
     static const std::vector<std::string> names = {
@@ -188,6 +211,8 @@ void Renderer::updateUniforms(const Camera& worldCamera) {
     u.viewProjection = u.projection * u.view;
     u.inverseViewProjection = glm::inverse(u.viewProjection);
     u.previousViewProjection = frameIndex_ == 0 ? u.viewProjection : previousViewProjection_;
+    u.pixelToWorld = pixelToWorld(u.view, u.projection, size);
+    u.previousPixelToWorld = frameIndex_ == 0 ? u.pixelToWorld : previousPixelToWorld_;
     stillFrames_ = frameIndex_ > 0 && u.viewProjection == previousViewProjection_ && moved_.empty()
                        ? stillFrames_ + 1
                        : 0;
@@ -227,6 +252,7 @@ void Renderer::updateUniforms(const Camera& worldCamera) {
     u.motion = glm::vec4(float(moved_.size()), 0.0f, 0.0f, 0.0f);
     std::memcpy(setup_->frameUniforms.mapped, &u, sizeof(u));
     previousViewProjection_ = u.viewProjection;
+    previousPixelToWorld_ = u.pixelToWorld;
 }
 
 // A cut: asked for (cut(), a path key), or a turn or jump between two frames beyond the
@@ -284,6 +310,7 @@ void Renderer::continueFrom(Renderer& previous) {
     moved_ = previous.moved_;
     uploadTransforms();
     previousViewProjection_ = previous.previousViewProjection_;
+    previousPixelToWorld_ = previous.previousPixelToWorld_;
     previousCamera_ = previous.previousCamera_;
     cutRequested_ = previous.cutRequested_;
     cuts_ = previous.cuts_;

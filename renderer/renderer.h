@@ -70,8 +70,9 @@ public:
     // cached effect's history is "<effect>.history" (the blended value) and "<effect>.meta"
     // (world position, the effect's rotation count in alpha: its "<effect>.count" beside the
     // G-buffer's positions, which every cached effect shares; "<effect>.count" alone is the
-    // count in red), as the last frame wrote them. A screen image is read at size(): its guard
-    // band (the guard_band setting) left out.
+    // count in red), as the last frame wrote them. "gbuffer.position" is reconstructed from
+    // "gbuffer.view_depth" as the passes do (gbuffer_position.glsl; w = 1 on geometry). A
+    // screen image is read at size(): its guard band (the guard_band setting) left out.
     std::vector<float> readImage(const std::string& name);
     // Whether readImage(name) finds an image in this frame.
     bool hasImage(const std::string& name) const;
@@ -112,6 +113,7 @@ private:
     std::vector<glm::mat4> transforms_; // where the instances stand
     std::vector<Aabb> moved_;           // boxes of the objects moved since the last frame
     glm::mat4 previousViewProjection_{1.0f};
+    glm::mat4 previousPixelToWorld_{1.0f}; // FrameUniforms::pixelToWorld of the last frame
     Camera previousCamera_;
     bool cutRequested_ = false;
     uint32_t cuts_ = 0;

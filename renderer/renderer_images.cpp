@@ -2,13 +2,15 @@
 // the shared positions, the viewer's copy source, the cached effects and their refresh tiles.
 #include "renderer.h"
 
+#include <cstring>
+
 namespace ssgi {
 
 graph::ImageRef Renderer::imageNamed(const std::string& name) const {
     using graph::FrameGraph;
     // After the frame every pair has swapped: what it wrote is now the "previous" side.
-    if (setup_->positionHistory && name == "gbuffer.position")
-        return FrameGraph::previous(*setup_->positionHistory);
+    if (setup_->viewDepthHistory && name == "gbuffer.view_depth")
+        return FrameGraph::previous(*setup_->viewDepthHistory);
     for (const EffectCache& cache : setup_->caches) {
         if (name == cache.name + ".history") return FrameGraph::previous(cache.value);
         if (name == cache.name + ".count") return FrameGraph::previous(cache.count);
@@ -23,6 +25,23 @@ const EffectCache* Renderer::metaOf(const std::string& name) const {
 }
 
 std::vector<float> Renderer::readImage(const std::string& name) {
+    if (name == "gbuffer.position") { // as gbuffer_position.glsl reconstructs it
+        std::vector<float> position = readImage("gbuffer.view_depth");
+        const VkRect2D output = setup_->output();
+        const glm::mat4& toWorld = previousPixelToWorld_; // the last frame's
+        for (uint32_t y = 0; y < output.extent.height; ++y)
+            for (uint32_t x = 0; x < output.extent.width; ++x) {
+                float* p = &position[4 * (size_t(y) * output.extent.width + x)];
+                const float depth = p[0];
+                const glm::vec2 centre(float(x + output.offset.x) + 0.5f,
+                                       float(y + output.offset.y) + 0.5f);
+                const glm::vec4 world = toWorld * glm::vec4(glm::vec3(centre, 1.0f) * depth, 1.0f);
+                const glm::vec4 value =
+                    depth == 0.0f ? glm::vec4(0.0f) : glm::vec4(glm::vec3(world), 1.0f);
+                std::memcpy(p, &value, sizeof(value));
+            }
+        return position;
+    }
     if (const EffectCache* cache = metaOf(name)) { // the shared positions, the count in alpha
         std::vector<float> meta = readImage("gbuffer.position");
         const std::vector<float> count = readImage(cache->name + ".count");
@@ -49,6 +68,7 @@ std::vector<float> Renderer::readImage(const std::string& name) {
 }
 
 bool Renderer::hasImage(const std::string& name) const {
+    if (name == "gbuffer.position") return true;
     return metaOf(name) || imageNamed(name).valid();
 }
 

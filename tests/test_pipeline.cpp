@@ -27,8 +27,8 @@ constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
 
 // indirect_reconstruct.comp: the frame's uniforms, six sampler2Ds, two image2Ds.
 const std::vector<vk::LayoutBinding> kReconstruct = {
-    {kUniform, "FrameBlock"},         {kSampled, "gbufferPosition"},
-    {kSampled, "gbufferNormal"},      {kSampled, "historyPosition"},
+    {kUniform, "FrameBlock"},         {kSampled, "gbufferViewDepth"},
+    {kSampled, "gbufferNormal"},      {kSampled, "historyViewDepth"},
     {kSampled, "historyCount"},       {kSampled, "estimates"},
     {kSampled, "directionals"},       {kStorage, "filtered"},
     {kStorage, "filteredDirectional"}};
@@ -101,6 +101,6 @@ TEST_F(PipelineTest, ABindingTheShaderNamesOtherwiseIsRefusedNamingBoth) {
         message = e.what();
     }
     EXPECT_NE(message.find("indirect_reconstruct.comp binding 3"), std::string::npos) << message;
-    EXPECT_NE(message.find("historyPosition"), std::string::npos) << message;
+    EXPECT_NE(message.find("historyViewDepth"), std::string::npos) << message;
     EXPECT_NE(message.find("declares historyCount"), std::string::npos) << message;
 }

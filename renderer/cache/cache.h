@@ -1,10 +1,10 @@
 // The temporal cache (thesis 3.1) as one module: each cached effect's history (its value with
 // the resampling blur it carries, and a rotation count per pixel, as ping-pong pairs in the
-// frame graph; the world positions are last frame's G-buffer's, one pair every effect shares:
-// PassSetup::positionHistory), what an effect pass binds to skip converged pixels, the tiled
-// refresh (tile_refresh.h), the temporal and keep passes (temporal_pass.cpp), and what restarts
-// or carries a history (invalidation.cpp): a moved light or object (restartCache), a resize
-// (carryCaches). Camera cuts restart the whole graph's histories (Renderer::renderFrame).
+// frame graph; the world positions are last frame's G-buffer's, whose view depths are one pair
+// every effect shares: PassSetup::viewDepthHistory), what an effect pass binds to skip converged
+// pixels, the tiled refresh (tile_refresh.h), the temporal and keep passes (temporal_pass.cpp), and
+// what restarts or carries a history (invalidation.cpp): a moved light or object (restartCache), a
+// resize (carryCaches). Camera cuts restart the whole graph's histories (Renderer::renderFrame).
 #pragma once
 
 #include "cache/tile_refresh.h"
@@ -23,8 +23,8 @@ struct GBufferAndRsm;
 
 // The temporal cache of one effect: its history (value + blur, and rotation count) as two
 // ping-pong pairs, its tiled refresh, and this frame's state. The world positions its history
-// was computed at are the G-buffer's of last frame, shared by every effect
-// (PassSetup::positionHistory).
+// was computed at are the G-buffer's of last frame (from its view depths), shared by every effect
+// (PassSetup::viewDepthHistory).
 struct EffectCache {
     std::string name;
     uint32_t value = 0, count = 0; // frame-graph history ids
@@ -58,11 +58,11 @@ struct EffectKind {
 // The temporal cache of an effect, when caching is on (nullptr otherwise).
 EffectCache* createCache(PassSetup& setup, const std::string& name,
                          const EffectCacheSettings& settings, EffectKind kind);
-// What an effect pass binds as its "historyPosition" and "historyCount" inputs (temporal.glsl):
-// last frame's world positions and its cache's rotation counts, or `fallback` (any image the
-// pass reads anyway) without a cache.
+// What an effect pass binds as its "historyViewDepth" and "historyCount" inputs (temporal.glsl):
+// last frame's G-buffer view depths (its world positions) and its cache's rotation counts, or
+// `fallback` (any image the pass reads anyway) without a cache.
 struct CacheInputs {
-    graph::ImageRef position, count;
+    graph::ImageRef viewDepth, count;
 };
 CacheInputs cacheInputs(const PassSetup& setup, const EffectCache* cache, graph::ImageRef fallback);
 shader::CacheConstants cacheConstants(const PassSetup& setup, const EffectCache* cache);

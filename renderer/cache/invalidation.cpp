@@ -15,7 +15,7 @@ void restartCache(graph::FrameGraph& graph, const EffectCache& cache) {
 }
 
 void carryCaches(PassSetup& from, PassSetup& to) {
-    if (!from.positionHistory || !to.positionHistory) return;
+    if (!from.viewDepthHistory || !to.viewDepthHistory) return;
     // After its last frame every pair of `from` has swapped: what it wrote is the previous side.
     using graph::FrameGraph;
     auto last = [&from](uint32_t history) {
@@ -43,7 +43,8 @@ void carryCaches(PassSetup& from, PassSetup& to) {
             carried = true;
         }
     }
-    if (carried) to.graph.carryHistory(*to.positionHistory, from.size, last(*from.positionHistory));
+    if (carried)
+        to.graph.carryHistory(*to.viewDepthHistory, from.size, last(*from.viewDepthHistory));
 }
 
 } // namespace ssgi

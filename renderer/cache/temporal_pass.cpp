@@ -32,7 +32,7 @@ EffectCache* createCache(PassSetup& s, const std::string& name, const EffectCach
 CacheInputs cacheInputs(const PassSetup& s, const EffectCache* cache, graph::ImageRef fallback) {
     using graph::FrameGraph;
     if (!cache) return {fallback, fallback};
-    return {FrameGraph::previous(*s.positionHistory), FrameGraph::previous(cache->count)};
+    return {FrameGraph::previous(*s.viewDepthHistory), FrameGraph::previous(cache->count)};
 }
 
 shader::CacheConstants cacheConstants(const PassSetup& s, const EffectCache* cache) {
@@ -104,13 +104,13 @@ graph::ImageRef addTemporalPass(PassSetup& s, EffectCache* cache, graph::ImageRe
     using graph::FrameGraph;
     using graph::Use;
     const graph::ImageRef value = FrameGraph::current(cache->value);
-    const CacheInputs history = cacheInputs(s, cache, in.gbuffer.position);
+    const CacheInputs history = cacheInputs(s, cache, in.gbuffer.viewDepth);
     ComputePassDesc pass{cache->name + ".temporal", "temporal.comp"};
-    pass.images = {{"gbufferPosition", in.gbuffer.position, Use::Sampled},
+    pass.images = {{"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
                    {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
                    {"current", raw, Use::Sampled},
                    {"historyValue", FrameGraph::previous(cache->value), Use::Sampled},
-                   {"historyPosition", history.position, Use::Sampled},
+                   {"historyViewDepth", history.viewDepth, Use::Sampled},
                    {"historyCount", history.count, Use::Sampled},
                    {"newValue", value, Use::StorageWrite},
                    {"newCount", FrameGraph::current(cache->count), Use::StorageWrite}};

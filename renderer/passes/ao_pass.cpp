@@ -10,14 +10,14 @@ graph::ImageRef addAoPass(PassSetup& s, const GBufferAndRsm& in, EffectCache* ca
         "ao", VK_FORMAT_R16G16B16A16_SFLOAT, s.size,
         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
     const Scene& m = s.model;
-    const CacheInputs history = cacheInputs(s, cache, in.gbuffer.position);
+    const CacheInputs history = cacheInputs(s, cache, in.gbuffer.viewDepth);
 
     addKeepPass(s, cache, {ao});
     using graph::Use;
     ComputePassDesc pass{"ao", "ao.comp"};
-    pass.images = {{"gbufferPosition", in.gbuffer.position, Use::Sampled},
+    pass.images = {{"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
                    {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
-                   {"historyPosition", history.position, Use::Sampled},
+                   {"historyViewDepth", history.viewDepth, Use::Sampled},
                    {"historyCount", history.count, Use::Sampled},
                    {"aoImage", ao, Use::StorageWrite}};
     pass.pushSize = sizeof(shader::AoConstants);

@@ -18,7 +18,7 @@ CompositeOutputs addCompositePass(PassSetup& s, const GBufferAndRsm& in,
     auto orDirect = [&](graph::ImageRef ref) { return ref.valid() ? ref : terms.direct; };
     using graph::Use;
     ComputePassDesc pass{"composite", "composite.comp"};
-    pass.images = {{"gbufferPosition", in.gbuffer.position, Use::Sampled},
+    pass.images = {{"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
                    {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
                    {"gbufferAlbedo", in.gbuffer.third, Use::Sampled},
                    {"directRadiance", terms.direct, Use::Sampled},

@@ -14,7 +14,7 @@ graph::ImageRef addContactPass(PassSetup& s, const GBufferAndRsm& in, graph::Ima
     using graph::Use;
     ComputePassDesc pass{"contact", "contact.comp"};
     // Without the second layer the shader never reads it; the shadow term stands in.
-    pass.images = {{"gbufferPosition", in.gbuffer.position, Use::Sampled},
+    pass.images = {{"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
                    {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
                    {"shadowImage", shadow, Use::Sampled},
                    {"secondLayer", secondLayer.valid() ? secondLayer : shadow, Use::Sampled},

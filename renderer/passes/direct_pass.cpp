@@ -9,7 +9,7 @@ graph::ImageRef addDirectPass(PassSetup& s, const GBufferAndRsm& in, graph::Imag
                             VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
     using graph::Use;
     ComputePassDesc pass{"direct", "direct.comp"};
-    pass.images = {{"gbufferPosition", in.gbuffer.position, Use::Sampled},
+    pass.images = {{"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
                    {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
                    {"gbufferAlbedo", in.gbuffer.third, Use::Sampled},
                    {"shadowImage", shadow, Use::Sampled},

@@ -4,8 +4,8 @@
 // pass (indirect_reconstruct.comp), gives every pixel the whole set's estimate many times over
 // (Keller and Heidrich 2001; Segovia et al. 2006). No upsampling, so no staircase, and no pixel
 // gathers every VPL.
-//   reads:  gbuffer.position, gbuffer.normal, rsm.position, rsm.normal, rsm.flux, last frame's
-//           gbuffer.position and the cache's indirect.count (to skip converged pixels)
+//   reads:  gbuffer.view_depth, gbuffer.normal, rsm.position, rsm.normal, rsm.flux, last frame's
+//           gbuffer.view_depth and the cache's indirect.count (to skip converged pixels)
 //   writes: indirect + indirect.directional (each pixel's subset: irradiance / pi, and the L1
 //           sums of its VPLs' light), indirect.filtered_x + .filtered_x_directional (after the
 //           x axis), indirect again (after the y axis: the result; the y pass binds
@@ -58,7 +58,7 @@ graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& 
     }
     const vk::Specialization filterSpec{{k, radius}};
 
-    const CacheInputs history = cacheInputs(s, cache, in.gbuffer.position);
+    const CacheInputs history = cacheInputs(s, cache, in.gbuffer.viewDepth);
     auto constants = [&s, cache](glm::ivec2 axis) {
         shader::IndirectConstants c{};
         c.rotation = s.patternRotation;
@@ -78,7 +78,7 @@ graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& 
     // Method 1 gathers the RSM's texels; method 2 the VPL map's, and the flux's list.
     ComputePassDesc gather{"indirect",
                            fluxVpls ? "indirect_importance.comp" : "indirect_interleaved.comp"};
-    gather.images = {{"gbufferPosition", in.gbuffer.position, Use::Sampled},
+    gather.images = {{"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
                      {"gbufferNormal", in.gbuffer.normal, Use::Sampled}};
     if (fluxVpls)
         gather.images.insert(gather.images.end(),
@@ -91,7 +91,7 @@ graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& 
                                                    {"rsmNormal", in.rsm.normal, Use::Sampled},
                                                    {"rsmFlux", in.rsm.third, Use::Sampled}});
     gather.images.insert(gather.images.end(),
-                         {{"historyPosition", history.position, Use::Sampled},
+                         {{"historyViewDepth", history.viewDepth, Use::Sampled},
                           {"historyCount", history.count, Use::Sampled},
                           {"interleavedIndirect", subsets, Use::StorageWrite},
                           {"interleavedDirectional", subsetsDirectional, Use::StorageWrite}});
@@ -113,9 +113,9 @@ graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& 
         {"indirect.filter_y", {0, 1}, across, acrossDirectional, subsets, subsetsDirectional}};
     for (const Axis& a : axes) {
         ComputePassDesc filter{a.pass, "indirect_reconstruct.comp"};
-        filter.images = {{"gbufferPosition", in.gbuffer.position, Use::Sampled},
+        filter.images = {{"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
                          {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
-                         {"historyPosition", history.position, Use::Sampled},
+                         {"historyViewDepth", history.viewDepth, Use::Sampled},
                          {"historyCount", history.count, Use::Sampled},
                          {"estimates", a.source, Use::Sampled},
                          {"directionals", a.sourceDirectional, Use::Sampled},

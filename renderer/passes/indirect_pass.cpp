@@ -19,7 +19,7 @@ graph::ImageRef addIndirectPasses(PassSetup& s, const GBufferAndRsm& in, EffectC
         {int(s.model.settings.indirect_vpls), int(s.model.settings.indirect_visibility),
          int(s.model.settings.indirect_visibility_steps), int(s.model.settings.indirect_half_res)}};
     const bool halfRes = s.model.settings.indirect_half_res;
-    const CacheInputs history = cacheInputs(s, cache, in.gbuffer.position);
+    const CacheInputs history = cacheInputs(s, cache, in.gbuffer.viewDepth);
     auto constants = [&s, halfSize, cache]() {
         shader::IndirectConstants c{};
         c.rotation = s.patternRotation;
@@ -34,13 +34,14 @@ graph::ImageRef addIndirectPasses(PassSetup& s, const GBufferAndRsm& in, EffectC
 
     addKeepPass(s, cache, {half, full});
     using graph::Use;
-    const std::vector<ShaderImage> reads = {{"gbufferPosition", in.gbuffer.position, Use::Sampled},
-                                            {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
-                                            {"rsmPosition", in.rsm.position, Use::Sampled},
-                                            {"rsmNormal", in.rsm.normal, Use::Sampled},
-                                            {"rsmFlux", in.rsm.third, Use::Sampled},
-                                            {"historyPosition", history.position, Use::Sampled},
-                                            {"historyCount", history.count, Use::Sampled}};
+    const std::vector<ShaderImage> reads = {
+        {"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
+        {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
+        {"rsmPosition", in.rsm.position, Use::Sampled},
+        {"rsmNormal", in.rsm.normal, Use::Sampled},
+        {"rsmFlux", in.rsm.third, Use::Sampled},
+        {"historyViewDepth", history.viewDepth, Use::Sampled},
+        {"historyCount", history.count, Use::Sampled}};
     ComputePassDesc gather{"indirect", "indirect.comp", reads};
     gather.images.push_back({"halfIndirect", half, Use::StorageWrite});
     gather.pushSize = sizeof(shader::IndirectConstants);

@@ -41,9 +41,10 @@ struct PassSetup {
     // rings, PCF rings) as the turn fills the angles.
     float patternOffset = 0.5f;
     std::deque<EffectCache> caches; // empty when caching is off
-    // With caching on, the G-buffer's world positions are a history pair: last frame's is what
-    // every cached effect reprojects against (each keeps only its own value and count).
-    std::optional<uint32_t> positionHistory;
+    // With caching on, the G-buffer's view depths (its world positions, gbuffer_position.glsl)
+    // are a history pair: last frame's is what every cached effect reprojects against (each
+    // keeps only its own value and count).
+    std::optional<uint32_t> viewDepthHistory;
     // With the cache on, the RSM is drawn again only when the light changes.
     bool rsmStale = true;
     // The sky visibility maps are drawn again only when an object moved.
@@ -68,19 +69,22 @@ struct PassSetup {
 };
 
 // The G-buffer (camera view) and the reflective shadow map (light view) are the same kind of
-// pass: three colour targets and a depth target, the whole scene drawn once.
+// pass: three colour targets and a depth target, the whole scene drawn once. The first target
+// is the view depth (R32F) for the G-buffer, whose positions the passes reconstruct from it
+// (gbuffer_position.glsl), and the world position (RGBA32F) for the RSM: one of the two is
+// valid.
 struct SceneTargets {
-    graph::ImageRef position, normal, third, depth; // third: albedo (G-buffer) or flux (RSM)
+    graph::ImageRef viewDepth, position, normal, third, depth; // third: albedo or flux
 };
 // `enabled` (optional) is asked each frame whether to draw; the targets of a pass that may be
-// skipped persist from frame to frame. With `positionHistory`, the position target is a history
-// pair (position is its current side), whose id is written there.
+// skipped persist from frame to frame. With `viewDepthHistory`, the view depth target is a
+// history pair (viewDepth is its current side), whose id is written there.
 SceneTargets addScenePass(PassSetup& setup, const std::string& name, const std::string& shader,
-                          VkExtent2D extent, VkFormat thirdFormat,
+                          VkExtent2D extent, bool viewDepth, VkFormat thirdFormat,
                           std::function<bool()> enabled = {},
-                          std::optional<uint32_t>* positionHistory = nullptr);
+                          std::optional<uint32_t>* viewDepthHistory = nullptr);
 
-// gbuffer: world position (w = 1 on geometry), normal, albedo, depth.
+// gbuffer: view depth (0 where nothing was drawn), normal, albedo, depth.
 SceneTargets addGBufferPass(PassSetup& setup);
 // rsm: light-view world position, normal, reflected flux, depth. Drawn only while
 // `setup.rsmStale` says the light moved since it was last drawn (or there is no cache).

@@ -21,7 +21,7 @@ graph::ImageRef addPeelPass(PassSetup& s, const GBufferAndRsm& in) {
     desc.depthFormat = VK_FORMAT_D32_SFLOAT;
     desc.bindings = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, "FrameBlock"},
                      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, "baseColorTexture"},
-                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, "firstLayerPosition"}};
+                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, "firstLayerViewDepth"}};
     desc.pushConstantSize = sizeof(shader::DrawConstants);
     s.pipelines.push_back(vk::createGraphicsPipeline(s.ctx, desc));
     const vk::Pipeline pipeline = s.pipelines.back();
@@ -29,7 +29,7 @@ graph::ImageRef addPeelPass(PassSetup& s, const GBufferAndRsm& in) {
     using graph::Use;
     s.graph.addPass(
         "peel", graph::PassKind::Graphics,
-        {{in.gbuffer.position, Use::Sampled},
+        {{in.gbuffer.viewDepth, Use::Sampled},
          {position, Use::ColorAttachment},
          {depth, Use::DepthAttachment}},
         [&s, in, position, depth, pipeline](const graph::PassContext& pc) {
@@ -55,7 +55,7 @@ graph::ImageRef addPeelPass(PassSetup& s, const GBufferAndRsm& in) {
             VkRect2D scissor{{0, 0}, s.size};
             vkCmdSetViewport(pc.cmd, 0, 1, &viewport);
             vkCmdSetScissor(pc.cmd, 0, 1, &scissor);
-            const VkImageView first = pc.image(in.gbuffer.position).view;
+            const VkImageView first = pc.image(in.gbuffer.viewDepth).view;
             s.scene.draw(pc.cmd, pipeline, s.frameUniforms.buffer, s.frameUniforms.size,
                          [&](vk::Descriptors& d) { d.sampledImage(2, first, s.nearestSampler); });
             vkCmdEndRendering(pc.cmd);

@@ -12,7 +12,7 @@ SceneTargets addRsmPass(PassSetup& s) {
     // The flux in 32-bit floats: a texel's flux is its intensity times a solid angle of about
     // 1e-6 sr, which in 16-bit floats lost 6% of the bunny's bounce and all of it for the same
     // scene in centimetres (issue 18).
-    return addScenePass(s, "rsm", "rsm", s.rsmSize, VK_FORMAT_R32G32B32A32_SFLOAT, enabled);
+    return addScenePass(s, "rsm", "rsm", s.rsmSize, false, VK_FORMAT_R32G32B32A32_SFLOAT, enabled);
 }
 
 } // namespace ssgi

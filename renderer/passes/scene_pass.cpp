@@ -6,8 +6,9 @@
 namespace ssgi {
 
 SceneTargets addScenePass(PassSetup& s, const std::string& name, const std::string& shader,
-                          VkExtent2D extent, VkFormat thirdFormat, std::function<bool()> enabled,
-                          std::optional<uint32_t>* positionHistory) {
+                          VkExtent2D extent, bool viewDepth, VkFormat thirdFormat,
+                          std::function<bool()> enabled,
+                          std::optional<uint32_t>* viewDepthHistory) {
     const bool persistent = bool(enabled);
     const VkImageUsageFlags color =
         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
@@ -15,12 +16,14 @@ SceneTargets addScenePass(PassSetup& s, const std::string& name, const std::stri
     auto target = [&](const std::string& suffix, VkFormat format, VkImageUsageFlags usage) {
         return s.graph.createImage(name + suffix, format, extent, usage, persistent);
     };
-    if (positionHistory) {
-        *positionHistory =
-            s.graph.createHistory(name + ".position", VK_FORMAT_R32G32B32A32_SFLOAT, extent, color);
-        t.position = graph::FrameGraph::current(**positionHistory);
+    const VkFormat firstFormat = viewDepth ? VK_FORMAT_R32_SFLOAT : VK_FORMAT_R32G32B32A32_SFLOAT;
+    graph::ImageRef& first = viewDepth ? t.viewDepth : t.position;
+    const std::string firstName = viewDepth ? ".view_depth" : ".position";
+    if (viewDepthHistory) {
+        *viewDepthHistory = s.graph.createHistory(name + firstName, firstFormat, extent, color);
+        first = graph::FrameGraph::current(**viewDepthHistory);
     } else {
-        t.position = target(".position", VK_FORMAT_R32G32B32A32_SFLOAT, color);
+        first = target(firstName, firstFormat, color);
     }
     t.normal = target(".normal", VK_FORMAT_R16G16B16A16_SFLOAT, color);
     t.third =
@@ -32,7 +35,7 @@ SceneTargets addScenePass(PassSetup& s, const std::string& name, const std::stri
     desc.vertices = sceneVertexInput();
     desc.vertexShader = shader + ".vert";
     desc.fragmentShader = shader + ".frag";
-    desc.colorFormats = {VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_R16G16B16A16_SFLOAT, thirdFormat};
+    desc.colorFormats = {firstFormat, VK_FORMAT_R16G16B16A16_SFLOAT, thirdFormat};
     desc.depthFormat = VK_FORMAT_D32_SFLOAT;
     desc.bindings = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, "FrameBlock"},
                      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, "baseColorTexture"}};
@@ -43,18 +46,19 @@ SceneTargets addScenePass(PassSetup& s, const std::string& name, const std::stri
     using graph::Use;
     s.graph.addPass(
         name, graph::PassKind::Graphics,
-        {{t.position, Use::ColorAttachment},
+        {{first, Use::ColorAttachment},
          {t.normal, Use::ColorAttachment},
          {t.third, Use::ColorAttachment},
          {t.depth, Use::DepthAttachment}},
-        [&s, t, extent, pipeline](const graph::PassContext& pc) {
+        [&s, t, extent, pipeline, viewDepth](const graph::PassContext& pc) {
             VkRenderingAttachmentInfo colors[3];
-            const graph::ImageRef refs[3] = {t.position, t.normal, t.third};
+            const graph::ImageRef refs[3] = {viewDepth ? t.viewDepth : t.position, t.normal,
+                                             t.third};
             for (int i = 0; i < 3; ++i) {
                 colors[i] = {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
                 colors[i].imageView = pc.image(refs[i]).view;
                 colors[i].imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-                colors[i].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR; // w = 0 marks "no geometry"
+                colors[i].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR; // 0 marks "no geometry"
                 colors[i].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
             }
             VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};

@@ -10,15 +10,15 @@ graph::ImageRef addShadowPass(PassSetup& s, const GBufferAndRsm& in, EffectCache
     graph::ImageRef shadow = s.graph.createImage(
         "shadow", VK_FORMAT_R16G16B16A16_SFLOAT, s.size,
         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
-    const CacheInputs history = cacheInputs(s, cache, in.gbuffer.position);
+    const CacheInputs history = cacheInputs(s, cache, in.gbuffer.viewDepth);
 
     addKeepPass(s, cache, {shadow});
     using graph::Use;
     ComputePassDesc pass{"shadow", "shadow.comp"};
-    pass.images = {{"gbufferPosition", in.gbuffer.position, Use::Sampled},
+    pass.images = {{"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
                    {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
                    {"rsmDepth", in.rsm.depth, Use::Sampled},
-                   {"historyPosition", history.position, Use::Sampled},
+                   {"historyViewDepth", history.viewDepth, Use::Sampled},
                    {"historyCount", history.count, Use::Sampled},
                    {"shadowImage", shadow, Use::StorageWrite}};
     pass.pushSize = sizeof(shader::ShadowConstants);

@@ -163,7 +163,7 @@ graph::ImageRef addSkyVisibilityPasses(PassSetup& s, const GBufferAndRsm& in) {
     constants.aoReach = std::max(nearest, 3.0f * texel);
     constants.normalOffset = 1.5f * texel;
     ComputePassDesc pass{"sky_visibility", "sky_visibility.comp"};
-    pass.images = {{"gbufferPosition", in.gbuffer.position, Use::Sampled},
+    pass.images = {{"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
                    {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
                    {"skyMaps", maps, Use::Sampled},
                    {"visibilityImage", visibility, Use::StorageWrite}};

@@ -13,20 +13,20 @@ graph::ImageRef addSsdoPass(PassSetup& s, const GBufferAndRsm& in, graph::ImageR
         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
     const double radius = s.model.settings.ssdo_radius;
     const float rMax = radius > 0.0 ? float(radius) : aoRadius(s.model);
-    const CacheInputs history = cacheInputs(s, cache, in.gbuffer.position);
+    const CacheInputs history = cacheInputs(s, cache, in.gbuffer.viewDepth);
 
     addKeepPass(s, cache, {ssdo});
     using graph::Use;
     ComputePassDesc pass{"ssdo", "ssdo.comp"};
     // Without peeling the shader never reads its second layer: any valid image will do.
     pass.images = {
-        {"gbufferPosition", in.gbuffer.position, Use::Sampled},
+        {"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
         {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
         {"gbufferAlbedo", in.gbuffer.third, Use::Sampled},
         {"directRadiance", direct, Use::Sampled},
-        {"historyPosition", history.position, Use::Sampled},
+        {"historyViewDepth", history.viewDepth, Use::Sampled},
         {"historyCount", history.count, Use::Sampled},
-        {"secondLayer", secondLayer.valid() ? secondLayer : in.gbuffer.position, Use::Sampled},
+        {"secondLayer", secondLayer.valid() ? secondLayer : in.gbuffer.viewDepth, Use::Sampled},
         {"ssdoImage", ssdo, Use::StorageWrite}};
     pass.pushSize = sizeof(shader::SsdoConstants);
     pass.spec = {{int(s.model.settings.ssdo_samples), secondLayer.valid() ? 1 : 0}};

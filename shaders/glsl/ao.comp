@@ -13,17 +13,18 @@ layout(constant_id = 1) const int DIRECTIONS = 8;
 layout(constant_id = 2) const int STEPS = 4;
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
-layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
+layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
 layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
-layout(set = 0, binding = 3) uniform sampler2D historyPosition;
+layout(set = 0, binding = 3) uniform sampler2D historyViewDepth;
 layout(set = 0, binding = 4) uniform sampler2D historyCount;
 layout(set = 0, binding = 5, rgba16f) uniform writeonly image2D aoImage;
 layout(push_constant) uniform AoBlock { AoConstants constants; };
 
+#include "gbuffer_position.glsl"
 #include "screen_space.glsl"
 #include "temporal.glsl"
 
-vec4 positionAt(vec2 pixel) { return texelFetch(gbufferPosition, ivec2(pixel), 0); }
+vec4 positionAt(vec2 pixel) { return gbufferPosition(ivec2(pixel)); }
 
 #include "ao_thesis.glsl"
 #include "ao_crytek.glsl"
@@ -32,7 +33,7 @@ vec4 positionAt(vec2 pixel) { return texelFetch(gbufferPosition, ivec2(pixel), 0
 void main() {
     ivec2 pixel = cachePixel(gl_GlobalInvocationID.xy, constants.cache, 1);
     if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
-    vec4 position = texelFetch(gbufferPosition, pixel, 0);
+    vec4 position = gbufferPosition(pixel);
     if (position.w == 0.0) {
         imageStore(aoImage, pixel, vec4(1.0));
         return;

@@ -14,7 +14,7 @@ layout(constant_id = 3) const int HAS_SKY_VISIBILITY = 0;
 layout(constant_id = 4) const int HAS_CONTACT = 0; // shadowImage is the contact pass's (r, g)
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
-layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
+layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
 layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
 layout(set = 0, binding = 3) uniform sampler2D gbufferAlbedo;
 layout(set = 0, binding = 4) uniform sampler2D directRadiance;
@@ -29,6 +29,8 @@ layout(set = 0, binding = 12) uniform sampler2D skyVisibilityImage; // beyond th
 layout(set = 0, binding = 13, rgba32f) uniform writeonly image2D hdrImage;
 layout(set = 0, binding = 14, rgba8) uniform writeonly image2D ldrImage;
 layout(push_constant) uniform CompositeBlock { CompositeConstants constants; };
+
+#include "gbuffer_position.glsl"
 
 // Narkowicz's fit of the ACES filmic curve.
 vec3 tonemap(vec3 x) {
@@ -52,7 +54,7 @@ void main() {
     if (any(greaterThanEqual(written, imageSize(hdrImage)))) return;
     ivec2 pixel = written + constants.guardBand;
     vec2 uv = (vec2(pixel) + 0.5) * frame.viewport.zw;
-    vec4 position = texelFetch(gbufferPosition, pixel, 0);
+    vec4 position = gbufferPosition(pixel);
     vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     vec3 albedo = texelFetch(gbufferAlbedo, pixel, 0).rgb;
     vec3 direct = texelFetch(directRadiance, pixel, 0).rgb;

@@ -16,19 +16,20 @@ layout(constant_id = 0) const int STEPS = 8;
 layout(constant_id = 1) const int PEELING = 0;
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
-layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
+layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
 layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
 layout(set = 0, binding = 3) uniform sampler2D shadowImage;
 layout(set = 0, binding = 4) uniform sampler2D secondLayer; // peel.position (PEELING only)
 layout(set = 0, binding = 5, rgba16f) uniform writeonly image2D contactShadow;
 layout(push_constant) uniform ContactBlock { ContactConstants constants; };
 
+#include "gbuffer_position.glsl"
 #include "screen_space.glsl"
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
-    vec4 position = texelFetch(gbufferPosition, pixel, 0);
+    vec4 position = gbufferPosition(pixel);
     // r: the shadow term with contact shadows; g: the shadow map's term alone (debug view).
     float mapped = texelFetch(shadowImage, pixel, 0).r, lit = mapped;
     if (position.w == 0.0 || lit == 0.0) {
@@ -47,7 +48,7 @@ void main() {
         vec3 q = start + l * (segment * float(i) / float(STEPS));
         vec3 projected = projectToPixel(q);
         if (projected.z <= 0.0 || !insideViewport(projected.xy)) break;
-        vec4 stored = texelFetch(gbufferPosition, ivec2(projected.xy), 0);
+        vec4 stored = gbufferPosition(ivec2(projected.xy));
         if (stored.w == 0.0) continue;
         // Within one pixel a surface seen at a grazing angle spans a depth of about a footprint
         // over the cosine: a sample nearer behind it than that may be in front of it in truth.

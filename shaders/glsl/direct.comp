@@ -8,16 +8,18 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
-layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
+layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
 layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
 layout(set = 0, binding = 3) uniform sampler2D gbufferAlbedo;
 layout(set = 0, binding = 4) uniform sampler2D shadowImage;
 layout(set = 0, binding = 5, rgba16f) uniform writeonly image2D directRadiance;
 
+#include "gbuffer_position.glsl"
+
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
-    vec4 position = texelFetch(gbufferPosition, pixel, 0);
+    vec4 position = gbufferPosition(pixel);
     if (position.w == 0.0) {
         imageStore(directRadiance, pixel, vec4(0.0));
         return;

@@ -11,16 +11,17 @@ layout(constant_id = 1) const int VISIBILITY = 1;
 layout(constant_id = 2) const int VISIBILITY_STEPS = 6;
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
-layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
+layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
 layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
 layout(set = 0, binding = 3) uniform sampler2D rsmPosition;
 layout(set = 0, binding = 4) uniform sampler2D rsmNormal;
 layout(set = 0, binding = 5) uniform sampler2D rsmFlux;
-layout(set = 0, binding = 6) uniform sampler2D historyPosition;
+layout(set = 0, binding = 6) uniform sampler2D historyViewDepth;
 layout(set = 0, binding = 7) uniform sampler2D historyCount;
 layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D halfIndirect;
 layout(push_constant) uniform IndirectBlock { IndirectConstants constants; };
 
+#include "gbuffer_position.glsl"
 #include "screen_space.glsl"
 #include "temporal.glsl"
 #include "indirect_gather.glsl"
@@ -33,7 +34,7 @@ void main() {
     bool allConverged = true;
     for (int j = 0; j < 4 && allConverged; ++j) {
         ivec2 q = min(source + ivec2(j & 1, j >> 1), ivec2(frame.viewport.xy) - 1);
-        vec4 w = texelFetch(gbufferPosition, q, 0);
+        vec4 w = gbufferPosition(q);
         allConverged = w.w == 0.0 ||
                        converged(q, w.xyz, texelFetch(gbufferNormal, q, 0).xyz, constants.cache);
     }
@@ -41,7 +42,7 @@ void main() {
         imageStore(halfIndirect, pixel, vec4(0.0));
         return;
     }
-    vec4 position = texelFetch(gbufferPosition, source, 0);
+    vec4 position = gbufferPosition(source);
     vec3 result = vec3(0.0);
     if (position.w != 0.0) {
         vec3 n = texelFetch(gbufferNormal, source, 0).xyz;

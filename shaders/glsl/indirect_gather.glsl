@@ -7,7 +7,7 @@
 // every texel within R. An optional screen-space visibility test marches from p toward q at
 // log-spaced steps (equation 8) and rejects the VPL where a step has just crossed behind a
 // surface the G-buffer holds (indirect_visibility.glsl).
-// Needs: frame, rsmPosition, rsmNormal, rsmFlux, gbufferPosition, gbufferNormal, VPLS, VISIBILITY,
+// Needs: frame, rsmPosition, rsmNormal, rsmFlux, gbuffer_position.glsl, gbufferNormal, VPLS, VISIBILITY,
 // VISIBILITY_STEPS, screen_space.glsl.
 
 #include "indirect_visibility.glsl"

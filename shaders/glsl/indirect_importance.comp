@@ -34,19 +34,20 @@ const int CANDIDATES = (VPLS + SUBSETS - 1) / SUBSETS + (FLUX_VPLS + SUBSETS - 1
 const int MAX_TESTS = TESTS == 0 || TESTS > CANDIDATES ? CANDIDATES : TESTS;
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
-layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
+layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
 layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
 // The VPL map (indirect_vpls.comp: the RSM clustered), read in place of the RSM.
 layout(set = 0, binding = 3) uniform sampler2D vplPosition;
 layout(set = 0, binding = 4) uniform sampler2D vplNormal;
 layout(set = 0, binding = 5) uniform sampler2D vplFlux;
 layout(set = 0, binding = 6) uniform sampler2D vplList;
-layout(set = 0, binding = 7) uniform sampler2D historyPosition;
+layout(set = 0, binding = 7) uniform sampler2D historyViewDepth;
 layout(set = 0, binding = 8) uniform sampler2D historyCount;
 layout(set = 0, binding = 9, rgba16f) uniform writeonly image2D interleavedIndirect;
 layout(set = 0, binding = 10, rgba16f) uniform writeonly image2D interleavedDirectional;
 layout(push_constant) uniform IndirectBlock { IndirectConstants constants; };
 
+#include "gbuffer_position.glsl"
 #include "screen_space.glsl"
 #include "temporal.glsl"
 #include "indirect_visibility.glsl"
@@ -117,7 +118,7 @@ void main() {
     ivec2 pixel = cachePixelAround(gl_GlobalInvocationID.xy, constants.cache, margin);
     if (any(lessThan(pixel, ivec2(0))) || any(greaterThanEqual(pixel, ivec2(frame.viewport.xy))))
         return;
-    vec4 position = texelFetch(gbufferPosition, pixel, 0);
+    vec4 position = gbufferPosition(pixel);
     vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     if (position.w == 0.0 || convergedAround(pixel, position.xyz, n, constants.cache, margin)) {
         imageStore(interleavedIndirect, pixel, vec4(0.0));

@@ -20,17 +20,18 @@ layout(constant_id = 3) const int INTERLEAVE = 4;
 layout(constant_id = 4) const int RADIUS = 8; // the filter's, for the refresh tile's margin
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
-layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
+layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
 layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
 layout(set = 0, binding = 3) uniform sampler2D rsmPosition;
 layout(set = 0, binding = 4) uniform sampler2D rsmNormal;
 layout(set = 0, binding = 5) uniform sampler2D rsmFlux;
-layout(set = 0, binding = 6) uniform sampler2D historyPosition;
+layout(set = 0, binding = 6) uniform sampler2D historyViewDepth;
 layout(set = 0, binding = 7) uniform sampler2D historyCount;
 layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D interleavedIndirect;
 layout(set = 0, binding = 9, rgba16f) uniform writeonly image2D interleavedDirectional;
 layout(push_constant) uniform IndirectBlock { IndirectConstants constants; };
 
+#include "gbuffer_position.glsl"
 #include "screen_space.glsl"
 #include "temporal.glsl"
 #include "indirect_gather.glsl"
@@ -41,7 +42,7 @@ void main() {
     ivec2 pixel = cachePixelAround(gl_GlobalInvocationID.xy, constants.cache, margin);
     if (any(lessThan(pixel, ivec2(0))) || any(greaterThanEqual(pixel, ivec2(frame.viewport.xy))))
         return;
-    vec4 position = texelFetch(gbufferPosition, pixel, 0);
+    vec4 position = gbufferPosition(pixel);
     if (position.w == 0.0) {
         imageStore(interleavedIndirect, pixel, vec4(0.0));
         imageStore(interleavedDirectional, pixel, vec4(0.0));

@@ -22,9 +22,9 @@ layout(constant_id = 0) const int INTERLEAVE = 4;
 layout(constant_id = 1) const int RADIUS = 8;
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
-layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
+layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
 layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
-layout(set = 0, binding = 3) uniform sampler2D historyPosition;
+layout(set = 0, binding = 3) uniform sampler2D historyViewDepth;
 layout(set = 0, binding = 4) uniform sampler2D historyCount;
 layout(set = 0, binding = 5) uniform sampler2D estimates;
 layout(set = 0, binding = 6) uniform sampler2D directionals;
@@ -32,6 +32,7 @@ layout(set = 0, binding = 7, rgba16f) uniform writeonly image2D filtered;
 layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D filteredDirectional;
 layout(push_constant) uniform IndirectBlock { IndirectConstants constants; };
 
+#include "gbuffer_position.glsl"
 #include "screen_space.glsl"
 #include "temporal.glsl"
 
@@ -50,7 +51,7 @@ void main() {
     ivec2 pixel = cachePixelAround(gl_GlobalInvocationID.xy, constants.cache, margin);
     ivec2 size = ivec2(frame.viewport.xy);
     if (any(lessThan(pixel, ivec2(0))) || any(greaterThanEqual(pixel, size))) return;
-    vec4 position = texelFetch(gbufferPosition, pixel, 0);
+    vec4 position = gbufferPosition(pixel);
     if (position.w == 0.0) {
         imageStore(filtered, pixel, vec4(0.0, 0.0, 0.0, 1.0));
         if (axis.x == 1) imageStore(filteredDirectional, pixel, vec4(0.0));
@@ -73,7 +74,7 @@ void main() {
         if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
         vec4 estimate = texelFetch(estimates, q, 0);
         if (estimate.a < 0.5) continue; // background, or skipped
-        vec3 delta = texelFetch(gbufferPosition, q, 0).xyz - p;
+        vec3 delta = gbufferPosition(q).xyz - p;
         if (abs(dot(n, delta)) > 1.5 * footprint * max(1.0, abs(float(d)))) continue;
         vec3 nq = texelFetch(gbufferNormal, q, 0).xyz;
         if (dot(n, nq) < 0.5) continue; // another face

@@ -1,6 +1,6 @@
 // The screen-space visibility test of a VPL (thesis 3.3, equation 8), shared by the indirect
 // light's gathers (indirect_gather.glsl, indirect_importance.comp).
-// Needs: frame, gbufferPosition, gbufferNormal, VISIBILITY_STEPS, screen_space.glsl.
+// Needs: frame, gbuffer_position.glsl, gbufferNormal, VISIBILITY_STEPS, screen_space.glsl.
 #ifndef SSGI_INDIRECT_VISIBILITY_GLSL
 #define SSGI_INDIRECT_VISIBILITY_GLSL
 
@@ -17,7 +17,7 @@ bool vplVisible(vec3 p, vec3 q) {
         float stepLength = distance - previous;
         previous = distance;
         if (projected.z <= 0.0 || !insideViewport(projected.xy)) continue;
-        vec4 stored = texelFetch(gbufferPosition, ivec2(projected.xy), 0);
+        vec4 stored = gbufferPosition(ivec2(projected.xy));
         if (stored.w == 0.0) continue;
         // Behind the visible surface (beyond a sliver for the depth of one pixel), by no more
         // than this step can have crossed: the step's length, over the cosine at which the

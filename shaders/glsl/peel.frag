@@ -7,7 +7,7 @@
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
 layout(set = 0, binding = 1) uniform sampler2D baseColorTexture;
-layout(set = 0, binding = 2) uniform sampler2D firstLayerPosition;
+layout(set = 0, binding = 2) uniform sampler2D firstLayerViewDepth; // the G-buffer's
 layout(push_constant) uniform DrawBlock { DrawConstants draw; };
 
 layout(location = 0) in vec3 worldPosition;
@@ -22,8 +22,8 @@ void main() {
     vec4 albedo = draw.baseColorFactor;
     if (draw.material.x > 0.5) albedo *= texture(baseColorTexture, uv);
     if (albedo.a < draw.material.y) discard;
-    vec4 first = texelFetch(firstLayerPosition, ivec2(gl_FragCoord.xy), 0);
+    float first = texelFetch(firstLayerViewDepth, ivec2(gl_FragCoord.xy), 0).r;
     // A sliver of relative depth keeps the first layer's own surface from peeling itself.
-    if (first.w != 0.0 && viewDepth(worldPosition) <= viewDepth(first.xyz) * 1.002) discard;
+    if (first != 0.0 && viewDepth(worldPosition) <= first * 1.002) discard;
     outPosition = vec4(worldPosition, 1.0);
 }

@@ -11,14 +11,15 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(constant_id = 0) const int TAPS = 49;
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
-layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
+layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
 layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
 layout(set = 0, binding = 3) uniform sampler2D rsmDepth;
-layout(set = 0, binding = 4) uniform sampler2D historyPosition;
+layout(set = 0, binding = 4) uniform sampler2D historyViewDepth;
 layout(set = 0, binding = 5) uniform sampler2D historyCount;
 layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D shadowImage;
 layout(push_constant) uniform ShadowBlock { ShadowConstants constants; };
 
+#include "gbuffer_position.glsl"
 #include "screen_space.glsl"
 #include "temporal.glsl"
 
@@ -46,7 +47,7 @@ float receiverPlaneDepth(vec2 uv, vec3 p, vec3 n, float fallback) {
 void main() {
     ivec2 pixel = cachePixel(gl_GlobalInvocationID.xy, constants.cache, 1);
     if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
-    vec4 position = texelFetch(gbufferPosition, pixel, 0);
+    vec4 position = gbufferPosition(pixel);
     if (position.w == 0.0) {
         imageStore(shadowImage, pixel, vec4(1.0));
         return;

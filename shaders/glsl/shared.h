@@ -25,6 +25,11 @@ struct FrameUniforms {
     mat4 viewProjection;
     mat4 inverseViewProjection;
     mat4 previousViewProjection;
+    // The G-buffer holds a view depth d per pixel, not a position (gbuffer_position.glsl): this
+    // maps (x d, y d, d, 1), for the pixel centre (x, y) in pixels, to the world position there.
+    // Last frame's maps its history's texels (at its size, which a resize changes).
+    mat4 pixelToWorld;
+    mat4 previousPixelToWorld;
     mat4 lightViewProjection;
     mat4 inverseLightViewProjection;
     vec4 cameraPosition; // xyz
@@ -49,7 +54,7 @@ struct FrameUniforms {
     // usual scene. The composite multiplies it back.
     vec4 radianceScale;
 };
-SSGI_CHECK_SIZE(FrameUniforms, 7 * 64 + 20 * 16);
+SSGI_CHECK_SIZE(FrameUniforms, 9 * 64 + 20 * 16);
 
 // Per draw in the raster passes (push constants).
 struct DrawConstants {

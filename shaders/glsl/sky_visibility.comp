@@ -16,12 +16,14 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
-layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
+layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
 layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
 layout(set = 0, binding = 3) uniform sampler2D skyMaps; // depth atlas
 layout(set = 0, binding = 4, rgba16f) uniform writeonly image2D visibilityImage;
 layout(set = 0, binding = 5, std140) uniform TrianglesBlock { SkyTriangles exact; };
 layout(push_constant) uniform VisibilityBlock { SkyVisibilityConstants constants; };
+
+#include "gbuffer_position.glsl"
 
 // Whether the ray from p toward w meets one of the exact triangles farther than `reach`
 // (Moller and Trumbore 1997).
@@ -46,7 +48,7 @@ bool blockedExactly(vec3 p, vec3 w, float reach) {
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
-    vec4 position = texelFetch(gbufferPosition, pixel, 0);
+    vec4 position = gbufferPosition(pixel);
     if (position.w == 0.0) {
         imageStore(visibilityImage, pixel, vec4(1.0));
         return;

@@ -18,23 +18,24 @@ layout(constant_id = 0) const int SAMPLES = 16;
 layout(constant_id = 1) const int PEELING = 0;
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
-layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
+layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
 layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
 layout(set = 0, binding = 3) uniform sampler2D gbufferAlbedo;
 layout(set = 0, binding = 4) uniform sampler2D directRadiance;
-layout(set = 0, binding = 5) uniform sampler2D historyPosition;
+layout(set = 0, binding = 5) uniform sampler2D historyViewDepth;
 layout(set = 0, binding = 6) uniform sampler2D historyCount;
 layout(set = 0, binding = 7) uniform sampler2D secondLayer; // peel.position (PEELING only)
 layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D ssdoImage;
 layout(push_constant) uniform SsdoBlock { SsdoConstants constants; };
 
+#include "gbuffer_position.glsl"
 #include "screen_space.glsl"
 #include "temporal.glsl"
 
 void main() {
     ivec2 pixel = cachePixel(gl_GlobalInvocationID.xy, constants.cache, 1);
     if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
-    vec4 position = texelFetch(gbufferPosition, pixel, 0);
+    vec4 position = gbufferPosition(pixel);
     if (position.w == 0.0) {
         imageStore(ssdoImage, pixel, vec4(0.0, 0.0, 0.0, 1.0));
         return;
@@ -66,7 +67,7 @@ void main() {
         ivec2 senderPixel;
         if (projected.z > 0.0 && insideViewport(projected.xy)) {
             senderPixel = ivec2(projected.xy);
-            sender = texelFetch(gbufferPosition, senderPixel, 0);
+            sender = gbufferPosition(senderPixel);
             occluded = sender.w != 0.0 && projected.z > viewDepth(sender.xyz);
             // With depth peeling (paper section 4), a sample behind the second layer lies in the
             // open space behind a thin object, not inside it.

@@ -29,16 +29,17 @@ const float RESTART_BLUR = 0.25;
 const float REACCUMULATE_BLUR = 0.05;
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
-layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
+layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
 layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
 layout(set = 0, binding = 3) uniform sampler2D current; // a = 1 computed this frame, 0 skipped
 layout(set = 0, binding = 4) uniform sampler2D historyValue;
-layout(set = 0, binding = 5) uniform sampler2D historyPosition;
+layout(set = 0, binding = 5) uniform sampler2D historyViewDepth;
 layout(set = 0, binding = 6) uniform sampler2D historyCount;
 layout(set = 0, binding = 7) uniform writeonly image2D newValue; // rgba16f or rg16f
 layout(set = 0, binding = 8, r16f) uniform writeonly image2D newCount;
 layout(push_constant) uniform TemporalBlock { TemporalConstants constants; };
 
+#include "gbuffer_position.glsl"
 #include "screen_space.glsl"
 #include "temporal.glsl"
 
@@ -104,7 +105,7 @@ vec4 historyAt(Reprojection r, vec3 world, out float spread) {
 void main() {
     ivec2 pixel = cachePixel(gl_GlobalInvocationID.xy, constants.cache, 1);
     if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
-    vec4 position = texelFetch(gbufferPosition, pixel, 0);
+    vec4 position = gbufferPosition(pixel);
     if (position.w == 0.0) {
         storeHistory(pixel, texelFetch(current, pixel, 0).rgb, 0.0);
         imageStore(newCount, pixel, vec4(0.0));

@@ -1,14 +1,17 @@
 // Reverse reprojection into an effect's history (thesis 3.1.1) and the reuse test (3.1.2),
 // shared by the effect passes (to skip converged pixels) and the temporal passes (to blend).
-// Needs: frame, historyPosition (last frame's G-buffer world positions, shared by every cached
+// Needs: frame, historyViewDepth (last frame's G-buffer view depths, shared by every cached
 // effect), historyCount (the effect's rotation counts, 0 where it holds nothing), gbufferNormal,
 // screen_space.glsl.
 #ifndef SSGI_TEMPORAL_GLSL
 #define SSGI_TEMPORAL_GLSL
 
-// Last frame's world position (xyz) and the effect's rotation count (w) at texel q.
+// Last frame's world position (xyz) and the effect's rotation count (w) at texel q: the ray
+// through the texel's centre in last frame's view, taken to its view depth (gbuffer_position.glsl).
 vec4 historyMeta(ivec2 q) {
-    return vec4(texelFetch(historyPosition, q, 0).xyz, texelFetch(historyCount, q, 0).r);
+    float depth = texelFetch(historyViewDepth, q, 0).r;
+    vec3 world = (frame.previousPixelToWorld * vec4(vec3(vec2(q) + 0.5, 1.0) * depth, 1.0)).xyz;
+    return vec4(world, texelFetch(historyCount, q, 0).r);
 }
 
 struct Reprojection {

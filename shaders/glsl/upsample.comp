@@ -14,17 +14,18 @@ layout(constant_id = 2) const int VISIBILITY_STEPS = 6;
 layout(constant_id = 3) const int HALF_RES = 1; // 0: no half-res gather, every pixel gathers
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
-layout(set = 0, binding = 1) uniform sampler2D gbufferPosition;
+layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
 layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
 layout(set = 0, binding = 3) uniform sampler2D rsmPosition;
 layout(set = 0, binding = 4) uniform sampler2D rsmNormal;
 layout(set = 0, binding = 5) uniform sampler2D rsmFlux;
-layout(set = 0, binding = 6) uniform sampler2D historyPosition;
+layout(set = 0, binding = 6) uniform sampler2D historyViewDepth;
 layout(set = 0, binding = 7) uniform sampler2D historyCount;
 layout(set = 0, binding = 8) uniform sampler2D halfIndirect;
 layout(set = 0, binding = 9, rgba16f) uniform writeonly image2D indirectImage;
 layout(push_constant) uniform IndirectBlock { IndirectConstants constants; };
 
+#include "gbuffer_position.glsl"
 #include "screen_space.glsl"
 #include "temporal.glsl"
 #include "indirect_gather.glsl"
@@ -32,7 +33,7 @@ layout(push_constant) uniform IndirectBlock { IndirectConstants constants; };
 void main() {
     ivec2 pixel = cachePixel(gl_GlobalInvocationID.xy, constants.cache, 1);
     if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
-    vec4 position = texelFetch(gbufferPosition, pixel, 0);
+    vec4 position = gbufferPosition(pixel);
     if (position.w == 0.0) {
         imageStore(indirectImage, pixel, vec4(0.0, 0.0, 0.0, 1.0));
         return;
@@ -53,7 +54,7 @@ void main() {
     for (int j = 0; j < (HALF_RES != 0 ? 4 : 0); ++j) {
         ivec2 offset = ivec2(j & 1, j >> 1);
         ivec2 h = clamp(base + offset, ivec2(0), halfSize - 1);
-        vec4 q = texelFetch(gbufferPosition, h * 2, 0);
+        vec4 q = gbufferPosition(h * 2);
         if (q.w == 0.0) continue;
         vec3 nq = texelFetch(gbufferNormal, h * 2, 0).xyz;
         vec3 delta = q.xyz - p;
