@@ -220,6 +220,7 @@ void Renderer::updateUniforms(const Camera& worldCamera) {
     setup_->cameraStill = stillFrames_ > 0;
     u.lightViewProjection = light.viewProjection;
     u.inverseLightViewProjection = glm::inverse(light.viewProjection);
+    u.lightPixelToWorld = pixelToWorld(light.view, light.projection, setup_->rsmSize);
     u.cameraPosition = glm::vec4(camera.position, 1.0f);
     u.lightPosition = glm::vec4(l.position, l.radius);
     u.lightDirection = glm::vec4(glm::normalize(l.direction), std::cos(l.outerConeAngle));

@@ -37,7 +37,7 @@ graph::ImageRef addIndirectPasses(PassSetup& s, const GBufferAndRsm& in, EffectC
     const std::vector<ShaderImage> reads = {
         {"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
         {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
-        {"rsmPosition", in.rsm.position, Use::Sampled},
+        {"rsmDepth", in.rsm.depth, Use::Sampled},
         {"rsmNormal", in.rsm.normal, Use::Sampled},
         {"rsmFlux", in.rsm.third, Use::Sampled},
         {"historyViewDepth", history.viewDepth, Use::Sampled},

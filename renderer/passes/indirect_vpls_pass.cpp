@@ -1,7 +1,7 @@
 // indirect.flux + indirect.vpls (indirect_method 2): the VPLs of the importance gather. The RSM
 // clustered into a coarser map of VPLs, and a list of VPLs drawn this frame in proportion to
 // their flux, through a pyramid of its luminance (indirect_vpls.comp).
-//   reads:  rsm.position, rsm.normal, rsm.flux
+//   reads:  rsm.depth (its positions), rsm.normal, rsm.flux
 //   writes: indirect.vpl_position, .vpl_normal, .vpl_flux (the VPL map, RGBA32F, the RSM's
 //           side / indirect_vpl_cluster), indirect.flux_pyramid (R32F, the luminance's sums),
 //           indirect.vpl_list (RGBA32F, indirect_flux_pool + 1 columns, 3 rows)
@@ -53,7 +53,7 @@ FluxVpls addFluxVplPasses(PassSetup& s, const GBufferAndRsm& in, EffectCache* ca
         const Use map = stage == 0 ? Use::StorageWrite : Use::StorageRead;
         ComputePassDesc pass{stage == 0 ? "indirect.flux" : "indirect.vpls", "indirect_vpls.comp"};
         pass.images = {
-            {"rsmPosition", in.rsm.position, Use::Sampled},
+            {"rsmDepth", in.rsm.depth, Use::Sampled},
             {"rsmNormal", in.rsm.normal, Use::Sampled},
             {"rsmFlux", in.rsm.third, Use::Sampled},
             {"vplPosition", out.position, map},

@@ -69,12 +69,11 @@ struct PassSetup {
 };
 
 // The G-buffer (camera view) and the reflective shadow map (light view) are the same kind of
-// pass: three colour targets and a depth target, the whole scene drawn once. The first target
-// is the view depth (R32F) for the G-buffer, whose positions the passes reconstruct from it
-// (gbuffer_position.glsl), and the world position (RGBA32F) for the RSM: one of the two is
-// valid.
+// pass: colour targets and a depth target, the whole scene drawn once. Neither keeps world
+// positions: the G-buffer's follow from its view depth (R32F; gbuffer_position.glsl), the RSM's
+// from its depth target (rsm_position.glsl), which has no view depth target.
 struct SceneTargets {
-    graph::ImageRef viewDepth, position, normal, third, depth; // third: albedo or flux
+    graph::ImageRef viewDepth, normal, third, depth; // third: albedo or flux
 };
 // `enabled` (optional) is asked each frame whether to draw; the targets of a pass that may be
 // skipped persist from frame to frame. With `viewDepthHistory`, the view depth target is a
@@ -86,7 +85,8 @@ SceneTargets addScenePass(PassSetup& setup, const std::string& name, const std::
 
 // gbuffer: view depth (0 where nothing was drawn), normal, albedo, depth.
 SceneTargets addGBufferPass(PassSetup& setup);
-// rsm: light-view world position, normal, reflected flux, depth. Drawn only while
+// rsm: light-view normal, reflected flux, depth (the shadow map; the positions follow from it).
+// Drawn only while
 // `setup.rsmStale` says the light moved since it was last drawn (or there is no cache).
 SceneTargets addRsmPass(PassSetup& setup);
 

@@ -1,4 +1,4 @@
-// Rasterises the whole scene into three colour targets and a depth target (G-buffer, RSM).
+// Rasterises the whole scene into its colour targets and a depth target (G-buffer, RSM).
 #include "passes/pass_setup.h"
 
 #include "shared.h"
@@ -16,18 +16,25 @@ SceneTargets addScenePass(PassSetup& s, const std::string& name, const std::stri
     auto target = [&](const std::string& suffix, VkFormat format, VkImageUsageFlags usage) {
         return s.graph.createImage(name + suffix, format, extent, usage, persistent);
     };
-    const VkFormat firstFormat = viewDepth ? VK_FORMAT_R32_SFLOAT : VK_FORMAT_R32G32B32A32_SFLOAT;
-    graph::ImageRef& first = viewDepth ? t.viewDepth : t.position;
-    const std::string firstName = viewDepth ? ".view_depth" : ".position";
-    if (viewDepthHistory) {
-        *viewDepthHistory = s.graph.createHistory(name + firstName, firstFormat, extent, color);
-        first = graph::FrameGraph::current(**viewDepthHistory);
-    } else {
-        first = target(firstName, firstFormat, color);
+    // The colour targets in the fragment shader's order: [view depth,] normal, albedo or flux.
+    std::vector<graph::ImageRef> colors;
+    std::vector<VkFormat> formats;
+    if (viewDepth) {
+        if (viewDepthHistory) {
+            *viewDepthHistory =
+                s.graph.createHistory(name + ".view_depth", VK_FORMAT_R32_SFLOAT, extent, color);
+            t.viewDepth = graph::FrameGraph::current(**viewDepthHistory);
+        } else {
+            t.viewDepth = target(".view_depth", VK_FORMAT_R32_SFLOAT, color);
+        }
+        colors.push_back(t.viewDepth);
+        formats.push_back(VK_FORMAT_R32_SFLOAT);
     }
     t.normal = target(".normal", VK_FORMAT_R16G16B16A16_SFLOAT, color);
     t.third =
         target(thirdFormat == VK_FORMAT_R8G8B8A8_UNORM ? ".albedo" : ".flux", thirdFormat, color);
+    colors.insert(colors.end(), {t.normal, t.third});
+    formats.insert(formats.end(), {VK_FORMAT_R16G16B16A16_SFLOAT, thirdFormat});
     t.depth = target(".depth", VK_FORMAT_D32_SFLOAT,
                      VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
 
@@ -35,7 +42,7 @@ SceneTargets addScenePass(PassSetup& s, const std::string& name, const std::stri
     desc.vertices = sceneVertexInput();
     desc.vertexShader = shader + ".vert";
     desc.fragmentShader = shader + ".frag";
-    desc.colorFormats = {firstFormat, VK_FORMAT_R16G16B16A16_SFLOAT, thirdFormat};
+    desc.colorFormats = formats;
     desc.depthFormat = VK_FORMAT_D32_SFLOAT;
     desc.bindings = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, "FrameBlock"},
                      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, "baseColorTexture"}};
@@ -44,34 +51,33 @@ SceneTargets addScenePass(PassSetup& s, const std::string& name, const std::stri
     const vk::Pipeline pipeline = s.pipelines.back();
 
     using graph::Use;
+    std::vector<graph::ImageUse> uses;
+    for (const graph::ImageRef& c : colors)
+        uses.push_back({c, Use::ColorAttachment});
+    uses.push_back({t.depth, Use::DepthAttachment});
     s.graph.addPass(
-        name, graph::PassKind::Graphics,
-        {{first, Use::ColorAttachment},
-         {t.normal, Use::ColorAttachment},
-         {t.third, Use::ColorAttachment},
-         {t.depth, Use::DepthAttachment}},
-        [&s, t, extent, pipeline, viewDepth](const graph::PassContext& pc) {
-            VkRenderingAttachmentInfo colors[3];
-            const graph::ImageRef refs[3] = {viewDepth ? t.viewDepth : t.position, t.normal,
-                                             t.third};
-            for (int i = 0; i < 3; ++i) {
-                colors[i] = {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-                colors[i].imageView = pc.image(refs[i]).view;
-                colors[i].imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-                colors[i].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR; // 0 marks "no geometry"
-                colors[i].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        name, graph::PassKind::Graphics, uses,
+        [&s, t, colors, extent, pipeline](const graph::PassContext& pc) {
+            std::vector<VkRenderingAttachmentInfo> attachments;
+            for (const graph::ImageRef& c : colors) {
+                VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+                a.imageView = pc.image(c).view;
+                a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+                a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR; // 0 marks "no geometry"
+                a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+                attachments.push_back(a);
             }
             VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
             depth.imageView = pc.image(t.depth).view;
             depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
             depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
             depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-            depth.clearValue.depthStencil = {1.0f, 0};
+            depth.clearValue.depthStencil = {1.0f, 0}; // 1 marks "no geometry" (rsm_position.glsl)
             VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
             info.renderArea = {{0, 0}, extent};
             info.layerCount = 1;
-            info.colorAttachmentCount = 3;
-            info.pColorAttachments = colors;
+            info.colorAttachmentCount = uint32_t(attachments.size());
+            info.pColorAttachments = attachments.data();
             info.pDepthAttachment = &depth;
             vkCmdBeginRendering(pc.cmd, &info);
             VkViewport viewport{0, 0, float(extent.width), float(extent.height), 0, 1};

@@ -7,7 +7,7 @@
 // every texel within R. An optional screen-space visibility test marches from p toward q at
 // log-spaced steps (equation 8) and rejects the VPL where a step has just crossed behind a
 // surface the G-buffer holds (indirect_visibility.glsl).
-// Needs: frame, rsmPosition, rsmNormal, rsmFlux, gbuffer_position.glsl, gbufferNormal, VPLS, VISIBILITY,
+// Needs: frame, rsm_position.glsl, rsmNormal, rsmFlux, gbuffer_position.glsl, gbufferNormal, VPLS, VISIBILITY,
 // VISIBILITY_STEPS, screen_space.glsl.
 
 #include "indirect_visibility.glsl"
@@ -46,7 +46,7 @@ vec3 gatherIndirect(vec3 p, vec3 n, float rotation, float radiusScale, float rad
         vec2 uv = center + samplingRadius * xi1 * vec2(cos(theta), sin(theta));
         if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) continue;
         ivec2 texel = ivec2(uv * size);
-        vec4 q = texelFetch(rsmPosition, texel, 0);
+        vec4 q = rsmPosition(texel);
         if (q.w == 0.0) continue;
         vec3 toVpl = q.xyz - p;
         float distance2 = dot(toVpl, toVpl);

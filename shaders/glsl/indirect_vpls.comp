@@ -27,7 +27,7 @@ layout(constant_id = 1) const int FLUX_VPLS = 2048; // drawn each frame: indirec
 layout(constant_id = 2) const int CLUSTER = 4;      // RSM texels per VPL, per side
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
-layout(set = 0, binding = 1) uniform sampler2D rsmPosition;
+layout(set = 0, binding = 1) uniform sampler2D rsmDepth; // the shadow map
 layout(set = 0, binding = 2) uniform sampler2D rsmNormal;
 layout(set = 0, binding = 3) uniform sampler2D rsmFlux;
 // The VPL map: position (w 1 where the VPL carries light), normal, flux.
@@ -39,6 +39,8 @@ layout(set = 0, binding = 7, r32f) uniform coherent image2D fluxPyramid;
 // (flux, the VPL's probability); column FLUX_VPLS, row 0: the total luminance.
 layout(set = 0, binding = 8, rgba32f) uniform writeonly image2D vplList;
 layout(push_constant) uniform VplDrawBlock { VplDrawConstants constants; };
+
+#include "rsm_position.glsl"
 
 shared float sums[8][8];
 
@@ -82,12 +84,12 @@ float cluster(ivec2 vpl) {
     for (int i = 0; i < 4; ++i) {
         ivec2 texel = min(middle + ivec2(i & 1, i >> 1), last);
         float w = luminance(texelFetch(rsmFlux, texel, 0).rgb);
-        position += w * texelFetch(rsmPosition, texel, 0).xyz;
+        position += w * rsmPosition(texel).xyz;
         normal += w * texelFetch(rsmNormal, texel, 0).xyz;
         weight += w;
     }
     if (weight == 0.0 && brightest > 0.0) {
-        position = texelFetch(rsmPosition, brightestTexel, 0).xyz;
+        position = rsmPosition(brightestTexel).xyz;
         normal = texelFetch(rsmNormal, brightestTexel, 0).xyz;
         weight = 1.0;
     }

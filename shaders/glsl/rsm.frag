@@ -1,7 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Reflective shadow map (Dachsbacher & Stamminger 2005): per texel the surface's world position,
-// its normal (facing the light) and the flux it reflects, each texel a virtual point light.
+// Reflective shadow map (Dachsbacher & Stamminger 2005): per texel the surface's normal (facing
+// the light) and the flux it reflects, each texel a virtual point light; its world position
+// follows from the depth target (rsm_position.glsl).
 #include "shared.h"
 #include "common.glsl"
 
@@ -13,9 +14,8 @@ layout(location = 0) in vec3 worldPosition;
 layout(location = 1) in vec3 worldNormal;
 layout(location = 2) in vec2 uv;
 
-layout(location = 0) out vec4 outPosition;
-layout(location = 1) out vec4 outNormal;
-layout(location = 2) out vec4 outFlux;
+layout(location = 0) out vec4 outNormal;
+layout(location = 1) out vec4 outFlux;
 
 void main() {
     vec4 albedo = draw.baseColorFactor;
@@ -33,7 +33,6 @@ void main() {
     float solidAngle = texelSize * texelSize * cosAxis * cosAxis * cosAxis;
     float spot = spotAttenuation(fromLight, frame.lightDirection.xyz, frame.lightDirection.w,
                                  frame.lightColor.w);
-    outPosition = vec4(worldPosition, 1.0);
     outNormal = vec4(n, 0.0);
     outFlux = vec4(albedo.rgb * frame.lightColor.rgb * spot * solidAngle, 1.0);
 }

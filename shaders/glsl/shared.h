@@ -31,6 +31,9 @@ struct FrameUniforms {
     mat4 pixelToWorld;
     mat4 previousPixelToWorld;
     mat4 lightViewProjection;
+    // The same for the RSM's texels and its light-view depth (rsm_position.glsl): the RSM keeps
+    // no positions; they follow from its depth target, the shadow map.
+    mat4 lightPixelToWorld;
     mat4 inverseLightViewProjection;
     vec4 cameraPosition; // xyz
     vec4 lightPosition;  // xyz, w = disk radius
@@ -54,7 +57,7 @@ struct FrameUniforms {
     // usual scene. The composite multiplies it back.
     vec4 radianceScale;
 };
-SSGI_CHECK_SIZE(FrameUniforms, 9 * 64 + 20 * 16);
+SSGI_CHECK_SIZE(FrameUniforms, 10 * 64 + 20 * 16);
 
 // Per draw in the raster passes (push constants).
 struct DrawConstants {
