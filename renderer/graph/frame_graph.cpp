@@ -319,6 +319,13 @@ std::vector<float> FrameGraph::download(ImageRef ref, std::optional<VkRect2D> ar
             for (int c = 0; c < 4; ++c)
                 out[c] = bytes[4 * i + c] / 255.0f;
             break;
+        case VK_FORMAT_D16_UNORM: {
+            uint16_t d = 0;
+            std::memcpy(&d, bytes + 2 * i, 2);
+            out[0] = float(d) / 65535.0f;
+            out[3] = 1.0f;
+            break;
+        }
         case VK_FORMAT_D32_SFLOAT:
         case VK_FORMAT_R32_SFLOAT:
             std::memcpy(out, bytes + 4 * i, 4);

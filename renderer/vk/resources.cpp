@@ -74,6 +74,7 @@ uint32_t formatTexelSize(VkFormat format) {
     case VK_FORMAT_R16G16_SFLOAT:
         return 4;
     case VK_FORMAT_R16_SFLOAT:
+    case VK_FORMAT_D16_UNORM:
         return 2;
     case VK_FORMAT_R16G16B16A16_SFLOAT:
         return 8;
