@@ -25,7 +25,7 @@ const EffectCache* Renderer::metaOf(const std::string& name) const {
 }
 
 std::vector<float> Renderer::readImage(const std::string& name) {
-    if (name == "gbuffer.position") { // as gbuffer_position.glsl reconstructs it
+    if (name == "gbuffer.position") { // as gbuffer_position.glsl and pixel_to_world.glsl do
         std::vector<float> position = readImage("gbuffer.view_depth");
         const VkRect2D output = setup_->output();
         const glm::mat4& toWorld = previousPixelToWorld_; // the last frame's
@@ -35,9 +35,10 @@ std::vector<float> Renderer::readImage(const std::string& name) {
                 const float depth = p[0];
                 const glm::vec2 centre(float(x + output.offset.x) + 0.5f,
                                        float(y + output.offset.y) + 0.5f);
-                const glm::vec4 world = toWorld * glm::vec4(glm::vec3(centre, 1.0f) * depth, 1.0f);
-                const glm::vec4 value =
-                    depth == 0.0f ? glm::vec4(0.0f) : glm::vec4(glm::vec3(world), 1.0f);
+                const glm::vec3 ray = glm::vec3(toWorld[0]) * centre.x +
+                                      glm::vec3(toWorld[1]) * centre.y + glm::vec3(toWorld[2]);
+                const glm::vec3 world = glm::vec3(toWorld[3]) + ray * depth;
+                const glm::vec4 value = depth == 0.0f ? glm::vec4(0.0f) : glm::vec4(world, 1.0f);
                 std::memcpy(p, &value, sizeof(value));
             }
         return position;

@@ -31,6 +31,7 @@ vec4 positionAt(vec2 pixel) { return gbufferPosition(ivec2(pixel)); }
 #include "ao_horizon.glsl"
 
 void main() {
+    loadPixelToWorld(); // pixel_to_world.glsl
     ivec2 pixel = cachePixel(gl_GlobalInvocationID.xy, constants.cache, 1);
     if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
     vec4 position = gbufferPosition(pixel);

@@ -49,6 +49,7 @@ vec3 skyLight(vec3 n) {
 }
 
 void main() {
+    loadPixelToWorld(); // pixel_to_world.glsl
     // `written` in the images written, `pixel` in the screen images read (guard band added).
     ivec2 written = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(written, imageSize(hdrImage)))) return;

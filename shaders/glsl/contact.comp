@@ -27,6 +27,7 @@ layout(push_constant) uniform ContactBlock { ContactConstants constants; };
 #include "screen_space.glsl"
 
 void main() {
+    loadPixelToWorld(); // pixel_to_world.glsl
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
     vec4 position = gbufferPosition(pixel);

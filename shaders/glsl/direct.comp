@@ -17,6 +17,7 @@ layout(set = 0, binding = 5, rgba16f) uniform writeonly image2D directRadiance;
 #include "gbuffer_position.glsl"
 
 void main() {
+    loadPixelToWorld(); // pixel_to_world.glsl
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
     vec4 position = gbufferPosition(pixel);

@@ -28,6 +28,7 @@ layout(push_constant) uniform IndirectBlock { IndirectConstants constants; };
 #include "indirect_gather.glsl"
 
 void main() {
+    loadPixelToWorld(); // pixel_to_world.glsl
     ivec2 pixel = cachePixel(gl_GlobalInvocationID.xy, constants.cache, 2);
     if (any(greaterThanEqual(pixel, ivec2(constants.width, constants.height)))) return;
     ivec2 source = pixel * 2;

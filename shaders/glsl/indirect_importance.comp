@@ -112,6 +112,7 @@ vec4 candidateLight[CANDIDATES];
 vec3 candidatePosition[CANDIDATES];
 
 void main() {
+    loadPixelToWorld(); // pixel_to_world.glsl
     bool cached = constants.radialOffset >= 0.0;
     loadList(cached);
     int margin = max(RADIUS, INTERLEAVE / 2);

@@ -38,6 +38,7 @@ layout(push_constant) uniform IndirectBlock { IndirectConstants constants; };
 #include "indirect_gather.glsl"
 
 void main() {
+    loadPixelToWorld(); // pixel_to_world.glsl
     // The refresh tile with a margin as wide as the filter's two axes reach.
     int margin = max(RADIUS, INTERLEAVE / 2);
     ivec2 pixel = cachePixelAround(gl_GlobalInvocationID.xy, constants.cache, margin);

@@ -43,6 +43,7 @@ float directionalAt(vec4 sums, vec3 m) {
 }
 
 void main() {
+    loadPixelToWorld(); // pixel_to_world.glsl
     ivec2 axis = ivec2(constants.axisX, constants.axisY);
     // Only the x axis's directional sums are read (by the y axis); the y axis writes none.
     int reach = max(RADIUS, INTERLEAVE / 2);

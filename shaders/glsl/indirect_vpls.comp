@@ -201,6 +201,7 @@ void drawList() {
 }
 
 void main() {
+    loadPixelToWorld(); // pixel_to_world.glsl
     if (STAGE == 0)
         clusterTile();
     else

@@ -46,6 +46,7 @@ bool blockedExactly(vec3 p, vec3 w, float reach) {
 }
 
 void main() {
+    loadPixelToWorld(); // pixel_to_world.glsl
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
     vec4 position = gbufferPosition(pixel);

@@ -33,6 +33,7 @@ layout(push_constant) uniform SsdoBlock { SsdoConstants constants; };
 #include "temporal.glsl"
 
 void main() {
+    loadPixelToWorld(); // pixel_to_world.glsl
     ivec2 pixel = cachePixel(gl_GlobalInvocationID.xy, constants.cache, 1);
     if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
     vec4 position = gbufferPosition(pixel);

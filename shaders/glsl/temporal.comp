@@ -103,6 +103,7 @@ vec4 historyAt(Reprojection r, vec3 world, out float spread) {
 }
 
 void main() {
+    loadPixelToWorld(); // pixel_to_world.glsl
     ivec2 pixel = cachePixel(gl_GlobalInvocationID.xy, constants.cache, 1);
     if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
     vec4 position = gbufferPosition(pixel);

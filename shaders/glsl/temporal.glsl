@@ -2,15 +2,16 @@
 // shared by the effect passes (to skip converged pixels) and the temporal passes (to blend).
 // Needs: frame, historyViewDepth (last frame's G-buffer view depths, shared by every cached
 // effect), historyCount (the effect's rotation counts, 0 where it holds nothing), gbufferNormal,
-// screen_space.glsl.
+// screen_space.glsl; loadPixelToWorld() called in main().
 #ifndef SSGI_TEMPORAL_GLSL
 #define SSGI_TEMPORAL_GLSL
 
+#include "pixel_to_world.glsl"
+
 // Last frame's world position (xyz) and the effect's rotation count (w) at texel q: the ray
-// through the texel's centre in last frame's view, taken to its view depth (gbuffer_position.glsl).
+// through the texel's centre in last frame's view, taken to its view depth (pixel_to_world.glsl).
 vec4 historyMeta(ivec2 q) {
-    float depth = texelFetch(historyViewDepth, q, 0).r;
-    vec3 world = (frame.previousPixelToWorld * vec4(vec3(vec2(q) + 0.5, 1.0) * depth, 1.0)).xyz;
+    vec3 world = worldAt(historyToWorld, q, texelFetch(historyViewDepth, q, 0).r);
     return vec4(world, texelFetch(historyCount, q, 0).r);
 }
 

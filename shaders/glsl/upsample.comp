@@ -32,6 +32,7 @@ layout(push_constant) uniform IndirectBlock { IndirectConstants constants; };
 #include "indirect_gather.glsl"
 
 void main() {
+    loadPixelToWorld(); // pixel_to_world.glsl
     ivec2 pixel = cachePixel(gl_GlobalInvocationID.xy, constants.cache, 1);
     if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
     vec4 position = gbufferPosition(pixel);

@@ -1,0 +1,35 @@
+// World positions from depths: the G-buffer (gbuffer_position.glsl), last frame's G-buffer
+// (temporal.glsl) and the RSM (rsm_position.glsl) keep a depth per texel, not a position. A
+// texel's position is the ray through its centre taken to that depth along the view axis:
+// eye + (x * centre.x + y * centre.y + origin) * depth, the columns of FrameUniforms'
+// pixelToWorld, previousPixelToWorld and lightPixelToWorld (renderer.cpp).
+// Every shader that includes this calls loadPixelToWorld() first thing in main(): it copies the
+// three mappings out of the frame's uniforms once. Read from the uniforms at each use inside the
+// passes' sample loops, they cost lavapipe the AO pass 42 -> 68 ms a frame (bunny, 512x512); read
+// once, 42 again. A shader that does not call it reconstructs every position as the origin.
+// Needs: frame.
+#ifndef SSGI_PIXEL_TO_WORLD_GLSL
+#define SSGI_PIXEL_TO_WORLD_GLSL
+
+struct PixelToWorld {
+    vec3 x, y, origin, eye;
+};
+PixelToWorld gbufferToWorld, historyToWorld, rsmToWorld;
+vec2 rsmNearFar; // the light's near and far planes (its depth target is not linear)
+
+PixelToWorld pixelToWorld(mat4 m) { return PixelToWorld(m[0].xyz, m[1].xyz, m[2].xyz, m[3].xyz); }
+
+void loadPixelToWorld() {
+    gbufferToWorld = pixelToWorld(frame.pixelToWorld);
+    historyToWorld = pixelToWorld(frame.previousPixelToWorld);
+    rsmToWorld = pixelToWorld(frame.lightPixelToWorld);
+    rsmNearFar = frame.lightFrustum.xy;
+}
+
+// The world position at texel `texel` of an image whose view `m` maps, at view depth `depth`.
+vec3 worldAt(PixelToWorld m, ivec2 texel, float depth) {
+    vec2 centre = vec2(texel) + 0.5;
+    return m.eye + (m.x * centre.x + m.y * centre.y + m.origin) * depth;
+}
+
+#endif
