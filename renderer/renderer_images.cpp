@@ -52,20 +52,19 @@ std::vector<float> Renderer::readImage(const std::string& name) {
     }
     const graph::ImageRef ref = imageNamed(name);
     if (!ref.valid()) throw InputError("no image named '" + name + "' in the frame");
-    for (const EffectCache& cache : setup_->caches)
-        if (cache.scalar && name == cache.name + ".history") { // (value, blur) as the others'
-            std::vector<float> history = graph_->download(ref, setup_->output());
-            for (size_t i = 0; i < history.size(); i += 4) {
-                const float value = history[i], blur = history[i + 1];
-                history[i + 1] = history[i + 2] = value;
-                history[i + 3] = blur;
-            }
-            return history;
-        }
     // A screen image is read where the output lies in it: its guard band left out.
     const VkExtent2D e = graph_->image(ref).extent;
     const bool screen = e.width == setup_->size.width && e.height == setup_->size.height;
-    return graph_->download(ref, screen ? std::optional(setup_->output()) : std::nullopt);
+    std::vector<float> texels =
+        graph_->download(ref, screen ? std::optional(setup_->output()) : std::nullopt);
+    for (const EffectCache& cache : setup_->caches)
+        if (cache.scalar && name == cache.name + ".history") // RG (value, blur) as RGB + blur
+            for (size_t i = 0; i < texels.size(); i += 4) {
+                const float value = texels[i], blur = texels[i + 1];
+                texels[i + 1] = texels[i + 2] = value;
+                texels[i + 3] = blur;
+            }
+    return texels;
 }
 
 bool Renderer::hasImage(const std::string& name) const {

@@ -86,8 +86,8 @@ SceneTargets addScenePass(PassSetup& setup, const std::string& name, const std::
 // gbuffer: view depth (0 where nothing was drawn), normal, albedo, depth.
 SceneTargets addGBufferPass(PassSetup& setup);
 // rsm: light-view normal, reflected flux, depth (the shadow map; the positions follow from it).
-// Drawn only while
-// `setup.rsmStale` says the light moved since it was last drawn (or there is no cache).
+// Drawn only while `setup.rsmStale` says the light moved since it was last drawn (or there is
+// no cache).
 SceneTargets addRsmPass(PassSetup& setup);
 
 struct GBufferAndRsm {
