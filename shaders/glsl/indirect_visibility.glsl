@@ -30,7 +30,7 @@ bool vplVisible(vec3 p, vec3 q) {
         float behind = projected.z - viewDepth(stored.xyz);
         if (behind <= 0.01 * projected.z || behind >= 2.0 * stepLength) continue;
         vec3 surfaceNormal = texelFetch(gbufferNormal, ivec2(projected.xy), 0).xyz;
-        float facing = abs(dot(surfaceNormal, normalize(frame.cameraPosition.xyz - stored.xyz)));
+        float facing = abs(dot(surfaceNormal, normalize(gbufferToWorld.eye - stored.xyz)));
         if (behind < stepLength / max(facing, 0.5)) return false;
     }
     return true;

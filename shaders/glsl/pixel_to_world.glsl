@@ -4,7 +4,7 @@
 // eye + (x * centre.x + y * centre.y + origin) * depth, the columns of FrameUniforms'
 // pixelToWorld, previousPixelToWorld and lightPixelToWorld (renderer.cpp).
 // Every shader that includes this calls loadPixelToWorld() first thing in main(): it copies the
-// three mappings out of the frame's uniforms once. Read from the uniforms at each use inside the
+// three mappings, and the camera's projection back to pixels, out of the frame's uniforms once. Read from the uniforms at each use inside the
 // passes' sample loops, they cost lavapipe the AO pass 42 -> 68 ms a frame (bunny, 512x512); read
 // once, 42 again. A shader that does not call it reconstructs every position as the origin.
 // Needs: frame.
@@ -17,6 +17,15 @@ struct PixelToWorld {
 PixelToWorld gbufferToWorld, historyToWorld, rsmToWorld;
 vec2 rsmNearFar; // the light's near and far planes (its depth target is not linear)
 
+// And back, world -> this frame's pixels (screen_space.glsl's projectToPixel and viewDepth,
+// which the passes call inside their marches and sample loops): copied once for the same reason.
+struct WorldToPixel {
+    mat4 viewProjection;
+    vec4 depthRow; // view depth = dot(depthRow, vec4(world, 1)): minus the view matrix's 3rd row
+    vec2 viewport;
+};
+WorldToPixel worldToGbuffer;
+
 PixelToWorld pixelToWorld(mat4 m) { return PixelToWorld(m[0].xyz, m[1].xyz, m[2].xyz, m[3].xyz); }
 
 void loadPixelToWorld() {
@@ -24,6 +33,10 @@ void loadPixelToWorld() {
     historyToWorld = pixelToWorld(frame.previousPixelToWorld);
     rsmToWorld = pixelToWorld(frame.lightPixelToWorld);
     rsmNearFar = frame.lightFrustum.xy;
+    mat4 view = frame.view;
+    worldToGbuffer = WorldToPixel(frame.viewProjection,
+                                  -vec4(view[0][2], view[1][2], view[2][2], view[3][2]),
+                                  frame.viewport.xy);
 }
 
 // The world position at texel `texel` of an image whose view `m` maps, at view depth `depth`.

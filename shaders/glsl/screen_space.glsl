@@ -1,10 +1,13 @@
 // Screen-space lookups shared by the AO, SSDO and indirect passes: what the G-buffer holds at a
-// pixel, and how big a world-space length looks on screen.
+// pixel, and how big a world-space length looks on screen. The projections read the camera that
+// loadPixelToWorld() copied (pixel_to_world.glsl), not the uniforms.
 #ifndef SSGI_SCREEN_SPACE_GLSL
 #define SSGI_SCREEN_SPACE_GLSL
 
+#include "pixel_to_world.glsl"
+
 // Distance along the camera's view axis.
-float viewDepth(vec3 world) { return -(frame.view * vec4(world, 1.0)).z; }
+float viewDepth(vec3 world) { return dot(worldToGbuffer.depthRow, vec4(world, 1.0)); }
 
 // Pixels covered by one scene unit at the given view depth.
 float pixelsPerUnit(float depth) {
@@ -12,7 +15,8 @@ float pixelsPerUnit(float depth) {
 }
 
 bool insideViewport(vec2 pixel) {
-    return all(greaterThanEqual(pixel, vec2(0.0))) && all(lessThan(pixel, frame.viewport.xy));
+    return all(greaterThanEqual(pixel, vec2(0.0))) &&
+           all(lessThan(pixel, worldToGbuffer.viewport));
 }
 
 // The camera's right and up axes in world space (rows of the view matrix).
@@ -21,9 +25,9 @@ vec3 cameraUp() { return vec3(frame.view[0][1], frame.view[1][1], frame.view[2][
 
 // World point -> pixel coordinates (x right, y down) and its view depth in z.
 vec3 projectToPixel(vec3 world) {
-    vec4 clip = frame.viewProjection * vec4(world, 1.0);
+    vec4 clip = worldToGbuffer.viewProjection * vec4(world, 1.0);
     vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
-    return vec3(uv * frame.viewport.xy, clip.w);
+    return vec3(uv * worldToGbuffer.viewport, clip.w);
 }
 
 #endif
