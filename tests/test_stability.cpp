@@ -1,13 +1,14 @@
-// The stability suite's cases (renderer/stability/cases.h) at a small size, each measure held
-// within a bound set from the value measured when it was written (80x60, lavapipe, the thesis
-// rule unless a test says otherwise, the quick timeline: 37 frames of warm-up, hold and
-// reference; 2 CPU cores). Where issue 20 sets a target (still flicker at most 1e-4, the first 8
-// frames after a change within 1.5x a fresh start's error), the test holds the target. The
-// whole file takes about 130 s of CPU.
+// The stability suite's cases (renderer/stability/cases.h) at a small size (80x60, lavapipe, the
+// quick timeline: 37 frames of warm-up, hold and reference; 2 CPU cores). Issue 20's targets are
+// held for every case under both cache rules (EveryCase); the other tests hold what a case
+// measures beyond them (stale light, the history a cut keeps), within bounds set from the value
+// measured when each was written.
 #include "stability/run.h"
 #include "support.h"
 
+#include <cmath>
 #include <map>
+#include <ostream>
 
 using namespace ssgi;
 using namespace ssgi::stability;
@@ -59,30 +60,6 @@ TEST_F(StabilityTest, NoNaNOrInfInAnyImageOfAnyCase) {
             << c.name << ": NaN/Inf in " << r.nonFiniteImages.size() << " image(s), e.g. "
             << (r.nonFiniteImages.empty() ? "" : *r.nonFiniteImages.begin());
     }
-}
-
-// Sponza, the camera sliding past a pillar: the wall it reveals has no history.
-TEST_F(StabilityTest, ADisocclusionRecoversWithinEightFrames) {
-    const CaseResult& r = result("pillar");
-    EXPECT_EQ(r.nonFinite, 0u);
-    EXPECT_GT(r.regionPixels, 200u) << "the pan must reveal something"; // measured 470
-    // Frames after the camera stopped until the revealed wall's error stays within twice that
-    // of the pixels that kept their history or of a fresh start at the same age (12 before the
-    // history was filtered over same-surface texels only: the bilinear fetch carried the
-    // pillar's lit edge into the revealed wall, and the thesis's rule barely lets a small
-    // difference through). Issue 20's targets: recovered within 8 frames, at most 1.5x a fresh
-    // start's error over the first 8 frames (measured 0.40x), and settled within 2x where a
-    // fresh start settles (measured 0.91x; 1.27x while the converged reference shared the fresh
-    // start's samples; `stability --quick`'s pillar went from 3.2x to 0.3x when histories that
-    // motion blurred began to accumulate again once the camera stopped).
-    EXPECT_GE(r.recoveryFrames, 0);
-    EXPECT_LE(r.recoveryFrames, 8);
-    EXPECT_LT(r.excessOverFresh, 0.5);
-    EXPECT_LT(r.convergedError, 2.0 * r.freshSettledError);
-    // Issue 20's target for a still camera: at most 1e-4 (measured 0: a converged history that
-    // no motion blurred is kept as it is by the refresh tile; 0.9e-4 to 1.4e-4 while the tile
-    // blended its fresh samples in).
-    EXPECT_LE(r.stillFlicker, 1e-4);
 }
 
 // The Cornell box, the spot light sliding along the ceiling for 8 frames, then still.
@@ -141,20 +118,78 @@ TEST_F(StabilityTest, ACameraCutRestartsEveryHistory) {
     EXPECT_LE(r.stillFlicker, 1e-4); // measured 1e-5 (2.5e-4 while the refresh blended)
 }
 
-// A pillar leaves the screen as the camera slides: the AO history near it held its occlusion,
-// which no frame at the final view can compute (cache_screen_edge restarts the pixels whose AO
-// radius the screen's edge crossed while the camera moved). Issue 20's target, for both cache
-// rules: over the first 8 frames after the camera stopped, the region's error at most 1.5x a
-// fresh start's at the final camera (96x72, --quick: 2.49x and 3.11x before the rule, 1.14x
-// and 0.66x with it; here 1.22x and 0.62x).
-TEST_F(StabilityTest, AnOccluderThatLeftTheScreenLeavesNoGhost) {
-    for (int method : {0, 1}) {
-        const CaseResult& r = result("screen-edge", method);
-        EXPECT_EQ(r.nonFinite, 0u) << "cache_method " << method;
-        EXPECT_GT(r.regionPixels, 100u) << "the pillar's receivers must be on screen";
-        EXPECT_LE(r.excessOverFresh + 1.0, 1.5) << "cache_method " << method;
-        EXPECT_LE(r.stillFlicker, 1e-4) << "cache_method " << method;
-    }
+// Issue 20's targets, held for every case of the suite under both cache rules (0, the thesis's;
+// 1, the running mean), against a fresh renderer at the final camera that takes the same
+// samples in the same frames (a resize's "rest" is the same timeline without the resize):
+// - recovered within 8 frames after the last change: from then on the region's error stays
+//   within twice that of the pixels the change left alone or of the fresh start's at that age;
+// - over the first 8 frames, the region's error at most 1.5x the fresh start's;
+// - settled (the last 4 frames) within 2x where the fresh start settles, in the region and
+//   elsewhere;
+// - no NaN or Inf, and a still camera's flicker at most 1e-4.
+// Measured at 96x72 (`build/stability --quick`, docs/stability.md): every case recovers in 1
+// frame under both rules and stays within 1.02x a fresh start over its first 8 frames. Before
+// the bounce light was computed anew while the camera moves (cache_blur_indirect 4), the running
+// mean's halos never recovered, its grazing floor stayed at 2.0x a fresh start's error and the
+// thesis rule's pillar at 1.8x. Some 20 s of CPU a case.
+struct CaseUnderRule {
+    std::string name;
+    int method;
+};
+
+void PrintTo(const CaseUnderRule& c, std::ostream* os) {
+    *os << c.name << " under cache_method " << c.method;
 }
+
+class EveryCase : public StabilityTest, public ::testing::WithParamInterface<CaseUnderRule> {};
+
+TEST_P(EveryCase, RecoversLikeAFreshStart) {
+    const CaseUnderRule& p = GetParam();
+    const CaseResult& r = result(p.name, p.method);
+    EXPECT_EQ(r.nonFinite, 0u);
+    EXPECT_LE(r.stillFlicker, 1e-4);
+    EXPECT_GE(r.recoveryFrames, 0) << "never recovered";
+    EXPECT_LE(r.recoveryFrames, 8);
+    // Elsewhere: the pixels outside the region, over the last 4 frames that both renderers drew
+    // (a resize has no such pixels; its region is the whole image).
+    std::vector<double> rest, freshRest;
+    for (const FrameRecord& f : r.frames)
+        if (f.sinceChange >= 0 && std::isfinite(f.errorRest) && std::isfinite(f.freshRest))
+            rest.push_back(f.errorRest), freshRest.push_back(f.freshRest);
+    if (rest.size() >= 4 && r.spec.resizeScale <= 0.0f) {
+        double tested = 0.0, fresh = 0.0;
+        for (size_t k = rest.size() - 4; k < rest.size(); ++k)
+            tested += rest[k], fresh += freshRest[k];
+        std::printf("%s (cache_method %d): settled elsewhere %.3g, a fresh start's %.3g\n",
+                    p.name.c_str(), p.method, tested / 4, fresh / 4);
+        EXPECT_LE(tested, 2.0 * fresh) << "settled elsewhere";
+    }
+    // A resize's first 8 frames over the renderer's that never resized: printed, not held. On a
+    // still camera (resize-still) a resize still restarts the shadow's history, whose budget
+    // is 0 (docs/stability.md: 2.4x under the thesis's rule, 7.4x under the running mean).
+    if (std::isfinite(r.excessOverUnresized))
+        std::printf("%s (cache_method %d): first 8 frames over the unresized renderer's %.3gx\n",
+                    p.name.c_str(), p.method, r.excessOverUnresized + 1.0);
+    if (r.regionPixels == 0) return; // a cut keeps no history: nothing to compare in a region
+    EXPECT_LE(r.excessOverFresh + 1.0, 1.5) << "first 8 frames over a fresh start's";
+    EXPECT_LE(r.convergedError, 2.0 * r.freshSettledError) << "settled in the region";
+}
+
+std::vector<CaseUnderRule> everyCaseUnderBothRules() {
+    std::vector<CaseUnderRule> all;
+    for (int method : {0, 1})
+        for (const Case& c : suite())
+            all.push_back({c.name, method});
+    return all;
+}
+
+INSTANTIATE_TEST_SUITE_P(Suite, EveryCase, ::testing::ValuesIn(everyCaseUnderBothRules()),
+                         [](const ::testing::TestParamInfo<CaseUnderRule>& info) {
+                             std::string name = info.param.name + "_cache_method_" +
+                                                std::to_string(info.param.method);
+                             for (char& ch : name)
+                                 if (ch == '-') ch = '_';
+                             return name;
+                         });
 
 } // namespace

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -161,6 +162,7 @@ nlohmann::json toJson(const CaseResult& r) {
             {"tolerance", finite(r.tolerance)},
             {"recovery_frames", r.recoveryFrames},
             {"excess_over_fresh", finite(r.excessOverFresh)},
+            {"excess_over_unresized", finite(r.excessOverUnresized)},
             {"stale_after", finite(r.staleAfter)},
             {"reused_at_change", finite(r.reusedAtChange)},
             {"kept_unseen", finite(r.keptUnseen)},
@@ -194,10 +196,14 @@ int run(int argc, char** argv) {
         });
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
-        std::printf("%-13s region %6zu px  NaN/Inf %zu  flicker %.4f  recovery %d  excess %s  "
+        const std::string unresized =
+            std::isfinite(r.excessOverUnresized)
+                ? "  over the unresized " + number(r.excessOverUnresized + 1.0, 3) + "x"
+                : "";
+        std::printf("%-13s region %6zu px  NaN/Inf %zu  flicker %.4f  recovery %d  excess %s%s  "
                     "(%.0f s)\n",
                     c.name.c_str(), r.regionPixels, r.nonFinite, r.stillFlicker, r.recoveryFrames,
-                    number(r.excessOverFresh, 2).c_str(), seconds);
+                    number(r.excessOverFresh, 2).c_str(), unresized.c_str(), seconds);
         csv << c.name << "," << regionName(c.region) << "," << r.regionPixels << "," << r.nonFinite
             << "," << r.stillFlicker << "," << r.pathFlicker << "," << r.convergedError << ","
             << r.restError << "," << r.tolerance << "," << r.recoveryFrames << ","

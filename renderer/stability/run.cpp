@@ -225,9 +225,30 @@ CaseResult runCase(vk::Context& ctx, const Case& c, const RunOptions& o,
     if (truthAo) endAo = a->readImage("ao.history");
     a.reset();
 
+    // A resize changes every pixel, so no pixel of the same frame is left alone to show what the
+    // motion before it did to the histories (the other cases' "rest"). Its stand-in: the same
+    // timeline rendered at the final size throughout, the same samples in the same frames.
+    std::vector<Pixels> unresized;
+    if (c.resizeScale > 0.0f) {
+        Renderer u(ctx, scene, rendererOptions(last.width, last.height));
+        for (size_t i = 0; i < steps.size(); ++i) {
+            if (!sameLight(u.light(), steps[i].light)) u.setLight(steps[i].light);
+            u.setTime(steps[i].time);
+            u.renderFrame(steps[i].camera);
+            res.nonFinite += countNonFiniteImages(u, i == 0, res.nonFiniteImages);
+            if (i >= lastChange) unresized.push_back(readView(u, steps[i].camera).hdr);
+        }
+    }
+
     // A fresh renderer with the tested settings at the final camera, light and size: how a
-    // start without history fares, and the flicker of a still camera once converged.
-    Renderer f(ctx, scene, rendererOptions(last.width, last.height));
+    // start without history fares, and the flicker of a still camera once converged. Its
+    // sampling patterns start where the tested renderer's stood at the last change, so that
+    // frame k after the change takes the same pattern turns, VPL subsets, flux draws and refresh
+    // tile in both: what differs is the history alone, not which samples each drew (a frame
+    // whose samples happen to miss an occluder shows in both at once, not at different ages).
+    RenderOptions sameSamples = rendererOptions(last.width, last.height);
+    sameSamples.patternStart = uint32_t(lastChange);
+    Renderer f(ctx, scene, sameSamples);
     f.setLight(last.light);
     f.setTime(last.time);
     std::vector<Pixels> freshFrames;
@@ -293,7 +314,8 @@ CaseResult runCase(vk::Context& ctx, const Case& c, const RunOptions& o,
     for (size_t k = 0; k < after.size(); ++k) {
         FrameRecord& rec = res.frames[lastChange + k];
         rec.error = maskedRelMse(after[k], converged.hdr, res.region);
-        rec.errorRest = maskedRelMse(after[k], converged.hdr, rest);
+        rec.errorRest = k < unresized.size() ? maskedRelMse(unresized[k], converged.hdr, res.region)
+                                             : maskedRelMse(after[k], converged.hdr, rest);
         if (k < freshFrames.size()) {
             rec.freshError = maskedRelMse(freshFrames[k], converged.hdr, res.region);
             rec.freshRest = maskedRelMse(freshFrames[k], converged.hdr, rest);
@@ -314,8 +336,9 @@ CaseResult runCase(vk::Context& ctx, const Case& c, const RunOptions& o,
     // history the change left alone (so motion's own damage is not charged to the region), or
     // within twice a fresh start's at the same age, whichever is larger (once the camera holds
     // still the rest accumulates again too, and a region as good as a fresh start has nothing
-    // left to recover); where the region is the whole image, within twice where a fresh start
-    // settles.
+    // left to recover). A resize's region is the whole image: its "rest" is the same frame of
+    // the timeline rendered at the final size throughout (the motion's damage without the
+    // resize's); where there is no rest at all, within twice where a fresh start settles.
     const double freshSettled =
         mean(freshErrors, freshFrames.size() - std::min<size_t>(4, freshFrames.size()),
              freshFrames.size());
@@ -334,6 +357,7 @@ CaseResult runCase(vk::Context& ctx, const Case& c, const RunOptions& o,
     // An empty region (a cut that kept no history) has nothing to recover.
     res.recoveryFrames = res.regionPixels == 0 ? 0 : framesUntilWithin(relative, 1.0);
     res.excessOverFresh = mean(errors, 0, 8) / mean(freshErrors, 0, 8) - 1.0;
+    if (!unresized.empty()) res.excessOverUnresized = mean(errors, 0, 8) / mean(rests, 0, 8) - 1.0;
     std::vector<double> pathFlicker;
     for (const FrameRecord& rec : res.frames)
         if (std::string(rec.phase) == "path") pathFlicker.push_back(rec.flicker);

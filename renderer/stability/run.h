@@ -46,21 +46,23 @@ struct CaseResult {
     uint32_t width = 0, height = 0; // at the end
     size_t regionPixels = 0, geometryPixels = 0;
     std::vector<FrameRecord> frames;
-    double convergedError = kNaN;    // region error over the last 4 frames: where it settles
-    double restError = kNaN;         // error outside the region over the last 4 frames
-    double freshSettledError = kNaN; // the fresh renderer's region error over its last 4 frames
-    double ghostLeft = kNaN;         // convergedError / restError: > 1 where the region settles
-                                     // worse than the rest of the image
-    double tolerance = kNaN;         // recovered: region error <= this (at the end; see runCase)
-    int recoveryFrames = -1;         // frames after the last change until recovered, -1 never
-    double excessOverFresh = kNaN;   // mean region error of the first 8 frames after the change
-                                     // over the fresh renderer's, minus 1 (> 0: a ghost)
-    double staleAfter = kNaN;        // largest stale fraction after the last change
-    double reusedAtChange = kNaN;    // fraction of geometry pixels that kept AO history then
-    double keptUnseen = kNaN;        // ... though the camera before could not see their surface
-    double stillFlicker = kNaN;      // the fresh renderer, converged and still
-    double pathFlicker = kNaN;       // mean over the path frames
-    size_t nonFinite = 0;            // over every image of every frame of the three renderers
+    double convergedError = kNaN;      // region error over the last 4 frames: where it settles
+    double restError = kNaN;           // error outside the region over the last 4 frames
+    double freshSettledError = kNaN;   // the fresh renderer's region error over its last 4 frames
+    double ghostLeft = kNaN;           // convergedError / restError: > 1 where the region settles
+                                       // worse than the rest of the image
+    double tolerance = kNaN;           // recovered: region error <= this (at the end; see runCase)
+    int recoveryFrames = -1;           // frames after the last change until recovered, -1 never
+    double excessOverFresh = kNaN;     // mean region error of the first 8 frames after the change
+                                       // over the fresh renderer's, minus 1 (> 0: a ghost)
+    double excessOverUnresized = kNaN; // a resize: the same over the renderer that never resized
+                                       // (> 0: the resize cost the histories something)
+    double staleAfter = kNaN;          // largest stale fraction after the last change
+    double reusedAtChange = kNaN;      // fraction of geometry pixels that kept AO history then
+    double keptUnseen = kNaN;          // ... though the camera before could not see their surface
+    double stillFlicker = kNaN;        // the fresh renderer, converged and still
+    double pathFlicker = kNaN;         // mean over the path frames
+    size_t nonFinite = 0;              // over every image of every frame of the three renderers
     std::set<std::string> nonFiniteImages;
     // relMSE to the path tracer in the region: the tested renderer converged at the first
     // camera, the fresh one converged at the final camera, the tested one at the end; and the
