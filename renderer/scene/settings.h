@@ -136,8 +136,9 @@ namespace ssgi {
     X(cache_blur_ssdo, double, 0.0, 0, 1e6, "Temporal cache",                                      \
       "the same for SSDO's history (pixels^2; 0: computed anew while the camera moves, since "     \
       "what SSDO sees on screen changes with the view)")                                           \
-    X(cache_blur_indirect, double, 4.0, 0, 1e6, "Temporal cache",                                  \
-      "the same for the indirect light's history (pixels^2)")
+    X(cache_blur_indirect, double, 0.0, 0, 1e6, "Temporal cache",                                  \
+      "the same for the indirect light's history (pixels^2; 0: computed anew while the camera "    \
+      "moves; with 4, its resampled history left depth edges biased long after a stop)")
 
 struct Settings {
 #define SSGI_SETTING_MEMBER(name, type, value, lo, hi, group, meaning) type name = value;
