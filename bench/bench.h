@@ -135,6 +135,14 @@ size_t cachedSeriesSteps(const Options& options);
 Json walkthrough(vk::Context& ctx, const Scene& scene, const Options& options, uint32_t pathFrames,
                  uint32_t errorFrames);
 
+// The cache's fixes for where it failed (automatic cut, thin geometry, screen edge, the bounce
+// computed anew while the camera moves), each turned off alone, and the guard band turned on,
+// beside the default and the cache off: per-frame timings and error along the camera path
+// ("walkthrough", as above) and on a still camera at the path's end for `stillFrames` frames
+// ("still", its error at the last). See series.cpp cacheFixMethods.
+Json cacheFixes(vk::Context& ctx, const Scene& scene, const Options& options, uint32_t pathFrames,
+                uint32_t errorFrames, uint32_t stillFrames);
+
 // The indirect light's methods (off, the thesis's, the interleaved one, or options.methods):
 // their cost relative to the rest of an uncached frame, and their error one frame and after
 // `convergedFrames` cached frames, over the image and around depth edges. See indirect.cpp.

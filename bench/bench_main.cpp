@@ -3,6 +3,7 @@
 //   benchmark sweep SCENE --out FILE       probe, configurations, cached series, memory
 //   benchmark walkthrough SCENE --out FILE the camera path with the cache off and on
 //   benchmark indirect SCENE --out FILE    the indirect light's methods: cost and error
+//   benchmark cache-fixes SCENE --out FILE the cache's fixes, each undone: path and still camera
 #include "app/cli.h"
 #include "bench.h"
 
@@ -17,14 +18,16 @@ using namespace ssgi;
 
 namespace {
 
-const char* kUsage = R"(usage: benchmark sweep|walkthrough|indirect SCENE --out FILE.json [options]
+const char* kUsage =
+    R"(usage: benchmark sweep|walkthrough|indirect|cache-fixes SCENE --out FILE.json [options]
   --out FILE.json       where the results go (written whole or not at all)
   --error-size N        real-time and reference images for the error are NxN (default 128)
   --warmup N            frames rendered before timing (default 1)
   --frames N            frames timed; medians (default 5)
   --series-frames N     sweep: cached still-camera frames (default 64)
-  --path-frames N       walkthrough: frames along the camera path (default 120)
-  --error-frames N      walkthrough: frames whose error is measured (default 4)
+  --path-frames N       walkthrough, cache-fixes: frames along the camera path (default 120)
+  --error-frames N      walkthrough, cache-fixes: frames whose error is measured (default 4)
+  --still-frames N      cache-fixes: frames of the still camera at the path's end (default 64)
   --spp N               reference samples per pixel, at most (default 4096)
   --no-error            timing only: no reference, no error renders
   --no-series           sweep: no cached still-camera series
@@ -43,7 +46,7 @@ struct Args {
     cli::CommonArgs common;
     bench::Options options;
     std::string out, commit = "unknown";
-    uint32_t pathFrames = 120, errorFrames = 4, convergedFrames = 40;
+    uint32_t pathFrames = 120, errorFrames = 4, convergedFrames = 40, stillFrames = 64;
 };
 
 // "LABEL: key=value key=value ..." (a walkthrough configuration).
@@ -61,7 +64,8 @@ std::pair<std::string, SettingOverrides> parseMethod(const std::string& text) {
 Args parseArgs(int argc, char** argv) {
     Args a;
     const std::string command = argc >= 2 ? argv[1] : "";
-    if (command != "sweep" && command != "walkthrough" && command != "indirect") {
+    if (command != "sweep" && command != "walkthrough" && command != "indirect" &&
+        command != "cache-fixes") {
         std::cout << kUsage << cli::kCommonUsage;
         std::exit(argc >= 2 && std::string(argv[1]) == "--help" ? 0 : 2);
     }
@@ -83,6 +87,8 @@ Args parseArgs(int argc, char** argv) {
             a.pathFrames = cli::parsePositiveCount(arg, value());
         else if (arg == "--converged-frames")
             a.convergedFrames = cli::parsePositiveCount(arg, value());
+        else if (arg == "--still-frames")
+            a.stillFrames = cli::parsePositiveCount(arg, value());
         else if (arg == "--error-frames")
             a.errorFrames = cli::parsePositiveCount(arg, value());
         else if (arg == "--spp")
@@ -139,6 +145,9 @@ int run(int argc, char** argv) {
         j.update(bench::sweep(ctx, scene, o));
     } else if (args.command == "indirect") {
         j["indirect"] = bench::indirectComparison(ctx, scene, o, args.convergedFrames);
+    } else if (args.command == "cache-fixes") {
+        j.update(bench::cacheFixes(ctx, scene, o, args.pathFrames, o.error ? args.errorFrames : 0,
+                                   args.stillFrames));
     } else {
         j["walkthrough"] =
             bench::walkthrough(ctx, scene, o, args.pathFrames, o.error ? args.errorFrames : 0);

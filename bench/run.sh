@@ -11,6 +11,9 @@
 #   bench/run.sh --indirect   the indirect light's methods (off, the thesis's, interleaved) on
 #                          the Cornell box, bunny and Sponza: cost at 256x256, error at 128x128,
 #                          into docs/bench-indirect.md (about 5 min)
+#   bench/run.sh --cache-fixes   what each of the cache's fixes costs (each undone alone, the
+#                          guard band on): the bunny's and Sponza's camera paths and a settled
+#                          still camera at 256x256, into docs/bench-cache-fixes.md (about 15 min)
 # Options: --scenes "a b"  only these scenes (names of scenes/*.json)
 #          --report-only   redraw charts and tables from the last run's JSON
 set -euo pipefail
@@ -25,7 +28,8 @@ while [ $# -gt 0 ]; do
     --indirect) mode=indirect ;;
     --scenes) scenes="$2"; shift ;;
     --report-only) report_only=1 ;;
-    -h|--help) sed -n '2,17p' "$0"; exit 0 ;;
+    --cache-fixes) mode=cache-fixes ;;
+    -h|--help) sed -n '2,20p' "$0"; exit 0 ;;
     *) echo "error: unknown option $1 (see bench/run.sh --help)" >&2; exit 2 ;;
   esac
   shift
@@ -42,6 +46,10 @@ elif [ "$mode" = walkthroughs ]; then
   scenes=${scenes:-"sponza sibenik conference bunny"}
   size=512x512 error=256 frames=3 walk_scenes=$scenes path_frames=96 error_frames=3
   images=docs/images doc=docs/bench-walkthroughs.md out=out/bench/walk
+elif [ "$mode" = cache-fixes ]; then
+  scenes=${scenes:-"bunny sponza"}
+  size=256x256 error=64 frames=3 walk_scenes=""
+  images=docs/images doc=docs/bench-cache-fixes.md out=out/bench/cache-fixes
 elif [ "$mode" = indirect ]; then
   scenes=${scenes:-"cornell-box bunny sponza"}
   size=256x256 error=128 frames=3 walk_scenes=""
@@ -83,6 +91,11 @@ if [ "$report_only" = 0 ]; then
       steps+=("indirect $s $size --error-size $error")
       continue
     fi
+    if [ "$mode" = cache-fixes ]; then
+      steps+=("cache-fixes $s $size --error-size $error --spp 1024 --path-frames 48 \
+        --error-frames 4 --still-frames 48")
+      continue
+    fi
     steps+=("sweep $s $size --error-size $error --series-frames $series --series-methods $series_methods")
     case " ${other_scenes:-} " in *" $s "*)
       for z in $other_sizes; do
@@ -119,9 +132,9 @@ if [ "$mode" = indirect ]; then
   echo "done in $((seconds / 60)) min $((seconds % 60)) s: results in $out/, table in $doc"
   exit 0
 fi
-if [ "$mode" = indirect ]; then
-  "$py" bench/indirect.py --results "$out" --doc "$doc" --note "$note"
-  echo "done in $((seconds / 60)) min $((seconds % 60)) s: results in $out/, table in $doc"
+if [ "$mode" = cache-fixes ]; then
+  "$py" bench/cache_fixes.py --results "$out" --doc "$doc" --note "$note"
+  echo "done in $((seconds / 60)) min $((seconds % 60)) s: results in $out/, tables in $doc"
   exit 0
 fi
 if [ "$mode" = walkthroughs ]; then

@@ -96,19 +96,59 @@ Json cachedSeries(vk::Context& ctx, const Scene& scene, const Options& options,
         everyFrame, references, progress, "still camera, cache");
 }
 
-Json walkthrough(vk::Context& ctx, const Scene& scene, const Options& options, uint32_t pathFrames,
-                 uint32_t errorFrames) {
+namespace {
+
+// The camera of frame f of a path of `pathFrames` frames over the scene's camera path.
+std::function<Camera(uint32_t)> pathCamera(const Scene& scene, uint32_t pathFrames) {
     if (scene.cameraPath.empty())
         throw InputError(scene.sourcePath + ": the scene has no camera_path to walk");
     const float duration = scene.cameraPath.keys.back().time;
-    const std::function<Camera(uint32_t)> cameraOf = [&](uint32_t f) {
+    return [&scene, pathFrames, duration](uint32_t f) {
         return cameraAt(scene.cameraPath, pathFrames > 1 ? duration * f / (pathFrames - 1) : 0.0f);
     };
-    // The frames whose error is measured: evenly spaced, the last frame among them.
+}
+
+// The path's frames whose error is measured: evenly spaced, the last frame among them.
+std::vector<uint32_t> pathErrorFrames(uint32_t pathFrames, uint32_t errorFrames) {
     std::vector<uint32_t> errorAt;
     for (uint32_t k = 1; k <= errorFrames; ++k)
         errorAt.push_back(uint32_t((uint64_t(pathFrames - 1) * k) / errorFrames));
+    return errorAt;
+}
 
+// The references of `frames`, each a step of `progress`.
+std::vector<Reference> referencesAt(const Scene& scene, const Options& options,
+                                    const std::function<Camera(uint32_t)>& cameraOf,
+                                    const std::vector<uint32_t>& frames, Progress& progress) {
+    std::vector<Reference> references;
+    for (uint32_t f : frames) {
+        progress.step("reference of frame " + std::to_string(f));
+        references.push_back(fullReference(scene, cameraOf(f), options));
+    }
+    return references;
+}
+
+// What the cache does where it used to fail (issue 20; docs/stability.md), each undone alone
+// beside the default that has them all, with the guard band (off by default) on, and the cache
+// off: the cost of each along the camera path and on a settled still camera.
+const std::vector<Method>& cacheFixMethods() {
+    static const std::vector<Method> methods = {
+        {"cache off", {{"cache", 0}}},
+        {"every fix (default)", {}},
+        {"no automatic cut", {{"cache_cut_angle_deg", 180.0}, {"cache_cut_distance", 1e9}}},
+        {"no thin-geometry reprojection", {{"cache_thin_geometry", 0}}},
+        {"no screen-edge restart", {{"cache_screen_edge", 0}}},
+        {"bounce history kept while moving", {{"cache_blur_indirect", 4.0}}},
+        {"guard band 16 px", {{"guard_band", 16}}}};
+    return methods;
+}
+
+} // namespace
+
+Json walkthrough(vk::Context& ctx, const Scene& scene, const Options& options, uint32_t pathFrames,
+                 uint32_t errorFrames) {
+    const std::function<Camera(uint32_t)> cameraOf = pathCamera(scene, pathFrames);
+    const std::vector<uint32_t> errorAt = pathErrorFrames(pathFrames, errorFrames);
     std::vector<Method> methods = {
         {"cache off", {{"cache", 0}}}, {"cache: thesis rule", {{"cache", 1}}}, cheapFrames()};
     if (!options.methods.empty()) {
@@ -118,17 +158,39 @@ Json walkthrough(vk::Context& ctx, const Scene& scene, const Options& options, u
     }
     Progress progress("  walkthrough " + scene.sourcePath,
                       1 + (options.error ? 1 + errorAt.size() : 0));
-    std::vector<Reference> references;
-    if (options.error)
-        for (uint32_t f : errorAt) {
-            progress.step("reference of frame " + std::to_string(f));
-            references.push_back(fullReference(scene, cameraOf(f), options));
-        }
+    const std::vector<Reference> references =
+        options.error ? referencesAt(scene, options, cameraOf, errorAt, progress)
+                      : std::vector<Reference>{};
     Json result = {{"frames", pathFrames}, {"error_frames", errorAt}};
     result["runs"] = measureMethods(ctx, scene, methods, options, pathFrames, cameraOf, errorAt,
                                     references, progress, "camera path, cache off and on");
     progress.done();
     return result;
+}
+
+Json cacheFixes(vk::Context& ctx, const Scene& scene, const Options& options, uint32_t pathFrames,
+                uint32_t errorFrames, uint32_t stillFrames) {
+    const std::function<Camera(uint32_t)> cameraOf = pathCamera(scene, pathFrames);
+    const std::vector<uint32_t> errorAt = pathErrorFrames(pathFrames, errorFrames);
+    const Camera last = cameraOf(pathFrames - 1);
+    const std::function<Camera(uint32_t)> still = [&last](uint32_t) { return last; };
+    const std::vector<uint32_t> stillErrorAt = {stillFrames - 1};
+    Progress progress("  cache fixes " + scene.sourcePath,
+                      2 + (options.error ? 2 + errorAt.size() + 1 : 0));
+    std::vector<Reference> references, stillReferences;
+    if (options.error) {
+        references = referencesAt(scene, options, cameraOf, errorAt, progress);
+        stillReferences = referencesAt(scene, options, still, stillErrorAt, progress);
+    }
+    Json path = {{"frames", pathFrames}, {"error_frames", errorAt}};
+    path["runs"] = measureMethods(ctx, scene, cacheFixMethods(), options, pathFrames, cameraOf,
+                                  errorAt, references, progress, "camera path");
+    Json settled = {{"frames", stillFrames}, {"error_frames", stillErrorAt}};
+    settled["runs"] =
+        measureMethods(ctx, scene, cacheFixMethods(), options, stillFrames, still, stillErrorAt,
+                       stillReferences, progress, "still camera at the path's end");
+    progress.done();
+    return {{"walkthrough", path}, {"still", settled}};
 }
 
 } // namespace ssgi::bench
