@@ -13,7 +13,7 @@
 #                          into docs/bench-indirect.md (about 5 min)
 #   bench/run.sh --cache-fixes   what each of the cache's fixes costs (each undone alone, the
 #                          guard band on): the bunny's and Sponza's camera paths and a settled
-#                          still camera at 256x256, into docs/bench-cache-fixes.md (about 15 min)
+#                          still camera at 256x256, into docs/bench-cache-fixes.md (about 6 min)
 # Options: --scenes "a b"  only these scenes (names of scenes/*.json)
 #          --report-only   redraw charts and tables from the last run's JSON
 set -euo pipefail
