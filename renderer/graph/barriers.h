@@ -12,7 +12,7 @@ enum class PassKind { Graphics, Compute, Transfer };
 
 enum class Use {
     Sampled,          // texture() in a shader
-    StorageRead,      // imageLoad only
+    StorageRead,      // imageLoad only, from an image2D the shader declares readonly
     StorageWrite,     // imageStore, previous contents irrelevant to this pass
     StorageReadWrite, // imageLoad and imageStore
     ColorAttachment,

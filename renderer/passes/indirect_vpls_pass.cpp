@@ -49,8 +49,12 @@ FluxVpls addFluxVplPasses(PassSetup& s, const GBufferAndRsm& in, EffectCache* ca
     c.levels = int(levels);
     using graph::Use;
     for (int stage = 0; stage < 2; ++stage) {
-        // Stage 0 writes the VPL map, stage 1 reads it (imageLoad: the shader is one).
-        const Use map = stage == 0 ? Use::StorageWrite : Use::StorageRead;
+        // Stage 0 writes the VPL map, stage 1 reads it (imageLoad: the shader is one). Stage 1
+        // declares it StorageReadWrite all the same: the shader's image2D bindings are not
+        // readonly (stage 0 writes them), so synchronization validation counts stage 1's dispatch
+        // as a write, and a StorageRead left the gather's layout transition without that write in
+        // its source scope (SYNC-HAZARD-WRITE-AFTER-WRITE from the second cached frame on).
+        const Use map = stage == 0 ? Use::StorageWrite : Use::StorageReadWrite;
         ComputePassDesc pass{stage == 0 ? "indirect.flux" : "indirect.vpls", "indirect_vpls.comp"};
         pass.images = {
             {"rsmDepth", in.rsm.depth, Use::Sampled},
