@@ -16,6 +16,18 @@ FRAME_ORDER = ("gbuffer", "rsm", "shadow", "shadow.temporal", "shadow.keep", "di
                "upsample", "indirect.filter_x", "indirect.filter_y", "indirect.temporal", "indirect.keep", "composite")
 
 
+def load_runs(results_dir, kind):
+    """The JSON files KIND-*.json of one run (benchmark KIND's results), in name order; exits
+    with an error when there are none."""
+    runs = []
+    for path in sorted(glob.glob(os.path.join(results_dir, kind + "-*.json"))):
+        with open(path) as f:
+            runs.append(json.load(f))
+    if not runs:
+        raise SystemExit("error: no %s-*.json in %s" % (kind, results_dir))
+    return runs
+
+
 def frame_order(names):
     return sorted(names, key=lambda n: (FRAME_ORDER.index(n) if n in FRAME_ORDER else 99, n))
 
