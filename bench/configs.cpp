@@ -30,12 +30,11 @@ std::vector<Axis> makeAxes() {
                   {"indirect", "upsample", "indirect.filter_x", "indirect.filter_y",
                    "indirect.flux", "indirect.vpls"},
                   {}};
-    // Importance (indirect_method 2, the default: the axis's first value): interleaved subsets
-    // of 4 x 4 over the RSM clustered into a VPL map, beside VPLs drawn by flux, the visibility
-    // test on the candidates with the most light, and the geometry-aware filter. Then the
-    // interleaved subsets alone (indirect_method 1): the same VPL sets at 1/16 of the VPLs per
-    // pixel.
-    const std::pair<int, const char*> subsetMethods[] = {{2, "importance"}, {1, "interleaved"}};
+    // Interleaved subsets of 4 x 4 with the geometry-aware filter (indirect_method 1, the
+    // default: the axis's first value): the same VPL sets at 1/16 of the VPLs per pixel. Then
+    // importance (indirect_method 2): the same subsets over the RSM clustered into a VPL map,
+    // beside VPLs drawn by flux, the visibility test on the candidates with the most light.
+    const std::pair<int, const char*> subsetMethods[] = {{1, "interleaved"}, {2, "importance"}};
     for (const auto& [method, name] : subsetMethods)
         for (int vpls : {512, 256, 128})
             indirect.values.push_back({std::to_string(vpls) + " VPLs + visibility, " + name,
