@@ -43,6 +43,7 @@ TEST(ShaderBindings, ReflectTheShadersOwnDeclarations) {
         EXPECT_EQ(bindings.at(b).type, kReconstruct[b].type) << "binding " << b;
         EXPECT_EQ(bindings.at(b).name, kReconstruct[b].name) << "binding " << b;
     }
+    EXPECT_TRUE(bindings.at(7).writable) << "filtered is writeonly, not readonly";
     EXPECT_TRUE(vk::shaderBindings(s.code, s.bytes / 4, 1).empty()) << "nothing in set 1";
     // A graphics shader with a texture in set 1: the G-buffer's fragment shader.
     const vk::EmbeddedShader& g = shader("gbuffer.frag");
@@ -79,6 +80,14 @@ TEST_F(PipelineTest, ALayoutThatDisagreesIsRefusedNamingShaderAndBinding) {
     const std::string lacks = refusal(missing);
     EXPECT_NE(lacks.find("binding 8"), std::string::npos) << lacks;
     EXPECT_NE(lacks.find("lacks"), std::string::npos) << lacks;
+
+    // A storage image the pass would take as read only (graph::Use::StorageRead) that the shader
+    // may write: the graph would leave its writes out of the barriers (issue 18's VPL map).
+    std::vector<vk::LayoutBinding> readOnly = kReconstruct;
+    readOnly[7].readOnly = true;
+    const std::string writable = refusal(readOnly);
+    EXPECT_NE(writable.find("indirect_reconstruct.comp binding 7"), std::string::npos) << writable;
+    EXPECT_NE(writable.find("not declared readonly"), std::string::npos) << writable;
 
     std::vector<vk::LayoutBinding> extra = kReconstruct;
     extra.push_back(kStorage);

@@ -42,7 +42,7 @@ void addComputePass(PassSetup& s, ComputePassDesc desc, ComputeRecordFn record,
                                    " for a use a compute shader cannot bind");
         layout.push_back({isSampled(i.use) ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER
                                            : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-                          i.name});
+                          i.name, i.use == graph::Use::StorageRead});
         uses.push_back({i.image, i.use});
     }
     for (const ShaderBuffer& b : desc.uniforms)

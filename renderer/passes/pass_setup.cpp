@@ -8,7 +8,7 @@ const vk::Pipeline& PassSetup::computePipeline(const ComputePassDesc& desc,
     for (int32_t v : desc.spec.values)
         key += " " + std::to_string(v);
     for (const vk::LayoutBinding& b : layout)
-        key += " " + std::to_string(int(b.type)) + ":" + b.name;
+        key += " " + std::to_string(int(b.type)) + ":" + b.name + (b.readOnly ? ":readonly" : "");
     const auto found = computePipelines.find(key);
     if (found != computePipelines.end()) return pipelines[found->second];
     pipelines.push_back(

@@ -22,6 +22,7 @@ enum Op : uint32_t {
 enum Decoration : uint32_t {
     DecorationBlock = 2,
     DecorationBufferBlock = 3,
+    NonWritable = 24,
     Binding = 33,
     Set = 34
 };
@@ -45,6 +46,7 @@ std::map<uint32_t, ShaderBinding> shaderBindings(const uint32_t* code, size_t wo
     std::map<uint32_t, uint32_t> bindingOf, setOf;
     std::map<uint32_t, std::string> nameOf;
     std::set<uint32_t> bufferBlocks;         // structs decorated BufferBlock (old-style SSBOs)
+    std::set<uint32_t> nonWritable;          // variables decorated NonWritable (readonly)
     std::map<uint32_t, uint32_t> imageUsage; // OpTypeImage id -> Sampled operand (1 or 2)
     std::set<uint32_t> sampledImages;        // OpTypeSampledImage ids
     std::map<uint32_t, uint32_t> elementOf;  // array type -> element type
@@ -62,6 +64,7 @@ std::map<uint32_t, ShaderBinding> shaderBindings(const uint32_t* code, size_t wo
             if (w[1] == Binding) bindingOf[w[0]] = w[2];
             if (w[1] == Set) setOf[w[0]] = w[2];
             if (w[1] == DecorationBufferBlock) bufferBlocks.insert(w[0]);
+            if (w[1] == NonWritable) nonWritable.insert(w[0]);
             break;
         case OpTypeImage:
             imageUsage[w[0]] = w[6];
@@ -107,7 +110,7 @@ std::map<uint32_t, ShaderBinding> shaderBindings(const uint32_t* code, size_t wo
             continue;
         std::string name = nameOf.count(id) ? nameOf[id] : "";
         if (name.empty() && nameOf.count(type)) name = nameOf[type]; // an anonymous block
-        result[bindingOf[id]] = {descriptor, name};
+        result[bindingOf[id]] = {descriptor, name, !nonWritable.count(id)};
     }
     return result;
 }
@@ -146,6 +149,10 @@ void checkBindings(const std::string& shader, const std::map<uint32_t, ShaderBin
         if (!expected.name.empty() && expected.name != found.name)
             throw VulkanError(shader + " binding " + std::to_string(binding) + " is " + what +
                               ", the pass declares " + expected.name + " there");
+        if (expected.readOnly && found.type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE && found.writable)
+            throw VulkanError(shader + " binding " + std::to_string(binding) + " is " + what +
+                              ", which it may write (not declared readonly), and the pass takes "
+                              "it as read only: its writes would go unsynchronized");
     }
     for (uint32_t binding = 0; binding < layout.size(); ++binding)
         if (!declared.count(binding))

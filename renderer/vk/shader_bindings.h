@@ -19,6 +19,7 @@ namespace ssgi::vk {
 struct ShaderBinding {
     VkDescriptorType type;
     std::string name;
+    bool writable = true; // false where the shader declares it readonly (NonWritable)
 };
 
 // Binding number -> every resource in descriptor set `set` (uniform buffers, storage buffers,
@@ -26,18 +27,22 @@ struct ShaderBinding {
 std::map<uint32_t, ShaderBinding> shaderBindings(const uint32_t* code, size_t words, uint32_t set);
 
 // One binding of a pipeline's layout: its type and, where the caller names it, the name the
-// shader must give it (empty: only the type is checked).
+// shader must give it (empty: only the type is checked); `readOnly`: the caller takes the
+// shader never to write it (a frame graph's StorageRead), which the shader must then declare.
 struct LayoutBinding {
-    LayoutBinding(VkDescriptorType type, std::string name = {})
-        : type(type), name(std::move(name)) {}
+    LayoutBinding(VkDescriptorType type, std::string name = {}, bool readOnly = false)
+        : type(type), name(std::move(name)), readOnly(readOnly) {}
     VkDescriptorType type;
     std::string name;
+    bool readOnly;
 };
 
 // Throws VulkanError naming the shader and the binding where `layout` (binding i is layout[i])
 // and `declared` (what the shaders read) disagree: a binding of another type or another name,
-// one the shader reads that the layout lacks, or one the layout has that the shader never
-// declares.
+// one the shader reads that the layout lacks, one the layout has that the shader never
+// declares, or a storage image the layout takes as read-only that the shader may write
+// (synchronization validation, and the GPU, count a dispatch's writable storage image as
+// written, whatever the shader does with it).
 void checkBindings(const std::string& shader, const std::map<uint32_t, ShaderBinding>& declared,
                    const std::vector<LayoutBinding>& layout);
 
