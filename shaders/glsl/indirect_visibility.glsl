@@ -1,6 +1,7 @@
 // The screen-space visibility test of a VPL (thesis 3.3, equation 8), shared by the indirect
 // light's gathers (indirect_gather.glsl, indirect_importance.comp).
-// Needs: frame, gbuffer_position.glsl, gbufferNormal, VISIBILITY_STEPS, screen_space.glsl.
+// Needs: frame, gbufferViewDepth, gbufferNormal, pixel_to_world.glsl (loadPixelToWorld),
+// VISIBILITY_STEPS, screen_space.glsl.
 #ifndef SSGI_INDIRECT_VISIBILITY_GLSL
 #define SSGI_INDIRECT_VISIBILITY_GLSL
 
@@ -8,29 +9,41 @@
 bool vplVisible(vec3 p, vec3 q) {
     vec3 toVpl = q - p;
     float far = 0.99 * length(toVpl); // the last step stops just short of q's own surface
-    float near = 0.01 * far; // a fixed fraction: the same test in any unit
+    // The steps are log-spaced from a fixed fraction of the way (the same test in any unit):
+    // distance_i = near (far / near)^(i / steps), near = far / 100, each the last times a
+    // constant ratio.
+    float ratio = pow(100.0, 1.0 / float(VISIBILITY_STEPS));
     vec3 direction = toVpl / length(toVpl);
-    float previous = 0.0;
+    // The projection is linear in homogeneous coordinates, so a point along the segment is
+    // p's clip position plus the distance times the direction's: one matrix product a VPL, not
+    // one a step.
+    vec4 clipP = worldToGbuffer.viewProjection * vec4(p, 1.0);
+    vec4 clipDirection = worldToGbuffer.viewProjection * vec4(direction, 0.0);
+    float distance = 0.01 * far, previous = 0.0;
     for (int i = 1; i <= VISIBILITY_STEPS; ++i) {
-        float distance = near * pow(far / near, float(i) / float(VISIBILITY_STEPS));
-        vec3 projected = projectToPixel(p + direction * distance);
+        distance *= ratio;
+        vec4 clip = clipP + distance * clipDirection;
         float stepLength = distance - previous;
         previous = distance;
-        if (projected.z <= 0.0 || !insideViewport(projected.xy)) continue;
-        vec4 stored = gbufferPosition(ivec2(projected.xy));
-        if (stored.w == 0.0) continue;
+        if (clip.w <= 0.0) continue;
+        vec2 projected = (clip.xy / clip.w * 0.5 + 0.5) * worldToGbuffer.viewport;
+        if (!insideViewport(projected)) continue;
+        ivec2 pixel = ivec2(projected);
+        float depth = texelFetch(gbufferViewDepth, pixel, 0).r; // clip.w is the step's
+        if (depth == 0.0) continue;
         // Behind the visible surface (beyond a sliver for the depth of one pixel), by no more
         // than this step can have crossed: the step's length, over the cosine at which the
         // camera sees that surface (a slanted surface's depth changes across the step's
         // pixels; at most doubled, which keeps 97.5% of the wall's leak out and leaves the
         // Cornell box's VPLs seen past the blocks alone). Farther behind, the segment passes
         // behind the object in open space (a thickness guess: without it every VPL seen past a
-        // silhouette is lost). The normal is fetched only where the step lies within twice its
-        // length behind, the most the cosine can allow.
-        float behind = projected.z - viewDepth(stored.xyz);
-        if (behind <= 0.01 * projected.z || behind >= 2.0 * stepLength) continue;
-        vec3 surfaceNormal = texelFetch(gbufferNormal, ivec2(projected.xy), 0).xyz;
-        float facing = abs(dot(surfaceNormal, normalize(gbufferToWorld.eye - stored.xyz)));
+        // silhouette is lost). The surface's normal and position are read only where the step
+        // lies within twice its length behind, the most the cosine can allow.
+        float behind = clip.w - depth;
+        if (behind <= 0.01 * clip.w || behind >= 2.0 * stepLength) continue;
+        vec3 surfaceNormal = texelFetch(gbufferNormal, pixel, 0).xyz;
+        vec3 surface = worldAt(gbufferToWorld, pixel, depth);
+        float facing = abs(dot(surfaceNormal, normalize(gbufferToWorld.eye - surface)));
         if (behind < stepLength / max(facing, 0.5)) return false;
     }
     return true;
