@@ -254,6 +254,7 @@ void Renderer::updateUniforms(const Camera& worldCamera) {
     std::memcpy(setup_->frameUniforms.mapped, &u, sizeof(u));
     previousViewProjection_ = u.viewProjection;
     previousPixelToWorld_ = u.pixelToWorld;
+    lastLightColor_ = glm::vec3(u.lightColor);
 }
 
 // A cut: asked for (cut(), a path key), or a turn or jump between two frames beyond the

@@ -66,12 +66,14 @@ public:
     FrameProfile lastFrameProfile() const;
 
     // Reads an image of the last frame by name ("hdr", "ldr", "direct", "gbuffer.position",
-    // "gbuffer.normal", "gbuffer.albedo", "gbuffer.depth", "rsm.flux", ...) as RGBA floats. A
+    // "gbuffer.normal", "gbuffer.albedo", "gbuffer.depth", "rsm.vpls", ...) as RGBA floats. A
     // cached effect's history is "<effect>.history" (the blended value) and "<effect>.meta"
     // (world position, the effect's rotation count in alpha: its "<effect>.count" beside the
     // G-buffer's positions, which every cached effect shares; "<effect>.count" alone is the
     // count in red), as the last frame wrote them. "gbuffer.position" is reconstructed from
-    // "gbuffer.view_depth" as the passes do (gbuffer_position.glsl; w = 1 on geometry). A
+    // "gbuffer.view_depth" as the passes do (gbuffer_position.glsl; w = 1 on geometry).
+    // "rsm.vpls" (RGBA32UI) is decoded as rsm_vpl.glsl does: each VPL's flux, and its distance
+    // along the light's axis in alpha (0 where nothing was drawn). A
     // screen image is read at size(): its guard band (the guard_band setting) left out.
     std::vector<float> readImage(const std::string& name);
     // Whether readImage(name) finds an image in this frame.
@@ -94,6 +96,7 @@ private:
     // cache whose "<effect>.meta" `name` is (composed of two images), or none.
     graph::ImageRef imageNamed(const std::string& name) const;
     const EffectCache* metaOf(const std::string& name) const;
+    std::vector<float> readRsmVpls(graph::ImageRef ref); // readImage's decoding of "rsm.vpls"
     void updateUniforms(const Camera& camera);
     bool startsAfresh(const Camera& camera) const;
     void uploadTransforms(); // transforms_, moved to the GPU's origin
@@ -114,6 +117,7 @@ private:
     std::vector<Aabb> moved_;           // boxes of the objects moved since the last frame
     glm::mat4 previousViewProjection_{1.0f};
     glm::mat4 previousPixelToWorld_{1.0f}; // FrameUniforms::pixelToWorld of the last frame
+    glm::vec3 lastLightColor_{0.0f};       // its lightColor (the RSM's flux, rsm_vpl.glsl)
     Camera previousCamera_;
     bool cutRequested_ = false;
     uint32_t cuts_ = 0;

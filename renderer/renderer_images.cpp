@@ -52,6 +52,7 @@ std::vector<float> Renderer::readImage(const std::string& name) {
     }
     const graph::ImageRef ref = imageNamed(name);
     if (!ref.valid()) throw InputError("no image named '" + name + "' in the frame");
+    if (graph_->image(ref).format == VK_FORMAT_R32G32B32A32_UINT) return readRsmVpls(ref);
     // A screen image is read where the output lies in it: its guard band left out.
     const VkExtent2D e = graph_->image(ref).extent;
     const bool screen = e.width == setup_->size.width && e.height == setup_->size.height;
@@ -64,6 +65,26 @@ std::vector<float> Renderer::readImage(const std::string& name) {
                 texels[i + 1] = texels[i + 2] = value;
                 texels[i + 3] = blur;
             }
+    return texels;
+}
+
+// The RSM's VPL texels (rsm_vpl.glsl): flux = albedo x light colour x share, the albedo's
+// channels square roots in 10 bits; the distance along the light's axis in alpha.
+std::vector<float> Renderer::readRsmVpls(graph::ImageRef ref) {
+    const std::vector<uint8_t> bytes = graph_->readTexels(ref);
+    std::vector<float> texels(bytes.size() / sizeof(uint32_t));
+    for (size_t i = 0; i < texels.size(); i += 4) {
+        uint32_t t[4];
+        std::memcpy(t, &bytes[4 * i], sizeof(t));
+        float share = 0.0f, axisDepth = 0.0f;
+        std::memcpy(&share, &t[1], sizeof(float));
+        std::memcpy(&axisDepth, &t[3], sizeof(float));
+        for (int c = 0; c < 3; ++c) {
+            const float root = float((t[0] >> (10 * c)) & 1023u) / 1023.0f;
+            texels[i + c] = root * root * lastLightColor_[c] * share;
+        }
+        texels[i + 3] = axisDepth;
+    }
     return texels;
 }
 

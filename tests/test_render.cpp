@@ -82,6 +82,55 @@ TEST_F(RenderTest, ShadowOfTheBlocksLiesWhereTheLightsGeometryPutsIt) {
         << "expected " << expectedShadow << " rendered " << renderedShadow << " of " << floor;
 }
 
+// Each RSM texel is a VPL packed into one RGBA32UI texel (rsm_vpl.glsl), read back decoded: its
+// distance along the light's axis is the shadow map's depth made linear (0 exactly where the
+// map is empty), and its flux is what the floor reflects of the spot's intensity through the
+// texel's solid angle, albedo x I x falloff x (texel side)^2 cos^3 of the angle off the axis.
+TEST_F(RenderTest, RsmTexelsHoldTheShadowMapsDepthAndTheFloorsFlux) {
+    const Scene scene = loadScene(test::sourcePath("tests/scenes/spot-on-floor.json"));
+    Renderer renderer(test::context(), scene, {64, 64, "final", {"rsm.vpls", "rsm.depth"}});
+    renderer.renderFrame(scene.camera);
+    const std::vector<float> vpls = renderer.readImage("rsm.vpls");
+    const std::vector<float> depth = renderer.readImage("rsm.depth");
+    ASSERT_EQ(vpls.size(), depth.size());
+    const size_t side = size_t(std::lround(std::sqrt(double(vpls.size() / 4))));
+    ASSERT_EQ(side * side * 4, vpls.size());
+    const LightFrustum frustum = lightFrustum(scene.light, scene.bounds);
+    const SpotLight& light = scene.light;
+    const double texel = 2.0 * frustum.tanHalfFov / double(side);
+    size_t drawn = 0, lit = 0, depthOff = 0, fluxOff = 0;
+    for (size_t y = 0; y < side; ++y)
+        for (size_t x = 0; x < side; ++x) {
+            const size_t i = 4 * (y * side + x);
+            const float d = depth[i];
+            if (d == 1.0f) {
+                EXPECT_EQ(vpls[i + 3], 0.0f) << "texel " << x << ", " << y;
+                continue;
+            }
+            ++drawn;
+            const float z = linearDepth(d, frustum.znear, frustum.zfar);
+            depthOff += std::abs(vpls[i + 3] - z) > 1e-4f * frustum.zfar; // D32's precision
+            // The texel's centre on the unit plane, and its angle off the axis.
+            const double u = ((double(x) + 0.5) / double(side) * 2.0 - 1.0) * frustum.tanHalfFov;
+            const double v = ((double(y) + 0.5) / double(side) * 2.0 - 1.0) * frustum.tanHalfFov;
+            const double cosAxis = 1.0 / std::sqrt(1.0 + u * u + v * v);
+            const double t =
+                std::clamp((cosAxis - std::cos(light.outerConeAngle)) /
+                               (std::cos(light.innerConeAngle) - std::cos(light.outerConeAngle)),
+                           0.0, 1.0);
+            const double expected =
+                0.8 * light.intensity * t * t * texel * texel * cosAxis * cosAxis * cosAxis;
+            lit += expected > 0.0;
+            for (int c = 0; c < 3; ++c)
+                fluxOff += std::abs(vpls[i + c] - expected) > 0.01 * expected + 1e-12;
+        }
+    // The floor fills the map: a narrow spot's frustum sees nothing else.
+    EXPECT_EQ(drawn, side * side);
+    EXPECT_GT(lit, side * side / 4);
+    EXPECT_EQ(depthOff, 0u);
+    EXPECT_EQ(fluxOff, 0u);
+}
+
 // An empty box, lit and seen along its plane of symmetry, renders mirror-symmetric: exactly so
 // for the deterministic terms (direct light and shadow), and up to sampling noise for the whole
 // image, compared in 8x8-pixel blocks that average the noise out.

@@ -11,7 +11,7 @@ graph::ImageRef addDirectPass(PassSetup& s, const GBufferAndRsm& in, graph::Imag
     ComputePassDesc pass{"direct", "direct.comp"};
     pass.images = {{"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
                    {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
-                   {"gbufferAlbedo", in.gbuffer.third, Use::Sampled},
+                   {"gbufferAlbedo", in.gbuffer.albedo, Use::Sampled},
                    {"shadowImage", shadow, Use::Sampled},
                    {"directRadiance", direct, Use::StorageWrite}};
     addComputePass(s, std::move(pass),

@@ -5,9 +5,13 @@
 
 namespace ssgi {
 
-SceneTargets addGBufferPass(PassSetup& s) {
-    return addScenePass(s, "gbuffer", "gbuffer", s.size, true, VK_FORMAT_R8G8B8A8_UNORM, {},
-                        s.model.settings.cache ? &s.viewDepthHistory : nullptr);
+GBuffer addGBufferPass(PassSetup& s) {
+    const SceneTargets t = addScenePass(s, "gbuffer", "gbuffer", s.size,
+                                        {{".view_depth", VK_FORMAT_R32_SFLOAT},
+                                         {".normal", VK_FORMAT_R16G16B16A16_SFLOAT},
+                                         {".albedo", VK_FORMAT_R8G8B8A8_UNORM}},
+                                        {}, s.model.settings.cache ? &s.viewDepthHistory : nullptr);
+    return {t.colors[0], t.colors[1], t.colors[2], t.depth};
 }
 
 } // namespace ssgi

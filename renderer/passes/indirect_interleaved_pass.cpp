@@ -4,9 +4,8 @@
 // pass (indirect_reconstruct.comp), gives every pixel the whole set's estimate many times over
 // (Keller and Heidrich 2001; Segovia et al. 2006). No upsampling, so no staircase, and no pixel
 // gathers every VPL.
-//   reads:  gbuffer.view_depth, gbuffer.normal, rsm.depth (its positions), rsm.normal, rsm.flux,
-//   last frame's
-//           gbuffer.view_depth and the cache's indirect.count (to skip converged pixels)
+//   reads:  gbuffer.view_depth, gbuffer.normal, rsm.vpls, last frame's gbuffer.view_depth and
+//           the cache's indirect.count (to skip converged pixels)
 //   writes: indirect + indirect.directional (each pixel's subset: irradiance / pi, and the L1
 //           sums of its VPLs' light), indirect.filtered_x + .filtered_x_directional (after the
 //           x axis), indirect again (after the y axis: the result; the y pass binds
@@ -88,9 +87,7 @@ graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& 
                               {"vplFlux", fluxVpls->flux, Use::Sampled},
                               {"vplList", fluxVpls->list, Use::Sampled}});
     else
-        gather.images.insert(gather.images.end(), {{"rsmDepth", in.rsm.depth, Use::Sampled},
-                                                   {"rsmNormal", in.rsm.normal, Use::Sampled},
-                                                   {"rsmFlux", in.rsm.third, Use::Sampled}});
+        gather.images.push_back({"rsmVpls", in.rsm.vpls, Use::Sampled});
     gather.images.insert(gather.images.end(),
                          {{"historyViewDepth", history.viewDepth, Use::Sampled},
                           {"historyCount", history.count, Use::Sampled},

@@ -37,9 +37,7 @@ graph::ImageRef addIndirectPasses(PassSetup& s, const GBufferAndRsm& in, EffectC
     const std::vector<ShaderImage> reads = {
         {"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
         {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
-        {"rsmDepth", in.rsm.depth, Use::Sampled},
-        {"rsmNormal", in.rsm.normal, Use::Sampled},
-        {"rsmFlux", in.rsm.third, Use::Sampled},
+        {"rsmVpls", in.rsm.vpls, Use::Sampled},
         {"historyViewDepth", history.viewDepth, Use::Sampled},
         {"historyCount", history.count, Use::Sampled}};
     ComputePassDesc gather{"indirect", "indirect.comp", reads};

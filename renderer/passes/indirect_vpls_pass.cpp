@@ -1,7 +1,7 @@
 // indirect.flux + indirect.vpls (indirect_method 2): the VPLs of the importance gather. The RSM
 // clustered into a coarser map of VPLs, and a list of VPLs drawn this frame in proportion to
 // their flux, through a pyramid of its luminance (indirect_vpls.comp).
-//   reads:  rsm.depth (its positions), rsm.normal, rsm.flux
+//   reads:  rsm.vpls
 //   writes: indirect.vpl_position, .vpl_normal, .vpl_flux (the VPL map, RGBA32F, the RSM's
 //           side / indirect_vpl_cluster), indirect.flux_pyramid (R32F, the luminance's sums),
 //           indirect.vpl_list (RGBA32F, indirect_flux_pool + 1 columns, 3 rows)
@@ -57,9 +57,7 @@ FluxVpls addFluxVplPasses(PassSetup& s, const GBufferAndRsm& in, EffectCache* ca
         const Use map = stage == 0 ? Use::StorageWrite : Use::StorageReadWrite;
         ComputePassDesc pass{stage == 0 ? "indirect.flux" : "indirect.vpls", "indirect_vpls.comp"};
         pass.images = {
-            {"rsmDepth", in.rsm.depth, Use::Sampled},
-            {"rsmNormal", in.rsm.normal, Use::Sampled},
-            {"rsmFlux", in.rsm.third, Use::Sampled},
+            {"rsmVpls", in.rsm.vpls, Use::Sampled},
             {"vplPosition", out.position, map},
             {"vplNormal", out.normal, map},
             {"vplFlux", out.flux, map},

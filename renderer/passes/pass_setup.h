@@ -71,27 +71,39 @@ struct PassSetup {
 // The G-buffer (camera view) and the reflective shadow map (light view) are the same kind of
 // pass: colour targets and a depth target, the whole scene drawn once. Neither keeps world
 // positions: the G-buffer's follow from its view depth (R32F; gbuffer_position.glsl), the RSM's
-// from its depth target (rsm_position.glsl), which has no view depth target.
+// from the distance along the light's axis in its VPL texels (rsm_vpl.glsl).
+struct SceneTarget {
+    const char* suffix; // the image is the pass's name + suffix
+    VkFormat format;
+};
 struct SceneTargets {
-    graph::ImageRef viewDepth, normal, third, depth; // third: albedo or flux
+    std::vector<graph::ImageRef> colors; // in the fragment shader's order
+    graph::ImageRef depth;
 };
 // `enabled` (optional) is asked each frame whether to draw; the targets of a pass that may be
-// skipped persist from frame to frame. With `viewDepthHistory`, the view depth target is a
-// history pair (viewDepth is its current side), whose id is written there.
+// skipped persist from frame to frame. With `firstTargetHistory`, the first colour target is a
+// history pair (colors[0] is its current side), whose id is written there.
 SceneTargets addScenePass(PassSetup& setup, const std::string& name, const std::string& shader,
-                          VkExtent2D extent, bool viewDepth, VkFormat thirdFormat,
+                          VkExtent2D extent, const std::vector<SceneTarget>& targets,
                           std::function<bool()> enabled = {},
-                          std::optional<uint32_t>* viewDepthHistory = nullptr);
+                          std::optional<uint32_t>* firstTargetHistory = nullptr);
 
 // gbuffer: view depth (0 where nothing was drawn), normal, albedo, depth.
-SceneTargets addGBufferPass(PassSetup& setup);
-// rsm: light-view normal, reflected flux, depth (the shadow map; the positions follow from it).
-// Drawn only while `setup.rsmStale` says the light moved since it was last drawn (or there is
-// no cache).
-SceneTargets addRsmPass(PassSetup& setup);
+struct GBuffer {
+    graph::ImageRef viewDepth, normal, albedo, depth;
+};
+GBuffer addGBufferPass(PassSetup& setup);
+// rsm: one VPL a texel (RGBA32UI: albedo, the light's share, normal, distance along the light's
+// axis; rsm_vpl.glsl) and the depth target (the shadow map). Drawn only while `setup.rsmStale`
+// says the light moved since it was last drawn (or there is no cache).
+struct Rsm {
+    graph::ImageRef vpls, depth;
+};
+Rsm addRsmPass(PassSetup& setup);
 
 struct GBufferAndRsm {
-    SceneTargets gbuffer, rsm;
+    GBuffer gbuffer;
+    Rsm rsm;
 };
 // shadow: fraction of the spot light's disk each pixel sees (PCF/PCSS, or a hard test).
 graph::ImageRef addShadowPass(PassSetup& setup, const GBufferAndRsm& inputs, EffectCache* cache);

@@ -4,15 +4,17 @@
 
 namespace ssgi {
 
-SceneTargets addRsmPass(PassSetup& s) {
+Rsm addRsmPass(PassSetup& s) {
     // A static light sees the same scene every frame: with the cache on, its map is drawn once
     // and again only after the light moves.
     std::function<bool()> enabled;
     if (s.model.settings.cache) enabled = [&s] { return s.rsmStale; };
-    // The flux in 32-bit floats: a texel's flux is its intensity times a solid angle of about
-    // 1e-6 sr, which in 16-bit floats lost 6% of the bunny's bounce and all of it for the same
-    // scene in centimetres (issue 18).
-    return addScenePass(s, "rsm", "rsm", s.rsmSize, false, VK_FORMAT_R32G32B32A32_SFLOAT, enabled);
+    // One texel a VPL, all of it in one read (rsm_vpl.glsl). Its flux is albedo x light colour x
+    // a 32-bit float share: the flux itself, about 1e-6 of the intensity, lost 6% of the bunny's
+    // bounce in 16-bit floats and all of it for the same scene in centimetres (issue 18).
+    const SceneTargets t =
+        addScenePass(s, "rsm", "rsm", s.rsmSize, {{".vpls", VK_FORMAT_R32G32B32A32_UINT}}, enabled);
+    return {t.colors[0], t.depth};
 }
 
 } // namespace ssgi

@@ -6,37 +6,29 @@
 namespace ssgi {
 
 SceneTargets addScenePass(PassSetup& s, const std::string& name, const std::string& shader,
-                          VkExtent2D extent, bool viewDepth, VkFormat thirdFormat,
+                          VkExtent2D extent, const std::vector<SceneTarget>& targets,
                           std::function<bool()> enabled,
-                          std::optional<uint32_t>* viewDepthHistory) {
+                          std::optional<uint32_t>* firstTargetHistory) {
     const bool persistent = bool(enabled);
     const VkImageUsageFlags color =
         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     SceneTargets t;
-    auto target = [&](const std::string& suffix, VkFormat format, VkImageUsageFlags usage) {
-        return s.graph.createImage(name + suffix, format, extent, usage, persistent);
-    };
-    // The colour targets in the fragment shader's order: [view depth,] normal, albedo or flux.
-    std::vector<graph::ImageRef> colors;
+    // The colour targets in the fragment shader's order.
     std::vector<VkFormat> formats;
-    if (viewDepth) {
-        if (viewDepthHistory) {
-            *viewDepthHistory =
-                s.graph.createHistory(name + ".view_depth", VK_FORMAT_R32_SFLOAT, extent, color);
-            t.viewDepth = graph::FrameGraph::current(**viewDepthHistory);
+    for (const SceneTarget& target : targets) {
+        const std::string image = name + target.suffix;
+        if (firstTargetHistory && t.colors.empty()) {
+            *firstTargetHistory = s.graph.createHistory(image, target.format, extent, color);
+            t.colors.push_back(graph::FrameGraph::current(**firstTargetHistory));
         } else {
-            t.viewDepth = target(".view_depth", VK_FORMAT_R32_SFLOAT, color);
+            t.colors.push_back(
+                s.graph.createImage(image, target.format, extent, color, persistent));
         }
-        colors.push_back(t.viewDepth);
-        formats.push_back(VK_FORMAT_R32_SFLOAT);
+        formats.push_back(target.format);
     }
-    t.normal = target(".normal", VK_FORMAT_R16G16B16A16_SFLOAT, color);
-    t.third =
-        target(thirdFormat == VK_FORMAT_R8G8B8A8_UNORM ? ".albedo" : ".flux", thirdFormat, color);
-    colors.insert(colors.end(), {t.normal, t.third});
-    formats.insert(formats.end(), {VK_FORMAT_R16G16B16A16_SFLOAT, thirdFormat});
-    t.depth = target(".depth", VK_FORMAT_D32_SFLOAT,
-                     VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
+    t.depth = s.graph.createImage(
+        name + ".depth", VK_FORMAT_D32_SFLOAT, extent,
+        VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, persistent);
 
     vk::GraphicsPipelineDesc desc;
     desc.vertices = sceneVertexInput();
@@ -52,14 +44,14 @@ SceneTargets addScenePass(PassSetup& s, const std::string& name, const std::stri
 
     using graph::Use;
     std::vector<graph::ImageUse> uses;
-    for (const graph::ImageRef& c : colors)
+    for (const graph::ImageRef& c : t.colors)
         uses.push_back({c, Use::ColorAttachment});
     uses.push_back({t.depth, Use::DepthAttachment});
     s.graph.addPass(
         name, graph::PassKind::Graphics, uses,
-        [&s, t, colors, extent, pipeline](const graph::PassContext& pc) {
+        [&s, t, extent, pipeline](const graph::PassContext& pc) {
             std::vector<VkRenderingAttachmentInfo> attachments;
-            for (const graph::ImageRef& c : colors) {
+            for (const graph::ImageRef& c : t.colors) {
                 VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
                 a.imageView = pc.image(c).view;
                 a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
@@ -72,7 +64,7 @@ SceneTargets addScenePass(PassSetup& s, const std::string& name, const std::stri
             depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
             depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
             depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-            depth.clearValue.depthStencil = {1.0f, 0}; // 1 marks "no geometry" (rsm_position.glsl)
+            depth.clearValue.depthStencil = {1.0f, 0}; // the far plane
             VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
             info.renderArea = {{0, 0}, extent};
             info.layerCount = 1;

@@ -22,7 +22,7 @@ graph::ImageRef addSsdoPass(PassSetup& s, const GBufferAndRsm& in, graph::ImageR
     pass.images = {
         {"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
         {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
-        {"gbufferAlbedo", in.gbuffer.third, Use::Sampled},
+        {"gbufferAlbedo", in.gbuffer.albedo, Use::Sampled},
         {"directRadiance", direct, Use::Sampled},
         {"historyViewDepth", history.viewDepth, Use::Sampled},
         {"historyCount", history.count, Use::Sampled},

@@ -79,6 +79,7 @@ uint32_t formatTexelSize(VkFormat format) {
     case VK_FORMAT_R16G16B16A16_SFLOAT:
         return 8;
     case VK_FORMAT_R32G32B32A32_SFLOAT:
+    case VK_FORMAT_R32G32B32A32_UINT:
         return 16;
     default:
         throw VulkanError("formatTexelSize: format not used by this renderer");

@@ -36,6 +36,20 @@ vec3 skyIrradianceOverPi(vec3 n, vec3 zenith, vec3 horizon, vec3 ground) {
     return ground * (0.5 - 0.5 * c) + horizon * (0.5 + 0.5 * c) + (zenith - horizon) * gradient;
 }
 
+// A unit vector as two numbers in [-1, 1] and back (the octahedral map).
+vec2 octahedralEncode(vec3 v) {
+    v /= abs(v.x) + abs(v.y) + abs(v.z);
+    vec2 e = v.xy;
+    if (v.z < 0.0) e = (1.0 - abs(v.yx)) * vec2(v.x >= 0.0 ? 1.0 : -1.0, v.y >= 0.0 ? 1.0 : -1.0);
+    return e;
+}
+vec3 octahedralDecode(vec2 e) {
+    vec3 v = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+    float t = max(-v.z, 0.0);
+    v.xy -= t * vec2(v.x >= 0.0 ? 1.0 : -1.0, v.y >= 0.0 ? 1.0 : -1.0);
+    return normalize(v);
+}
+
 // Per-pixel rotation of a sampling pattern (interleaved gradient noise, Jimenez 2014): plays
 // the role of the thesis's random-vector texture, decorrelating neighbouring pixels.
 float pixelRotation(ivec2 pixel) {

@@ -22,15 +22,15 @@ layout(set = 0, binding = 5) uniform sampler2D shadowImage;
 layout(set = 0, binding = 6) uniform sampler2D aoImage;
 layout(set = 0, binding = 7) uniform sampler2D indirectImage; // irradiance / pi
 layout(set = 0, binding = 8) uniform sampler2D ssdoImage;     // radiance
-layout(set = 0, binding = 9) uniform sampler2D rsmFlux;
-layout(set = 0, binding = 10) uniform sampler2D rsmNormal;
-layout(set = 0, binding = 11) uniform sampler2D secondLayer; // depth peeling's position
-layout(set = 0, binding = 12) uniform sampler2D skyVisibilityImage; // beyond the AO's radius
-layout(set = 0, binding = 13, rgba32f) uniform writeonly image2D hdrImage;
-layout(set = 0, binding = 14, rgba8) uniform writeonly image2D ldrImage;
+layout(set = 0, binding = 9) uniform usampler2D rsmVpls; // rsm_vpl.glsl
+layout(set = 0, binding = 10) uniform sampler2D secondLayer; // depth peeling's position
+layout(set = 0, binding = 11) uniform sampler2D skyVisibilityImage; // beyond the AO's radius
+layout(set = 0, binding = 12, rgba32f) uniform writeonly image2D hdrImage;
+layout(set = 0, binding = 13, rgba8) uniform writeonly image2D ldrImage;
 layout(push_constant) uniform CompositeBlock { CompositeConstants constants; };
 
 #include "gbuffer_position.glsl"
+#include "rsm_vpl.glsl"
 
 // Narkowicz's fit of the ACES filmic curve.
 vec3 tonemap(vec3 x) {
@@ -90,8 +90,9 @@ void main() {
     if (view == VIEW_DIRECT) value = direct * unit;
     float texel = 2.0 * frame.lightFrustum.z / frame.lightFrustum.w;
     vec2 outputUv = (vec2(written) + 0.5) / vec2(imageSize(hdrImage)); // the light's views fill it
-    if (view == VIEW_RSM_FLUX) value = texture(rsmFlux, outputUv).rgb * unit / (texel * texel);
-    if (view == VIEW_RSM_NORMAL) value = texture(rsmNormal, outputUv).xyz;
+    uvec4 vpl = texelFetch(rsmVpls, ivec2(outputUv * vec2(textureSize(rsmVpls, 0))), 0);
+    if (view == VIEW_RSM_FLUX) value = rsmTexelFlux(vpl) * unit / (texel * texel);
+    if (view == VIEW_RSM_NORMAL) value = rsmTexelDrawn(vpl) ? rsmTexelNormal(vpl) : vec3(0.0);
     vec4 shadow = texelFetch(shadowImage, pixel, 0);
     if (view == VIEW_SHADOW) value = vec3(shadow.r);
     if (view == VIEW_AO) value = vec3(ao);

@@ -7,7 +7,7 @@
 // every texel within R. An optional screen-space visibility test marches from p toward q at
 // log-spaced steps (equation 8) and rejects the VPL where a step has just crossed behind a
 // surface the G-buffer holds (indirect_visibility.glsl).
-// Needs: frame, rsm_position.glsl, rsmNormal, rsmFlux, gbuffer_position.glsl, gbufferNormal, VPLS, VISIBILITY,
+// Needs: frame, rsm_vpl.glsl, rsmVpls, gbuffer_position.glsl, gbufferNormal, VPLS, VISIBILITY,
 // VISIBILITY_STEPS, screen_space.glsl.
 
 #include "indirect_visibility.glsl"
@@ -46,26 +46,27 @@ vec3 gatherIndirect(vec3 p, vec3 n, float rotation, float radiusScale, float rad
         vec2 uv = center + samplingRadius * xi1 * vec2(cos(theta), sin(theta));
         if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) continue;
         ivec2 texel = ivec2(uv * size);
-        vec4 q = rsmPosition(texel);
-        if (q.w == 0.0) continue;
-        vec3 toVpl = q.xyz - p;
+        uvec4 vpl = texelFetch(rsmVpls, texel, 0); // one read: rsm_vpl.glsl
+        if (!rsmTexelDrawn(vpl)) continue;
+        vec3 q = rsmTexelPosition(texel, vpl);
+        vec3 toVpl = q - p;
         float distance2 = dot(toVpl, toVpl);
         // Clamp the distance to the VPL's own footprint: a texel cannot deliver more than the
         // disk it covers, which removes the 1/d^2 spike of VPLs right next to p. A VPL of one
         // subset of k^2 stands for k^2 texels' light (its weight is k^2 times a texel's), so its
         // footprint is k texels wide.
-        float footprint = distance(q.xyz, frame.lightPosition.xyz) * 2.0 * frame.lightFrustum.z /
+        float footprint = distance(q, frame.lightPosition.xyz) * 2.0 * frame.lightFrustum.z /
                           size * float(k);
         float d2 = max(distance2, footprint * footprint);
         vec3 D = toVpl * inversesqrt(max(distance2, 1e-12));
         float cosP = max(dot(n, D), 0.0);
-        float cosQ = max(dot(texelFetch(rsmNormal, texel, 0).xyz, -D), 0.0);
-        vec3 flux = texelFetch(rsmFlux, texel, 0).rgb;
+        float cosQ = max(dot(rsmTexelNormal(vpl), -D), 0.0);
+        vec3 flux = rsmTexelFlux(vpl);
         directional += dot(flux, vec3(0.2126, 0.7152, 0.0722)) * cosQ / (PI * d2) * xi1 *
                        vec4(1.0, D);
         // A VPL outside the spot's cone reflects nothing: no visibility test for it.
         if (cosP * cosQ <= 0.0 || all(equal(flux, vec3(0.0)))) continue;
-        if (VISIBILITY != 0 && !vplVisible(p, q.xyz)) continue;
+        if (VISIBILITY != 0 && !vplVisible(p, q)) continue;
         irradiance += flux * (cosP * cosQ / (PI * d2)) * xi1;
     }
     directional *= weightScale / PI;

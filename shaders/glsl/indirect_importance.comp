@@ -68,20 +68,6 @@ float pixelRandom(ivec2 pixel, uint frameIndex) {
            16777216.0;
 }
 
-// A unit vector as two numbers in [-1, 1] and back (the octahedral map).
-vec2 octahedralEncode(vec3 v) {
-    v /= abs(v.x) + abs(v.y) + abs(v.z);
-    vec2 e = v.xy;
-    if (v.z < 0.0) e = (1.0 - abs(v.yx)) * vec2(v.x >= 0.0 ? 1.0 : -1.0, v.y >= 0.0 ? 1.0 : -1.0);
-    return e;
-}
-vec3 octahedralDecode(vec2 e) {
-    vec3 v = vec3(e, 1.0 - abs(e.x) - abs(e.y));
-    float t = max(-v.z, 0.0);
-    v.xy -= t * vec2(v.x >= 0.0 ? 1.0 : -1.0, v.y >= 0.0 ? 1.0 : -1.0);
-    return normalize(v);
-}
-
 // The flux's list, loaded once per group (every group's pixels gather from all of it): its
 // position and probability; its flux and normal (octahedral); its texel (x + y * 65536).
 shared vec4 listPosition[FLUX_VPLS];

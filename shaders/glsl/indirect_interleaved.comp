@@ -22,17 +22,15 @@ layout(constant_id = 4) const int RADIUS = 8; // the filter's, for the refresh t
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
 layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
 layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
-layout(set = 0, binding = 3) uniform sampler2D rsmDepth; // the shadow map
-layout(set = 0, binding = 4) uniform sampler2D rsmNormal;
-layout(set = 0, binding = 5) uniform sampler2D rsmFlux;
-layout(set = 0, binding = 6) uniform sampler2D historyViewDepth;
-layout(set = 0, binding = 7) uniform sampler2D historyCount;
-layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D interleavedIndirect;
-layout(set = 0, binding = 9, rgba16f) uniform writeonly image2D interleavedDirectional;
+layout(set = 0, binding = 3) uniform usampler2D rsmVpls; // rsm_vpl.glsl
+layout(set = 0, binding = 4) uniform sampler2D historyViewDepth;
+layout(set = 0, binding = 5) uniform sampler2D historyCount;
+layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D interleavedIndirect;
+layout(set = 0, binding = 7, rgba16f) uniform writeonly image2D interleavedDirectional;
 layout(push_constant) uniform IndirectBlock { IndirectConstants constants; };
 
 #include "gbuffer_position.glsl"
-#include "rsm_position.glsl"
+#include "rsm_vpl.glsl"
 #include "screen_space.glsl"
 #include "temporal.glsl"
 #include "indirect_gather.glsl"

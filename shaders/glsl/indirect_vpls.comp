@@ -27,20 +27,18 @@ layout(constant_id = 1) const int FLUX_VPLS = 2048; // drawn each frame: indirec
 layout(constant_id = 2) const int CLUSTER = 4;      // RSM texels per VPL, per side
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
-layout(set = 0, binding = 1) uniform sampler2D rsmDepth; // the shadow map
-layout(set = 0, binding = 2) uniform sampler2D rsmNormal;
-layout(set = 0, binding = 3) uniform sampler2D rsmFlux;
+layout(set = 0, binding = 1) uniform usampler2D rsmVpls; // rsm_vpl.glsl
 // The VPL map: position (w 1 where the VPL carries light), normal, flux.
-layout(set = 0, binding = 4, rgba32f) uniform image2D vplPosition;
-layout(set = 0, binding = 5, rgba32f) uniform image2D vplNormal;
-layout(set = 0, binding = 6, rgba32f) uniform image2D vplFlux;
-layout(set = 0, binding = 7, r32f) uniform coherent image2D fluxPyramid;
+layout(set = 0, binding = 2, rgba32f) uniform image2D vplPosition;
+layout(set = 0, binding = 3, rgba32f) uniform image2D vplNormal;
+layout(set = 0, binding = 4, rgba32f) uniform image2D vplFlux;
+layout(set = 0, binding = 5, r32f) uniform coherent image2D fluxPyramid;
 // FLUX_VPLS + 1 columns: row 0 (position, VPL-map texel x), row 1 (normal, texel y), row 2
 // (flux, the VPL's probability); column FLUX_VPLS, row 0: the total luminance.
-layout(set = 0, binding = 8, rgba32f) uniform writeonly image2D vplList;
+layout(set = 0, binding = 6, rgba32f) uniform writeonly image2D vplList;
 layout(push_constant) uniform VplDrawBlock { VplDrawConstants constants; };
 
-#include "rsm_position.glsl"
+#include "rsm_vpl.glsl"
 
 shared float sums[8][8];
 
@@ -71,7 +69,7 @@ float cluster(ivec2 vpl) {
         for (int x = 0; x < CLUSTER; ++x) {
             ivec2 texel = corner + ivec2(x, y);
             bool inside = all(lessThanEqual(texel, last));
-            vec3 f = inside ? texelFetch(rsmFlux, min(texel, last), 0).rgb : vec3(0.0);
+            vec3 f = inside ? rsmTexelFlux(texelFetch(rsmVpls, min(texel, last), 0)) : vec3(0.0);
             flux += f;
             if (luminance(f) > brightest) {
                 brightest = luminance(f);
@@ -83,14 +81,16 @@ float cluster(ivec2 vpl) {
     ivec2 middle = corner + (CLUSTER - 1) / 2;
     for (int i = 0; i < 4; ++i) {
         ivec2 texel = min(middle + ivec2(i & 1, i >> 1), last);
-        float w = luminance(texelFetch(rsmFlux, texel, 0).rgb);
-        position += w * rsmPosition(texel).xyz;
-        normal += w * texelFetch(rsmNormal, texel, 0).xyz;
+        uvec4 vpl = texelFetch(rsmVpls, texel, 0);
+        float w = luminance(rsmTexelFlux(vpl));
+        position += w * rsmTexelPosition(texel, vpl);
+        normal += w * rsmTexelNormal(vpl);
         weight += w;
     }
     if (weight == 0.0 && brightest > 0.0) {
-        position = rsmPosition(brightestTexel).xyz;
-        normal = texelFetch(rsmNormal, brightestTexel, 0).xyz;
+        uvec4 vpl = texelFetch(rsmVpls, brightestTexel, 0);
+        position = rsmTexelPosition(brightestTexel, vpl);
+        normal = rsmTexelNormal(vpl);
         weight = 1.0;
     }
     bool lit = weight > 0.0 && length(normal) > 0.0;

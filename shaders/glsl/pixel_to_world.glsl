@@ -1,5 +1,5 @@
 // World positions from depths: the G-buffer (gbuffer_position.glsl), last frame's G-buffer
-// (temporal.glsl) and the RSM (rsm_position.glsl) keep a depth per texel, not a position. A
+// (temporal.glsl) and the RSM (rsm_vpl.glsl) keep a depth per texel, not a position. A
 // texel's position is the ray through its centre taken to that depth along the view axis:
 // eye + (x * centre.x + y * centre.y + origin) * depth, the columns of FrameUniforms'
 // pixelToWorld, previousPixelToWorld and lightPixelToWorld (renderer.cpp).

@@ -1,8 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Reflective shadow map (Dachsbacher & Stamminger 2005): per texel the surface's normal (facing
-// the light) and the flux it reflects, each texel a virtual point light; its world position
-// follows from the depth target (rsm_position.glsl).
+// Reflective shadow map (Dachsbacher & Stamminger 2005): each texel a virtual point light, one
+// RGBA32UI texel holding its albedo, the share of the light it reflects, its normal (facing the
+// light) and its distance along the light's axis (rsm_vpl.glsl).
 #include "shared.h"
 #include "common.glsl"
 
@@ -14,8 +14,9 @@ layout(location = 0) in vec3 worldPosition;
 layout(location = 1) in vec3 worldNormal;
 layout(location = 2) in vec2 uv;
 
-layout(location = 0) out vec4 outNormal;
-layout(location = 1) out vec4 outFlux;
+layout(location = 0) out uvec4 outVpl;
+
+#include "rsm_vpl.glsl"
 
 void main() {
     vec4 albedo = draw.baseColorFactor;
@@ -33,6 +34,7 @@ void main() {
     float solidAngle = texelSize * texelSize * cosAxis * cosAxis * cosAxis;
     float spot = spotAttenuation(fromLight, frame.lightDirection.xyz, frame.lightDirection.w,
                                  frame.lightColor.w);
-    outNormal = vec4(n, 0.0);
-    outFlux = vec4(albedo.rgb * frame.lightColor.rgb * spot * solidAngle, 1.0);
+    // The distance along the axis is never 0: the light's near plane lies in front.
+    float axisDepth = dot(worldPosition - frame.lightPosition.xyz, frame.lightDirection.xyz);
+    outVpl = packRsmTexel(albedo.rgb, spot * solidAngle, n, axisDepth);
 }

@@ -31,8 +31,8 @@ struct FrameUniforms {
     mat4 pixelToWorld;
     mat4 previousPixelToWorld;
     mat4 lightViewProjection;
-    // The same for the RSM's texels and its light-view depth (rsm_position.glsl): the RSM keeps
-    // no positions; they follow from its depth target, the shadow map.
+    // The same for the RSM's texels and their distance along the light's axis (rsm_vpl.glsl):
+    // the RSM keeps no positions.
     mat4 lightPixelToWorld;
     mat4 inverseLightViewProjection;
     vec4 cameraPosition; // xyz
