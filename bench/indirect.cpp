@@ -197,6 +197,7 @@ Json indirectComparison(vk::Context& ctx, const Scene& scene, const Options& opt
         entry["converged"] = {{"all", figures(converged, truth, geometry)},
                               {"edge_band", figures(converged, truth, band)}};
         entry["one_frame_vs_converged"] = figures(one, converged, geometry);
+        entry["one_frame_vs_converged_band"] = figures(one, converged, band);
         if (m > 0) {
             const metrics::Image oneBounce = bounceOf(single, "indirect");
             const metrics::Image convergedBounce = bounceOf(still, "indirect.history");

@@ -5,7 +5,8 @@
 Per scene: each method's frame time and the cost of the light relative to the rest of an
 uncached frame, its passes, and its error against the path-traced reference (whole image and
 the bounce alone; one uncached frame and the converged cache; over the geometry and in a band
-of 8 pixels around depth edges), with one frame against its own converged image; then the
+of 8 pixels around depth edges), with one frame against its own converged image (also in the band, with the band's share of
+the whole image's sum); then the
 means of each term (direct, bounce, sky) against the reference's, which tell where the whole
 image's error comes from."""
 import argparse
@@ -17,6 +18,18 @@ def table(header, rows):
     out = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     out += ["| " + " | ".join(str(c) for c in row) + " |" for row in rows]
     return "\n".join(out) + "\n"
+
+
+def band_share(method):
+    """One frame against the converged image inside the depth-edge band, and the band's share of
+    the whole image's sum of relative squared errors (relMSE is a mean over pixels)."""
+    whole = method["one_frame_vs_converged"]
+    band = method.get("one_frame_vs_converged_band")
+    if band is None:
+        return "—"
+    total = whole["relmse"] * whole["pixels"]
+    share = band["relmse"] * band["pixels"] / total if total > 0 else 0.0
+    return "%.5f (%.0f%%)" % (band["relmse"], 100.0 * share)
 
 
 def main():
@@ -71,9 +84,11 @@ def main():
             rows.append([m["label"], "%.4f" % one["all"]["relmse"],
                          "%.4f" % conv["all"]["relmse"], "%.4f" % one["edge_band"]["relmse"],
                          "%.4f" % conv["edge_band"]["relmse"],
-                         "%.5f" % m["one_frame_vs_converged"]["relmse"]])
+                         "%.5f" % m["one_frame_vs_converged"]["relmse"],
+                         band_share(m)])
         md.append(table(["method", "image, 1 frame", "image, converged", "band, 1 frame",
-                         "band, converged", "1 frame vs converged"], rows))
+                         "band, converged", "1 frame vs converged",
+                         "1 frame vs converged: band (its share)"], rows))
         md.append("\nThe bounce alone against the reference's, and each term's mean over the "
                   "geometry (real-time converged / reference):\n\n")
         rows = []
