@@ -65,6 +65,7 @@ graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& 
         c.scale = s.patternScale;
         c.radius = float(s.model.settings.indirect_radius);
         c.radialOffset = radialOffset(s, cache);
+        c.visibilityStart = float(s.model.settings.indirect_visibility_start);
         c.width = int(s.size.width);
         c.height = int(s.size.height);
         c.axisX = axis.x;

@@ -26,6 +26,7 @@ graph::ImageRef addIndirectPasses(PassSetup& s, const GBufferAndRsm& in, EffectC
         c.scale = s.patternScale;
         c.radius = float(s.model.settings.indirect_radius);
         c.radialOffset = radialOffset(s, cache);
+        c.visibilityStart = float(s.model.settings.indirect_visibility_start);
         c.width = int(halfSize.width);
         c.height = int(halfSize.height);
         c.cache = cacheConstants(s, cache);

@@ -86,6 +86,9 @@ namespace ssgi {
       "screen-space visibility test of each VPL")                                                  \
     X(indirect_visibility_steps, int, 6, 1, 32, "Indirect light",                                  \
       "log-spaced steps of the visibility test")                                                   \
+    X(indirect_visibility_start, double, 0.1, 0.001, 0.9, "Indirect light",                        \
+      "where the visibility test's log-spaced march begins, a fraction of the way to the VPL "     \
+      "(nearer: longer far steps, which take open space behind an object for an occluder)")        \
     X(indirect_half_res, bool, true, 0, 1, "Indirect light",                                       \
       "method 0: gather at half resolution and upsample (1), or every pixel at full (0)")          \
     X(cache, bool, true, 0, 1, "Temporal cache",                                                   \

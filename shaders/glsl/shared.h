@@ -142,8 +142,9 @@ struct IndirectConstants {
     int width, height;  // the gather's image (method 0: the half-resolution one)
     int axisX, axisY;   // the interleaved method's filter: the axis of this pass
     CacheConstants cache;
+    float visibilityStart; // indirect_visibility_start (indirect_visibility.glsl)
 };
-SSGI_CHECK_SIZE(IndirectConstants, 80);
+SSGI_CHECK_SIZE(IndirectConstants, 84);
 
 // The VPLs of indirect_method 2 (indirect_vpls.comp): the RSM clustered into a coarser VPL
 // map, and a pyramid of the VPLs' flux luminance (level 0 the map padded to `paddedSize`, a
