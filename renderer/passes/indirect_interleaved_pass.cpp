@@ -60,17 +60,9 @@ graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& 
 
     const CacheInputs history = cacheInputs(s, cache, in.gbuffer.viewDepth);
     auto constants = [&s, cache](glm::ivec2 axis) {
-        shader::IndirectConstants c{};
-        c.rotation = s.patternRotation;
-        c.scale = s.patternScale;
-        c.radius = float(s.model.settings.indirect_radius);
-        c.radialOffset = radialOffset(s, cache);
-        c.visibilityStart = float(s.model.settings.indirect_visibility_start);
-        c.width = int(s.size.width);
-        c.height = int(s.size.height);
+        shader::IndirectConstants c = indirectConstants(s, cache, s.size);
         c.axisX = axis.x;
         c.axisY = axis.y;
-        c.cache = cacheConstants(s, cache);
         return c;
     };
 

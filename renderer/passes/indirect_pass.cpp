@@ -20,18 +20,7 @@ graph::ImageRef addIndirectPasses(PassSetup& s, const GBufferAndRsm& in, EffectC
          int(s.model.settings.indirect_visibility_steps), int(s.model.settings.indirect_half_res)}};
     const bool halfRes = s.model.settings.indirect_half_res;
     const CacheInputs history = cacheInputs(s, cache, in.gbuffer.viewDepth);
-    auto constants = [&s, halfSize, cache]() {
-        shader::IndirectConstants c{};
-        c.rotation = s.patternRotation;
-        c.scale = s.patternScale;
-        c.radius = float(s.model.settings.indirect_radius);
-        c.radialOffset = radialOffset(s, cache);
-        c.visibilityStart = float(s.model.settings.indirect_visibility_start);
-        c.width = int(halfSize.width);
-        c.height = int(halfSize.height);
-        c.cache = cacheConstants(s, cache);
-        return c;
-    };
+    auto constants = [&s, halfSize, cache]() { return indirectConstants(s, cache, halfSize); };
 
     addKeepPass(s, cache, {half, full});
     using graph::Use;

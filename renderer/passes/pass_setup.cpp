@@ -17,4 +17,18 @@ const vk::Pipeline& PassSetup::computePipeline(const ComputePassDesc& desc,
     return pipelines.back();
 }
 
+shader::IndirectConstants indirectConstants(const PassSetup& s, const EffectCache* cache,
+                                            VkExtent2D gather) {
+    shader::IndirectConstants c{};
+    c.rotation = s.patternRotation;
+    c.scale = s.patternScale;
+    c.radius = float(s.model.settings.indirect_radius);
+    c.radialOffset = radialOffset(s, cache);
+    c.visibilityStart = float(s.model.settings.indirect_visibility_start);
+    c.width = int(gather.width);
+    c.height = int(gather.height);
+    c.cache = cacheConstants(s, cache);
+    return c;
+}
+
 } // namespace ssgi

@@ -120,6 +120,13 @@ graph::ImageRef addDirectPass(PassSetup& setup, const GBufferAndRsm& inputs,
 // ao: visibility of the hemisphere within the AO radius (1 = open).
 graph::ImageRef addAoPass(PassSetup& setup, const GBufferAndRsm& inputs, EffectCache* cache);
 
+// The push constants of the indirect light's passes this frame (every method's gather, the
+// upsampling, the filter's axes; the filter's axis left 0): the pattern's turn, scale and
+// radial place, the sampling radius and the visibility march's start, the cache's state;
+// `gather` is the size of the image the gather writes.
+shader::IndirectConstants indirectConstants(const PassSetup& setup, const EffectCache* cache,
+                                            VkExtent2D gather);
+
 // indirect (half resolution) + upsample, indirect_method 0: one-bounce irradiance / pi from
 // the RSM's VPLs.
 graph::ImageRef addIndirectPasses(PassSetup& setup, const GBufferAndRsm& inputs,

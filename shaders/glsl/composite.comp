@@ -90,9 +90,11 @@ void main() {
     if (view == VIEW_DIRECT) value = direct * unit;
     float texel = 2.0 * frame.lightFrustum.z / frame.lightFrustum.w;
     vec2 outputUv = (vec2(written) + 0.5) / vec2(imageSize(hdrImage)); // the light's views fill it
-    uvec4 vpl = texelFetch(rsmVpls, ivec2(outputUv * vec2(textureSize(rsmVpls, 0))), 0);
-    if (view == VIEW_RSM_FLUX) value = rsmTexelFlux(vpl) * unit / (texel * texel);
-    if (view == VIEW_RSM_NORMAL) value = rsmTexelDrawn(vpl) ? rsmTexelNormal(vpl) : vec3(0.0);
+    if (view == VIEW_RSM_FLUX || view == VIEW_RSM_NORMAL) { // read only for their views
+        uvec4 vpl = texelFetch(rsmVpls, ivec2(outputUv * vec2(textureSize(rsmVpls, 0))), 0);
+        if (view == VIEW_RSM_FLUX) value = rsmTexelFlux(vpl) * unit / (texel * texel);
+        if (view == VIEW_RSM_NORMAL) value = rsmTexelDrawn(vpl) ? rsmTexelNormal(vpl) : vec3(0.0);
+    }
     vec4 shadow = texelFetch(shadowImage, pixel, 0);
     if (view == VIEW_SHADOW) value = vec3(shadow.r);
     if (view == VIEW_AO) value = vec3(ao);
