@@ -81,6 +81,55 @@ TEST(VplSubsets, EveryBlockGathersEachVplOnce) {
     }
 }
 
+// The VPL pattern (shared.h, the functions the gathers run) has the density it claims: its total
+// Z is the integral of 1/r over the map, summed here cell by cell, and its points, each weighted
+// by the area it stands for (Z r / n), integrate functions over the map (or the disk) to their
+// exact integrals, wherever the centre lies: inside, near an edge, on an edge, in a corner.
+TEST(VplPattern, PointsWeightedByTheirAreaIntegrateOverTheMap) {
+    const int cells = 2000;
+    const int n = 4096;
+    for (glm::vec2 c : {glm::vec2(0.5f), glm::vec2(0.9f, 0.2f), glm::vec2(0.03f, 0.97f),
+                        glm::vec2(1.0f, 0.4f), glm::vec2(0.0f)}) {
+        const shader::VplPattern pattern = shader::vplPattern(c, 0.0f);
+        double z = 0.0; // the integral of 1/r over the map, the midpoint rule
+        for (int y = 0; y < cells; ++y)
+            for (int x = 0; x < cells; ++x)
+                z += 1.0 / glm::length((glm::vec2(x, y) + 0.5f) / float(cells) - c);
+        z /= double(cells) * cells;
+        EXPECT_NEAR(pattern.total, z, 2e-3 * z) << "centre " << c.x << ", " << c.y;
+        // The map's area, the integral of x y (1/4) and of a bump off the centre.
+        double area = 0.0, xy = 0.0, bump = 0.0, bumpTruth = 0.0;
+        auto bumpAt = [](glm::vec2 p) { return std::exp(-40.0 * glm::dot(p - 0.3f, p - 0.3f)); };
+        for (int y = 0; y < cells; y += 4)
+            for (int x = 0; x < cells; x += 4)
+                bumpTruth += bumpAt((glm::vec2(x, y) + 2.0f) / float(cells)) * 16.0 / cells / cells;
+        for (int i = 0; i < n; ++i) {
+            float r = 0.0f;
+            const glm::vec2 p = shader::vplPatternPoint(pattern, i, n, 0.5f, 1.0f, r);
+            ASSERT_TRUE(p.x >= 0.0f && p.y >= 0.0f && p.x <= 1.0f && p.y <= 1.0f)
+                << "VPL " << i << " at " << p.x << ", " << p.y;
+            EXPECT_NEAR(r, glm::length(p - c), 1e-5f);
+            const double weight = 1.0 / (n * shader::vplPatternDensity(pattern, r, 1e6f));
+            area += weight;
+            xy += weight * p.x * p.y;
+            bump += weight * bumpAt(p);
+        }
+        EXPECT_NEAR(area, 1.0, 0.01) << "centre " << c.x << ", " << c.y;
+        EXPECT_NEAR(xy, 0.25, 0.01) << "centre " << c.x << ", " << c.y;
+        EXPECT_NEAR(bump, bumpTruth, 0.02 * bumpTruth) << "centre " << c.x << ", " << c.y;
+    }
+    // A disk of radius 0.3 inside the map: its area.
+    const shader::VplPattern disk = shader::vplPattern(glm::vec2(0.5f), 0.3f);
+    double area = 0.0;
+    for (int i = 0; i < n; ++i) {
+        float r = 0.0f;
+        const glm::vec2 p = shader::vplPatternPoint(disk, i, n, 0.5f, 0.0f, r);
+        EXPECT_LE(glm::length(p - 0.5f), 0.3f + 1e-5f);
+        area += 1.0 / (n * shader::vplPatternDensity(disk, r, 1e6f));
+    }
+    EXPECT_NEAR(area, glm::pi<double>() * 0.09, 0.003);
+}
+
 // The visibility test removes the indirect light that would leak through a wall, with either
 // method of gathering it.
 class LeakTest : public test::VulkanTest, public ::testing::WithParamInterface<int> {};

@@ -2,9 +2,9 @@
 // Stamminger 2005): every RSM texel q is a virtual point light of flux Phi_q, and
 // E(p) = sum_q Phi_q max(0, n_p . D) max(0, n_q . -D) / (pi |q - p|^2), D = (q - p)/|q - p|
 // (equations 9-10 with the 1/pi of a diffuse emitter). VPLS texels are gathered around p's
-// projection in a polar pattern r = R xi1, theta = 2 pi xi2, whose density falls as 1/r; each
-// is weighted by its sample distance r to undo that density, so the sum estimates the sum over
-// every texel within R. An optional screen-space visibility test marches from p toward q at
+// projection in a polar pattern whose density falls as 1/r (shared.h vplPattern); each is
+// weighted by its distance r to undo that density, so the sum estimates the sum over every
+// texel the pattern reaches. An optional screen-space visibility test marches from p toward q at
 // log-spaced steps (equation 8) and rejects the VPL where a step has just crossed behind a
 // surface the G-buffer holds (indirect_visibility.glsl).
 // Needs: frame, rsm_vpl.glsl, rsmVpls, gbuffer_position.glsl, gbufferNormal, VPLS, VISIBILITY,
@@ -25,25 +25,21 @@ vec3 gatherIndirect(vec3 p, vec3 n, float rotation, float radiusScale, float rad
     int subsets = k * k;
     vec4 clip = frame.lightViewProjection * vec4(p, 1.0);
     // The pattern is centred on p's projection (the map's centre when p is behind the light) and
-    // clamped into the map. With radius 0 it reaches the map's farthest corner, so that every
-    // VPL can be drawn (a ceiling above a downward spot sees only VPLs far from its projection);
-    // a radius > 0 is the RSM paper's r_max, cheaper and biased.
+    // clamped into the map. With radius 0 it covers the whole map, so that every VPL can be
+    // drawn (a ceiling above a downward spot sees only VPLs far from its projection); a radius
+    // > 0 is the RSM paper's r_max, cheaper and biased.
     vec2 center = clip.w > 0.0 ? clip.xy / clip.w * 0.5 + 0.5 : vec2(0.5);
-    center = clamp(center, vec2(0.0), vec2(1.0));
-    vec2 farCorner = max(center, 1.0 - center);
-    float samplingRadius = radius > 0.0 ? radius * radiusScale : length(farCorner);
+    VplPattern pattern = vplPattern(clamp(center, vec2(0.0), vec2(1.0)), radius * radiusScale);
     float size = frame.lightFrustum.w;
-    // Texels in the disk per sample: the sum over all texels ~ (texels per unit area) x area
-    // element of each sample, which for this pattern is 2 pi R r / VPLS.
-    float weightScale =
-        size * size * 2.0 * PI * samplingRadius * samplingRadius / float(VPLS) * float(subsets);
+    // Texels per sample: a sample at distance r stands for the map's area 1 / (VPLS density),
+    // total r / VPLS (shared.h vplPattern), of size^2 texels per unit area.
+    float weightScale = size * size * pattern.total / float(VPLS) * float(subsets);
     vec3 irradiance = vec3(0.0);
     directional = vec4(0.0);
     for (int j = 0; j < vplSubsetSize(subset, VPLS, k); ++j) {
         int i = vplOfSubset(subset, j, k);
-        float xi1 = (float(i) + stratum) / float(VPLS);
-        float theta = float(i) * 2.39996323 + rotation;
-        vec2 uv = center + samplingRadius * xi1 * vec2(cos(theta), sin(theta));
+        float r;
+        vec2 uv = vplPatternPoint(pattern, i, VPLS, stratum, rotation, r);
         if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) continue;
         ivec2 texel = ivec2(uv * size);
         uvec4 vpl = texelFetch(rsmVpls, texel, 0); // one read: rsm_vpl.glsl
@@ -62,12 +58,12 @@ vec3 gatherIndirect(vec3 p, vec3 n, float rotation, float radiusScale, float rad
         float cosP = max(dot(n, D), 0.0);
         float cosQ = max(dot(rsmTexelNormal(vpl), -D), 0.0);
         vec3 flux = rsmTexelFlux(vpl);
-        directional += dot(flux, vec3(0.2126, 0.7152, 0.0722)) * cosQ / (PI * d2) * xi1 *
-                       vec4(1.0, D);
+        directional +=
+            dot(flux, vec3(0.2126, 0.7152, 0.0722)) * cosQ / (PI * d2) * r * vec4(1.0, D);
         // A VPL outside the spot's cone reflects nothing: no visibility test for it.
         if (cosP * cosQ <= 0.0 || all(equal(flux, vec3(0.0)))) continue;
         if (VISIBILITY != 0 && !vplVisible(p, q)) continue;
-        irradiance += flux * (cosP * cosQ / (PI * d2)) * xi1;
+        irradiance += flux * (cosP * cosQ / (PI * d2)) * r;
     }
     directional *= weightScale / PI;
     return irradiance * weightScale / PI;

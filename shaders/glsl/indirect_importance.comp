@@ -4,7 +4,7 @@
 // in indirect_interleaved.comp (each pixel of a k x k block gathers one of k^2 disjoint
 // subsets, and indirect_reconstruct.comp puts them back together), from two sets of VPLs:
 // - the pattern's VPLS texels around the pixel's projection into the RSM, dense near it
-//   (indirect_gather.glsl: r = R xi1), which finds the close VPLs whose 1/d^2 dominates at
+//   (shared.h vplPattern: density 1/r), which finds the close VPLs whose 1/d^2 dominates at
 //   creases and contacts;
 // - FLUX_VPLS texels drawn in proportion to their reflected flux (indirect_vpls.comp), the same
 //   list for every pixel, which puts the VPLs where the light is.
@@ -119,18 +119,14 @@ void main() {
     // The pattern around p's projection, as indirect_gather.glsl draws it.
     vec4 clip = frame.lightViewProjection * vec4(p, 1.0);
     vec2 center = clip.w > 0.0 ? clip.xy / clip.w * 0.5 + 0.5 : vec2(0.5);
-    center = clamp(center, vec2(0.0), vec2(1.0));
-    float samplingRadius = constants.radius > 0.0 ? constants.radius * constants.scale
-                                                  : length(max(center, 1.0 - center));
+    VplPattern pattern =
+        vplPattern(clamp(center, vec2(0.0), vec2(1.0)), constants.radius * constants.scale);
     float size = float(MAP_SIZE);
     float rotation = pixelRotation(pixel) + constants.rotation;
     float stratum = radialOffset(constants.radialOffset, 0.5);
     int patternCount = vplSubsetSize(subset, VPLS, INTERLEAVE);
     int fluxCount = vplSubsetSize(subset, FLUX_VPLS, INTERLEAVE);
     float totalFlux = texelFetch(vplList, ivec2(POOL, 0), 0).r;
-    // The pattern's probability of a texel at distance r (uv) from the centre, per sample:
-    // density 1 / (2 pi R r) over the map's uv, a texel 1 / size^2 of it.
-    float patternDensity = 1.0 / (2.0 * PI * samplingRadius * size * size);
     // A VPL of one subset of k^2 stands for k^2 texels: its footprint is k texels wide, at its
     // distance from the light (squared, over that distance squared).
     float footprintScale = pow(2.0 * frame.lightFrustum.z / (2.0 * size) * float(INTERLEAVE), 2.0);
@@ -144,9 +140,7 @@ void main() {
         float r, pFlux;
         if (c < patternCount) {
             int i = vplOfSubset(subset, c, INTERLEAVE);
-            float xi1 = (float(i) + stratum) / float(VPLS);
-            float theta = float(i) * 2.39996323 + rotation;
-            vec2 uv = center + samplingRadius * xi1 * vec2(cos(theta), sin(theta));
+            vec2 uv = vplPatternPoint(pattern, i, VPLS, stratum, rotation, r);
             candidateLight[c] = vec4(0.0);
             if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) continue;
             texel = ivec2(uv * size);
@@ -155,7 +149,6 @@ void main() {
             q = stored.xyz;
             nq = texelFetch(vplNormal, texel, 0).xyz;
             flux = texelFetch(vplFlux, texel, 0).rgb;
-            r = samplingRadius * xi1;
             pFlux = totalFlux > 0.0 ? luminance(flux) / totalFlux : 0.0;
             if (pFlux <= 0.0) continue;
         } else {
@@ -168,15 +161,15 @@ void main() {
             flux = listFlux[j].rgb;
             nq = octahedralDecode(unpackSnorm2x16(floatBitsToUint(listFlux[j].w)));
             uint packed = listTexel[j];
-            r = length((vec2(packed & 0xffffu, packed >> 16) + 0.5) / size - center);
+            r = length((vec2(packed & 0xffffu, packed >> 16) + 0.5) / size - pattern.center);
         }
         vec3 toVpl = q - p;
         float distance2 = dot(toVpl, toVpl);
         vec3 D = toVpl * inversesqrt(max(distance2, 1e-12));
         float cosQ = -dot(nq, D);
         if (cosQ <= 0.0) continue; // p lies behind the VPL's surface
-        // Both densities at this texel (the pattern reaches no farther than R).
-        float pPattern = r <= samplingRadius ? patternDensity / max(r, 0.5 / size) : 0.0;
+        // Both densities at this texel, a texel 1 / size^2 of the map's uv.
+        float pPattern = vplPatternDensity(pattern, r, size) / (size * size);
         float weight = 1.0 / (float(patternCount) * pPattern + float(fluxCount) * pFlux);
         // The distance clamped to the VPL's footprint, as indirect_gather.glsl's.
         vec3 fromLight = q - frame.lightPosition.xyz;

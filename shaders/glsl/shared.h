@@ -6,16 +6,28 @@
 #define SSGI_SHARED_H
 
 #ifdef __cplusplus
+#include <cmath>
 #include <glm/glm.hpp>
 namespace ssgi::shader {
+using vec2 = glm::vec2;
 using vec4 = glm::vec4;
 using mat4 = glm::mat4;
 using ivec4 = glm::ivec4;
+using glm::clamp;
+using glm::length;
+using glm::max;
+using std::asinh;
+using std::cos;
+using std::floor;
+using std::sin;
+using std::sinh;
 #define SSGI_CHECK_SIZE(type, bytes) static_assert(sizeof(type) == bytes, #type " layout")
 #define SSGI_INLINE inline
+#define SSGI_OUT(type) type&
 #else
 #define SSGI_CHECK_SIZE(type, bytes)
 #define SSGI_INLINE
+#define SSGI_OUT(type) out type
 #endif
 
 // Everything a pass may need about the frame: cameras, the light, the sky. Set 0, binding 0.
@@ -132,6 +144,99 @@ SSGI_INLINE int vplOfSubset(int s, int j, int k) {
 }
 SSGI_INLINE int vplSubsetSize(int s, int n, int k) {
     return s < n ? (n - s + k * k - 1) / (k * k) : 0;
+}
+
+// Where a pixel's VPLs lie in the reflective shadow map: a polar pattern around the pixel's
+// projection c, whose density falls as 1/r with the distance r from c (the thesis's r = R xi1,
+// 3.3), so that the close VPLs, whose 1/d^2 dominates at creases and contacts, are drawn most.
+// - With a sampling radius R > 0 (the RSM paper's r_max): the disk of radius R, density
+//   1 / (2 pi R r); points that fall outside the map are lost.
+// - With R = 0 (the whole map): the same 1/r density over the map alone, nothing lost. The
+//   direction is drawn in proportion to how far the map reaches along it, and r uniformly up to
+//   the map's edge: density 1 / (Z r), Z the integral of that reach over the angle. Along an
+//   edge at distance d from c the reach is d / cos(psi), whose integral over psi is
+//   d asinh(tan psi), so each edge's share of Z and the point where a direction leaves the map
+//   are closed forms.
+// A sample (xi1, xi2) in [0, 1)^2 maps to r = xi1 x reach, its direction xi2 of the way round;
+// of n samples, each stands for the map's area 1 / (n density) = Z r / n (tests/test_effects.cpp
+// checks that they add up to the map's area and integrate functions over it).
+struct VplPattern {
+    vec2 center;
+    float radius; // > 0: the disk's; 0: the whole map
+    float total;  // Z: 1 / (total r) is the density per unit of the map's uv area
+    vec4 share;   // the whole-map pattern: each edge's part of total (right, top, left, bottom)
+};
+
+// The map's edges seen from c, counter-clockwise: the foot of the perpendicular from c, the
+// edge's direction, the perpendicular's length d, and the signed offsets of the edge's two ends
+// from the foot.
+SSGI_INLINE void vplPatternEdge(vec2 c, int e, SSGI_OUT(vec2) foot, SSGI_OUT(vec2) along,
+                                SSGI_OUT(float) d, SSGI_OUT(vec2) ends) {
+    if (e == 0) {
+        foot = vec2(1.0f, c.y), along = vec2(0.0f, 1.0f), d = 1.0f - c.x;
+        ends = vec2(-c.y, 1.0f - c.y);
+    } else if (e == 1) {
+        foot = vec2(c.x, 1.0f), along = vec2(-1.0f, 0.0f), d = 1.0f - c.y;
+        ends = vec2(c.x - 1.0f, c.x);
+    } else if (e == 2) {
+        foot = vec2(0.0f, c.y), along = vec2(0.0f, -1.0f), d = c.x;
+        ends = vec2(c.y - 1.0f, c.y);
+    } else {
+        foot = vec2(c.x, 0.0f), along = vec2(1.0f, 0.0f), d = c.y;
+        ends = vec2(-c.x, 1.0f - c.x);
+    }
+}
+
+// `center` in [0, 1]^2; an edge closer to it than 1e-4 subtends no angle and gets no share.
+SSGI_INLINE VplPattern vplPattern(vec2 center, float radius) {
+    VplPattern pattern;
+    pattern.center = center;
+    pattern.radius = radius;
+    pattern.share = vec4(0.0f);
+    pattern.total = 6.28318531f * radius; // the disk's: 2 pi R
+    if (radius > 0.0f) return pattern;
+    for (int e = 0; e < 4; ++e) {
+        vec2 foot, along, ends;
+        float d;
+        vplPatternEdge(center, e, foot, along, d, ends);
+        if (d > 1e-4f) pattern.share[e] = d * (asinh(ends.y / d) - asinh(ends.x / d));
+    }
+    pattern.total = pattern.share.x + pattern.share.y + pattern.share.z + pattern.share.w;
+    return pattern;
+}
+
+// The point of VPL i of n in the map's uv (outside [0, 1)^2 only for a disk), and its distance
+// r from the centre: a Fibonacci lattice, xi1 = (i + stratum) / n (stratum in [0, 1): where in
+// its ring) and xi2 = i / golden ratio^2 + rotation / 2 pi (the golden angle's turns).
+SSGI_INLINE vec2 vplPatternPoint(VplPattern pattern, int i, int n, float stratum, float rotation,
+                                 SSGI_OUT(float) r) {
+    float xi1 = (float(i) + stratum) / float(n);
+    float turns = float(i) * 0.381966011f + rotation / 6.28318531f;
+    float xi2 = turns - floor(turns);
+    if (pattern.radius > 0.0f) {
+        float theta = 6.28318531f * xi2;
+        r = pattern.radius * xi1;
+        return pattern.center + r * vec2(cos(theta), sin(theta));
+    }
+    float m = xi2 * pattern.total;
+    int e = 0;
+    for (; e < 3 && m >= pattern.share[e]; ++e)
+        m -= pattern.share[e];
+    vec2 foot, along, ends;
+    float d;
+    vplPatternEdge(pattern.center, e, foot, along, d, ends);
+    d = max(d, 1e-4f);
+    float offset = clamp(d * sinh(asinh(ends.x / d) + m / d), ends.x, ends.y);
+    vec2 toExit = foot + offset * along - pattern.center;
+    r = xi1 * length(toExit);
+    return pattern.center + xi1 * toExit;
+}
+
+// The pattern's density per unit of uv area at distance r from the centre (r at least half a
+// texel of a map `size` texels wide, where 1/r would spike).
+SSGI_INLINE float vplPatternDensity(VplPattern pattern, float r, float size) {
+    if (pattern.radius > 0.0f && r > pattern.radius) return 0.0f;
+    return 1.0f / (pattern.total * max(r, 0.5f / size));
 }
 
 struct IndirectConstants {
