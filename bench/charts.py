@@ -13,7 +13,7 @@ import matplotlib.ticker  # noqa: E402
 import analysis  # noqa: E402
 
 GROUP_STYLE = {  # group -> (colour, marker, legend)
-    "default": ("black", "*", "defaults (thesis AO 8x4, 512 VPLs + visibility, interleaved, PCF 49)"),
+    "default": ("black", "*", "defaults (thesis AO 8x4, 384 VPLs + visibility, interleaved, PCF 49)"),
     "ao": ("tab:blue", "o", "AO / SSDO varied"),
     "indirect": ("tab:orange", "s", "indirect varied"),
     "shadow": ("tab:green", "^", "shadow varied"),
@@ -92,7 +92,7 @@ def pareto_chart(scene, sweep, images_dir):
 
 def selected_bars(sweep):
     """(label, passes) of a few configurations worth comparing pass by pass."""
-    wanted = ["thesis AO 8x4 + 512 VPLs + visibility, interleaved + PCF 49",
+    wanted = ["thesis AO 8x4 + 384 VPLs + visibility, interleaved + PCF 49",
               "thesis AO 8x4 + 512 VPLs + visibility + PCF 49",
               "thesis AO 8x4 + 512 VPLs + PCF 49",
               "thesis AO 8x4 + 64 VPLs + visibility + PCF 49",

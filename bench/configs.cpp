@@ -36,7 +36,7 @@ std::vector<Axis> makeAxes() {
     // beside VPLs drawn by flux, the visibility test on the candidates with the most light.
     const std::pair<int, const char*> subsetMethods[] = {{1, "interleaved"}, {2, "importance"}};
     for (const auto& [method, name] : subsetMethods)
-        for (int vpls : {512, 256, 128})
+        for (int vpls : {384, 512, 256, 128})
             indirect.values.push_back({std::to_string(vpls) + " VPLs + visibility, " + name,
                                        {{"indirect", 1},
                                         {"indirect_method", method},

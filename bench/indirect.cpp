@@ -24,7 +24,8 @@ struct Method {
 std::vector<Method> methodsOf(const Options& options) {
     std::vector<Method> methods = {{"off", {{"indirect", 0}}}};
     if (options.methods.empty()) {
-        methods.push_back({"thesis: half resolution, 512 VPLs", {{"indirect_method", 0}}});
+        methods.push_back({"thesis: half resolution, 512 VPLs",
+                           {{"indirect_method", 0}, {"indirect_vpls", 512}}});
         methods.push_back({"interleaved", {{"indirect_method", 1}}});
         methods.push_back({"importance", {{"indirect_method", 2}}});
     }

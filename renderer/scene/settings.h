@@ -65,8 +65,9 @@ namespace ssgi {
       "each pixel of a k x k block gathers 1/k^2 of the RSM's texels, then a geometry-aware "      \
       "filter; 2 importance: 1 from clustered VPLs, some drawn by flux, visibility tested on a "   \
       "few drawn by their light")                                                                  \
-    X(indirect_vpls, int, 512, 1, 1024, "Indirect light",                                          \
-      "VPLs of the pattern: method 0, gathered by every pixel; methods 1-2, split among a block")  \
+    X(indirect_vpls, int, 384, 1, 1024, "Indirect light",                                          \
+      "VPLs of the pattern: method 0, gathered by every pixel (the thesis's: 512); methods 1-2, "  \
+      "split among a block")                                                                       \
     X(indirect_flux_vpls, int, 64, 1, 512, "Indirect light",                                       \
       "method 2: VPLs drawn by flux that each block gathers (split among it like the pattern's)")  \
     X(indirect_flux_pool, int, 2048, 1, 16384, "Indirect light",                                   \
