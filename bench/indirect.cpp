@@ -11,10 +11,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 namespace ssgi::bench {
 
 namespace {
+
+// Uncached frames whose figures are averaged: the patterns' first places in their sequence.
+constexpr uint32_t kOneFrameDraws = 4;
 
 struct Method {
     std::string label;
@@ -73,10 +77,12 @@ metrics::Mask depthEdgeBand(const std::vector<float>& position, uint32_t w, uint
     return mask;
 }
 
+double relMse(const metrics::Image& test, const metrics::Image& truth, const metrics::Mask& mask) {
+    return metrics::errorFigures(test, truth, mask, {}).relMse; // no SSIM: not reported
+}
+
 Json figures(const metrics::Image& test, const metrics::Image& truth, const metrics::Mask& mask) {
-    const metrics::Figures f =
-        metrics::errorFigures(test, truth, mask, metrics::ssimMap(test, truth));
-    return {{"relmse", f.relMse}, {"pixels", f.pixels}};
+    return {{"relmse", relMse(test, truth, mask)}, {"pixels", metrics::countInside(mask)}};
 }
 
 } // namespace
@@ -167,24 +173,7 @@ Json indirectComparison(vk::Context& ctx, const Scene& scene, const Options& opt
             passes[name] = cli::median(timed(times));
         entry["pass_ms"] = passes;
 
-        progress.step(methods[m].label + ": one frame");
-        Scene onceScene =
-            withSettings(scene, methods[m].settings); // the renderer keeps a reference
-        onceScene.settings.cache = false;
-        Renderer single(ctx, onceScene,
-                        RenderOptions{errorSize.width, errorSize.height, "final", {"indirect"}});
-        single.renderFrame(scene.camera);
-        if (geometry.empty()) {
-            const std::vector<float> position = single.readImage("gbuffer.position");
-            geometry.assign(position.size() / 4, 0);
-            for (size_t i = 0; i < geometry.size(); ++i)
-                geometry[i] = position[4 * i + 3] != 0.0f;
-            band = depthEdgeBand(position, errorSize.width, errorSize.height, scene.camera.position,
-                                 8);
-            result["band_pixels"] = metrics::countInside(band);
-        }
-        const metrics::Image one{errorSize.width, errorSize.height, single.readImage("hdr")};
-
+        // The converged image first: the one-frame figures compare each draw against it.
         progress.step(methods[m].label + ": converged");
         Scene cachedScene = withSettings(scene, methods[m].settings);
         cachedScene.settings.cache = true;
@@ -192,19 +181,55 @@ Json indirectComparison(vk::Context& ctx, const Scene& scene, const Options& opt
         for (uint32_t f = 0; f < convergedFrames; ++f)
             still.renderFrame(scene.camera);
         const metrics::Image converged{errorSize.width, errorSize.height, still.readImage("hdr")};
+        const metrics::Image convergedBounce =
+            m > 0 ? bounceOf(still, "indirect.history") : metrics::Image{};
 
-        entry["one_frame"] = {{"all", figures(one, truth, geometry)},
-                              {"edge_band", figures(one, truth, band)}};
+        // One uncached frame, kOneFrameDraws times with the patterns at successive places of
+        // their sequence (a draw's figures vary with where its samples fall): the mean of each.
+        progress.step(methods[m].label + ": one frame");
+        Scene onceScene =
+            withSettings(scene, methods[m].settings); // the renderer keeps a reference
+        onceScene.settings.cache = false;
+        std::map<std::string, double> sums;
+        for (uint32_t draw = 0; draw < kOneFrameDraws; ++draw) {
+            Renderer single(
+                ctx, onceScene,
+                RenderOptions{errorSize.width, errorSize.height, "final", {"indirect"}, draw});
+            single.renderFrame(scene.camera);
+            if (geometry.empty()) {
+                const std::vector<float> position = single.readImage("gbuffer.position");
+                geometry.assign(position.size() / 4, 0);
+                for (size_t i = 0; i < geometry.size(); ++i)
+                    geometry[i] = position[4 * i + 3] != 0.0f;
+                band = depthEdgeBand(position, errorSize.width, errorSize.height,
+                                     scene.camera.position, 8);
+                result["band_pixels"] = metrics::countInside(band);
+            }
+            const metrics::Image one{errorSize.width, errorSize.height, single.readImage("hdr")};
+            sums["all"] += relMse(one, truth, geometry);
+            sums["edge_band"] += relMse(one, truth, band);
+            sums["vs_converged"] += relMse(one, converged, geometry);
+            sums["vs_converged_band"] += relMse(one, converged, band);
+            if (m > 0) {
+                const metrics::Image oneBounce = bounceOf(single, "indirect");
+                sums["bounce"] += relMse(oneBounce, bounceTruth, geometry);
+                sums["bounce_band"] += relMse(oneBounce, bounceTruth, band);
+            }
+        }
+        auto mean = [&](const char* key, const metrics::Mask& mask) {
+            return Json{{"relmse", sums[key] / kOneFrameDraws},
+                        {"pixels", metrics::countInside(mask)}};
+        };
+        entry["one_frame"] = {{"all", mean("all", geometry)},
+                              {"edge_band", mean("edge_band", band)}};
         entry["converged"] = {{"all", figures(converged, truth, geometry)},
                               {"edge_band", figures(converged, truth, band)}};
-        entry["one_frame_vs_converged"] = figures(one, converged, geometry);
-        entry["one_frame_vs_converged_band"] = figures(one, converged, band);
+        entry["one_frame_vs_converged"] = mean("vs_converged", geometry);
+        entry["one_frame_vs_converged_band"] = mean("vs_converged_band", band);
         if (m > 0) {
-            const metrics::Image oneBounce = bounceOf(single, "indirect");
-            const metrics::Image convergedBounce = bounceOf(still, "indirect.history");
             entry["bounce"] = {
-                {"one_frame", figures(oneBounce, bounceTruth, geometry)},
-                {"one_frame_edge_band", figures(oneBounce, bounceTruth, band)},
+                {"one_frame", mean("bounce", geometry)},
+                {"one_frame_edge_band", mean("bounce_band", band)},
                 {"converged", figures(convergedBounce, bounceTruth, geometry)},
                 {"converged_edge_band", figures(convergedBounce, bounceTruth, band)}};
             entry["term_means"] = termMeans(still);
@@ -212,6 +237,7 @@ Json indirectComparison(vk::Context& ctx, const Scene& scene, const Options& opt
         result["methods"].push_back(entry);
     }
     result["converged_frames"] = convergedFrames;
+    result["one_frame_draws"] = kOneFrameDraws;
     result["reference_samples"] = reference.samples;
     progress.done();
     return result;

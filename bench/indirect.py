@@ -57,11 +57,14 @@ def main():
           "frame without the bounce) / frame without it. On lavapipe every time is CPU time: "
           "compare within a run. Error: relMSE against `reference` (full mode; the bounce alone "
           "against its `indirect` mode, the real-time bounce times the albedo) at %dx%d, one "
-          "uncached frame and the cache after %d still frames; *band*: the pixels within 8 of a "
-          "depth edge, where an upsampling leaves its staircase; *1 frame vs converged*: one "
-          "uncached frame against the method's own converged image.\n" % (
+          "uncached frame (the mean over %d, the patterns at the first places of their "
+          "sequence: a single frame's figures vary with where its samples fall) and the cache "
+          "after %d still frames; *band*: the pixels within 8 of a depth edge, where an "
+          "upsampling leaves its staircase; *1 frame vs converged*: one uncached frame against "
+          "the method's own converged image.\n" % (
               first["frames"], first["warmup"], first["width"], first["height"],
               first["error_width"], first["error_height"],
+              first["indirect"].get("one_frame_draws", 1),
               first["indirect"]["converged_frames"]) + "\n"]
 
     summary = []
