@@ -10,7 +10,7 @@
 #                          into docs/bench-walkthroughs.md (about 1 h)
 #   bench/run.sh --indirect   the indirect light's methods (off, the thesis's, interleaved) on
 #                          the Cornell box, bunny and Sponza: cost at 256x256, error at 128x128,
-#                          into docs/bench-indirect.md (about 5 min)
+#                          into docs/bench-indirect.md (about 3 min)
 #   bench/run.sh --cache-fixes   what each of the cache's fixes costs (each undone alone, the
 #                          guard band on): the bunny's and Sponza's camera paths and a settled
 #                          still camera at 256x256, into docs/bench-cache-fixes.md (about 6 min)
@@ -52,7 +52,7 @@ elif [ "$mode" = cache-fixes ]; then
   images=docs/images doc=docs/bench-cache-fixes.md out=out/bench/cache-fixes
 elif [ "$mode" = indirect ]; then
   scenes=${scenes:-"cornell-box bunny sponza"}
-  size=256x256 error=128 frames=3 walk_scenes=""
+  size=256x256 error=128 frames=7 walk_scenes=""
   images=docs/images doc=docs/bench-indirect.md out=out/bench/indirect
 else
   all="cornell-box bunny sponza sibenik conference mori-knob"
