@@ -18,6 +18,7 @@ using glm::length;
 using glm::max;
 using std::asinh;
 using std::cos;
+using std::exp;
 using std::floor;
 using std::sin;
 using std::sinh;
@@ -164,44 +165,33 @@ struct VplPattern {
     vec2 center;
     float radius; // > 0: the disk's; 0: the whole map
     float total;  // Z: 1 / (total r) is the density per unit of the map's uv area
-    vec4 share;   // the whole-map pattern: each edge's part of total (right, top, left, bottom)
+    // The whole-map pattern's edges, counter-clockwise (right, top, left, bottom): each seen
+    // from c as the map's right edge turned by e quarter turns, at distance d, running from lo
+    // to lo + 1 (0 at the foot of the perpendicular from c). `start`: asinh(lo / d), where its
+    // directions begin; `before`: the shares of the edges before it.
+    vec4 d, lo, start, before;
 };
-
-// The map's edges seen from c, counter-clockwise: the foot of the perpendicular from c, the
-// edge's direction, the perpendicular's length d, and the signed offsets of the edge's two ends
-// from the foot.
-SSGI_INLINE void vplPatternEdge(vec2 c, int e, SSGI_OUT(vec2) foot, SSGI_OUT(vec2) along,
-                                SSGI_OUT(float) d, SSGI_OUT(vec2) ends) {
-    if (e == 0) {
-        foot = vec2(1.0f, c.y), along = vec2(0.0f, 1.0f), d = 1.0f - c.x;
-        ends = vec2(-c.y, 1.0f - c.y);
-    } else if (e == 1) {
-        foot = vec2(c.x, 1.0f), along = vec2(-1.0f, 0.0f), d = 1.0f - c.y;
-        ends = vec2(c.x - 1.0f, c.x);
-    } else if (e == 2) {
-        foot = vec2(0.0f, c.y), along = vec2(0.0f, -1.0f), d = c.x;
-        ends = vec2(c.y - 1.0f, c.y);
-    } else {
-        foot = vec2(c.x, 0.0f), along = vec2(1.0f, 0.0f), d = c.y;
-        ends = vec2(-c.x, 1.0f - c.x);
-    }
-}
 
 // `center` in [0, 1]^2; an edge closer to it than 1e-4 subtends no angle and gets no share.
 SSGI_INLINE VplPattern vplPattern(vec2 center, float radius) {
     VplPattern pattern;
     pattern.center = center;
     pattern.radius = radius;
-    pattern.share = vec4(0.0f);
     pattern.total = 6.28318531f * radius; // the disk's: 2 pi R
+    pattern.d = vec4(1.0f - center.x, 1.0f - center.y, center.x, center.y);
+    pattern.lo = vec4(-center.y, center.x - 1.0f, center.y - 1.0f, -center.x);
+    pattern.start = vec4(0.0f);
+    pattern.before = vec4(0.0f);
     if (radius > 0.0f) return pattern;
+    float sum = 0.0f;
     for (int e = 0; e < 4; ++e) {
-        vec2 foot, along, ends;
-        float d;
-        vplPatternEdge(center, e, foot, along, d, ends);
-        if (d > 1e-4f) pattern.share[e] = d * (asinh(ends.y / d) - asinh(ends.x / d));
+        float d = max(pattern.d[e], 1e-4f);
+        pattern.start[e] = asinh(pattern.lo[e] / d);
+        pattern.before[e] = sum;
+        // The reach along the edge's directions, d / cos(psi), integrates to d asinh(tan psi).
+        if (pattern.d[e] > 1e-4f) sum += d * (asinh((pattern.lo[e] + 1.0f) / d) - pattern.start[e]);
     }
-    pattern.total = pattern.share.x + pattern.share.y + pattern.share.z + pattern.share.w;
+    pattern.total = sum;
     return pattern;
 }
 
@@ -218,16 +208,16 @@ SSGI_INLINE vec2 vplPatternPoint(VplPattern pattern, int i, int n, float stratum
         r = pattern.radius * xi1;
         return pattern.center + r * vec2(cos(theta), sin(theta));
     }
+    // The edge whose share holds xi2 (one without a share is passed over), then the offset along
+    // it where asinh(offset / d) - start = (the rest of xi2's part) / d.
     float m = xi2 * pattern.total;
-    int e = 0;
-    for (; e < 3 && m >= pattern.share[e]; ++e)
-        m -= pattern.share[e];
-    vec2 foot, along, ends;
-    float d;
-    vplPatternEdge(pattern.center, e, foot, along, d, ends);
-    d = max(d, 1e-4f);
-    float offset = clamp(d * sinh(asinh(ends.x / d) + m / d), ends.x, ends.y);
-    vec2 toExit = foot + offset * along - pattern.center;
+    int e = int(m >= pattern.before.y) + int(m >= pattern.before.z) + int(m >= pattern.before.w);
+    float d = max(pattern.d[e], 1e-4f);
+    float x = exp(pattern.start[e] + (m - pattern.before[e]) / d);
+    float offset = clamp(0.5f * d * (x - 1.0f / x), pattern.lo[e], pattern.lo[e] + 1.0f);
+    vec2 toExit = vec2(d, offset); // on the right edge; turned by e quarter turns
+    if ((e & 1) != 0) toExit = vec2(-toExit.y, toExit.x);
+    if ((e & 2) != 0) toExit = -toExit;
     r = xi1 * length(toExit);
     return pattern.center + xi1 * toExit;
 }
