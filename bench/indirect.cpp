@@ -214,6 +214,7 @@ Json indirectComparison(vk::Context& ctx, const Scene& scene, const Options& opt
                 const metrics::Image oneBounce = bounceOf(single, "indirect");
                 sums["bounce"] += relMse(oneBounce, bounceTruth, geometry);
                 sums["bounce_band"] += relMse(oneBounce, bounceTruth, band);
+                sums["bounce_vs_converged"] += relMse(oneBounce, convergedBounce, geometry);
             }
         }
         auto mean = [&](const char* key, const metrics::Mask& mask) {
@@ -230,6 +231,8 @@ Json indirectComparison(vk::Context& ctx, const Scene& scene, const Options& opt
             entry["bounce"] = {
                 {"one_frame", mean("bounce", geometry)},
                 {"one_frame_edge_band", mean("bounce_band", band)},
+                // The bounce's own noise, free of the other cached effects' (shadow, AO).
+                {"one_frame_vs_converged", mean("bounce_vs_converged", geometry)},
                 {"converged", figures(convergedBounce, bounceTruth, geometry)},
                 {"converged_edge_band", figures(convergedBounce, bounceTruth, band)}};
             entry["term_means"] = termMeans(still);

@@ -92,8 +92,10 @@ def main():
         md.append(table(["method", "image, 1 frame", "image, converged", "band, 1 frame",
                          "band, converged", "1 frame vs converged",
                          "1 frame vs converged: band (its share)"], rows))
-        md.append("\nThe bounce alone against the reference's, and each term's mean over the "
-                  "geometry (real-time converged / reference):\n\n")
+        md.append("\nThe bounce alone against the reference's and one uncached frame's bounce "
+                  "against its converged bounce (its own noise, without the shadow's and AO's), "
+                  "and each term's mean over the geometry (real-time converged / reference):"
+                  "\n\n")
         rows = []
         for m in methods:
             if "bounce" not in m:
@@ -103,11 +105,14 @@ def main():
                          "%.4f" % b["converged"]["relmse"],
                          "%.4f" % b["one_frame_edge_band"]["relmse"],
                          "%.4f" % b["converged_edge_band"]["relmse"],
+                         "%.5f" % b["one_frame_vs_converged"]["relmse"]
+                         if "one_frame_vs_converged" in b else "—",
                          "%.4f / %.4f" % (t["direct"], t["direct_reference"]),
                          "%.4f / %.4f" % (t["bounce"], t["bounce_reference"]),
                          "%.4f / %.4f" % (t["sky"], t["sky_reference"])])
         md.append(table(["method", "bounce, 1 frame", "bounce, converged", "bounce band, 1 frame",
-                         "bounce band, converged", "direct", "bounce", "sky"], rows))
+                         "bounce band, converged", "bounce, 1 frame vs converged", "direct",
+                         "bounce", "sky"], rows))
         by = {m["label"].split(":")[0]: m for m in methods}
         off, thesis = by.get("off"), by.get("thesis")
         news = [by[k] for k in ("interleaved", "importance") if k in by]
