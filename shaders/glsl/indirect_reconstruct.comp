@@ -60,12 +60,18 @@ void main() {
     }
     vec3 p = position.xyz;
     vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
-    if (convergedAround(pixel, p, n, constants.cache, margin)) {
+    Reprojection history = reproject(p, n, constants.cache);
+    if (convergedAround(pixel, history, constants.cache, margin)) {
         imageStore(filtered, pixel, vec4(0.0));
         if (axis.x == 1) imageStore(filteredDirectional, pixel, vec4(0.0));
         return;
     }
     float footprint = 1.0 / pixelsPerUnit(viewDepth(p));
+    // A pixel without history (the cache off, a first frame, a surface just revealed) has only
+    // this frame's subsets: it weighs neighbours facing another way more (cos^4), for less
+    // noise. Once its history holds a frame, the accumulation averages the subsets over frames
+    // and the filter keeps to neighbours facing its own way (cos^8), which biases less.
+    float facingPower = history.valid && history.count >= 1.0 ? 8.0 : 4.0;
     bool halfEnds = (2 * reach) % INTERLEAVE == 0;
     vec3 sum = vec3(0.0);
     vec4 directionalSum = vec4(0.0);
@@ -81,7 +87,7 @@ void main() {
         if (dot(n, nq) < 0.5) continue; // another face
         vec4 sums = texelFetch(directionals, q, 0);
         float toPixel = min(directionalAt(sums, n) / directionalAt(sums, nq), 4.0);
-        float w = (halfEnds && abs(d) == reach ? 0.5 : 1.0) * pow(max(dot(n, nq), 0.0), 8.0);
+        float w = (halfEnds && abs(d) == reach ? 0.5 : 1.0) * pow(max(dot(n, nq), 0.0), facingPower);
         sum += w * toPixel * estimate.rgb;
         directionalSum += w * sums;
         weightSum += w;

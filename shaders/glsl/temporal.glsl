@@ -154,13 +154,16 @@ ivec2 cachePixelAround(uvec2 thread, CacheConstants cache, int margin) {
 
 // A converged pixel reuses its cached value instead of computing the effect again; the refresh
 // tile, widened by `margin` pixels on every side, is computed although converged.
-bool convergedAround(ivec2 pixel, vec3 world, vec3 normal, CacheConstants cache, int margin) {
-    Reprojection r = reproject(world, normal, cache);
+bool convergedAround(ivec2 pixel, Reprojection r, CacheConstants cache, int margin) {
     if (!r.valid || r.count < float(cache.rotations)) return false;
     if (cache.refreshTile < 0) return true;
     ivec2 corner = refreshTileCorner(cache);
     return any(lessThan(pixel, corner - margin)) ||
            any(greaterThanEqual(pixel, corner + cache.tileSize + margin));
+}
+
+bool convergedAround(ivec2 pixel, vec3 world, vec3 normal, CacheConstants cache, int margin) {
+    return convergedAround(pixel, reproject(world, normal, cache), cache, margin);
 }
 
 bool converged(ivec2 pixel, vec3 world, vec3 normal, CacheConstants cache) {
