@@ -13,7 +13,8 @@ import matplotlib.ticker  # noqa: E402
 import analysis  # noqa: E402
 
 GROUP_STYLE = {  # group -> (colour, marker, legend)
-    "default": ("black", "*", "defaults (thesis AO 8x4, 384 VPLs + visibility, interleaved, PCF 49)"),
+    "default": ("black", "*",
+                "defaults (thesis AO 8x4, 384 VPLs + visibility, interleaved, PCF 49)"),
     "ao": ("tab:blue", "o", "AO / SSDO varied"),
     "indirect": ("tab:orange", "s", "indirect varied"),
     "shadow": ("tab:green", "^", "shadow varied"),

@@ -87,7 +87,8 @@ void main() {
         if (dot(n, nq) < 0.5) continue; // another face
         vec4 sums = texelFetch(directionals, q, 0);
         float toPixel = min(directionalAt(sums, n) / directionalAt(sums, nq), 4.0);
-        float w = (halfEnds && abs(d) == reach ? 0.5 : 1.0) * pow(max(dot(n, nq), 0.0), facingPower);
+        float w =
+            (halfEnds && abs(d) == reach ? 0.5 : 1.0) * pow(max(dot(n, nq), 0.0), facingPower);
         sum += w * toPixel * estimate.rgb;
         directionalSum += w * sums;
         weightSum += w;

@@ -166,9 +166,9 @@ struct VplPattern {
     float radius; // > 0: the disk's; 0: the whole map
     float total;  // Z: 1 / (total r) is the density per unit of the map's uv area
     // The whole-map pattern's edges, counter-clockwise (right, top, left, bottom): each seen
-    // from c as the map's right edge turned by e quarter turns, at distance d, running from lo
-    // to lo + 1 (0 at the foot of the perpendicular from c). `start`: asinh(lo / d), where its
-    // directions begin; `before`: the shares of the edges before it.
+    // from c as the map's right edge turned by e quarter turns, at distance d (at least 1e-4),
+    // running from lo to lo + 1 (0 at the foot of the perpendicular from c). `start`:
+    // asinh(lo / d), where its directions begin; `before`: the shares of the edges before it.
     vec4 d, lo, start, before;
 };
 
@@ -178,18 +178,18 @@ SSGI_INLINE VplPattern vplPattern(vec2 center, float radius) {
     pattern.center = center;
     pattern.radius = radius;
     pattern.total = 6.28318531f * radius; // the disk's: 2 pi R
-    pattern.d = vec4(1.0f - center.x, 1.0f - center.y, center.x, center.y);
+    pattern.d = max(vec4(1.0f - center.x, 1.0f - center.y, center.x, center.y), vec4(1e-4f));
     pattern.lo = vec4(-center.y, center.x - 1.0f, center.y - 1.0f, -center.x);
     pattern.start = vec4(0.0f);
     pattern.before = vec4(0.0f);
     if (radius > 0.0f) return pattern;
     float sum = 0.0f;
     for (int e = 0; e < 4; ++e) {
-        float d = max(pattern.d[e], 1e-4f);
+        float d = pattern.d[e];
         pattern.start[e] = asinh(pattern.lo[e] / d);
         pattern.before[e] = sum;
         // The reach along the edge's directions, d / cos(psi), integrates to d asinh(tan psi).
-        if (pattern.d[e] > 1e-4f) sum += d * (asinh((pattern.lo[e] + 1.0f) / d) - pattern.start[e]);
+        if (d > 1e-4f) sum += d * (asinh((pattern.lo[e] + 1.0f) / d) - pattern.start[e]);
     }
     pattern.total = sum;
     return pattern;
@@ -212,7 +212,7 @@ SSGI_INLINE vec2 vplPatternPoint(VplPattern pattern, int i, int n, float stratum
     // it where asinh(offset / d) - start = (the rest of xi2's part) / d.
     float m = xi2 * pattern.total;
     int e = int(m >= pattern.before.y) + int(m >= pattern.before.z) + int(m >= pattern.before.w);
-    float d = max(pattern.d[e], 1e-4f);
+    float d = pattern.d[e];
     float x = exp(pattern.start[e] + (m - pattern.before[e]) / d);
     float offset = clamp(0.5f * d * (x - 1.0f / x), pattern.lo[e], pattern.lo[e] + 1.0f);
     vec2 toExit = vec2(d, offset); // on the right edge; turned by e quarter turns
