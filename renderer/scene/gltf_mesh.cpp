@@ -56,6 +56,31 @@ void repairNormals(Mesh& mesh, GltfWarnings& warnings) {
         if (broken[i]) mesh.vertices[i].normal = unitOr(mesh.vertices[i].normal, {0, 1, 0});
 }
 
+// COLOR_0 (VEC3 or VEC4 of floats or normalized unsigned bytes or shorts; glTF 2.0 section
+// 3.7.2.1) as the scene model's 16-bit RGBA, alpha 1 where the file gives RGB.
+std::vector<glm::u16vec4> vertexColors(const tinygltf::Model& model, int accessor,
+                                       size_t vertexCount, const std::string& file,
+                                       const std::string& where) {
+    const bool rgba = accessor >= 0 && size_t(accessor) < model.accessors.size() &&
+                      model.accessors[size_t(accessor)].type == TINYGLTF_TYPE_VEC4;
+    const AccessorView view =
+        viewAccessor(model, accessor, rgba ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3,
+                     {TINYGLTF_COMPONENT_TYPE_FLOAT, -TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                      -TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+                     file, where + " COLOR_0");
+    if (view.count != vertexCount) fail(file, where + ": COLOR_0 count != POSITION count");
+    std::vector<glm::u16vec4> colors(vertexCount);
+    for (size_t i = 0; i < vertexCount; ++i)
+        for (int c = 0; c < 4; ++c) {
+            const float value = c < 3 || rgba ? view.component(i, c) : 1.0f;
+            // Float colours outside [0, 1] are invalid glTF; NaN would pass a clamp unnoticed.
+            if (!(value >= 0.0f && value <= 1.0f))
+                fail(file, where + ": COLOR_0 " + std::to_string(i) + " is not within [0, 1]");
+            colors[i][c] = uint16_t(std::lround(value * 65535.0f));
+        }
+    return colors;
+}
+
 // The corners of a TRIANGLES, TRIANGLE_STRIP or TRIANGLE_FAN primitive as a triangle list, in
 // the order the glTF specification (§3.7.2.1) gives each triangle, so that the front faces stay
 // the front faces: strip triangle i is (i, i+1+i%2, i+2-i%2), fan triangle i is (i+1, i+2, 0).
@@ -132,6 +157,11 @@ Mesh buildPrimitiveMesh(const tinygltf::Model& model, const tinygltf::Primitive&
     }
 
     Mesh mesh;
+    std::vector<glm::u16vec4> colors(vertexCount, glm::u16vec4(65535));
+    if (attribute("COLOR_0") >= 0) {
+        colors = vertexColors(model, attribute("COLOR_0"), vertexCount, file, where);
+        mesh.vertexColors = true;
+    }
     if (attribute("NORMAL") >= 0) {
         const AccessorView normals = viewAccessor(model, attribute("NORMAL"), TINYGLTF_TYPE_VEC3,
                                                   {kFloat}, file, where + " NORMAL");
@@ -140,7 +170,7 @@ Mesh buildPrimitiveMesh(const tinygltf::Model& model, const tinygltf::Primitive&
         for (size_t i = 0; i < vertexCount; ++i) {
             const glm::vec3 n(normals.component(i, 0), normals.component(i, 1),
                               normals.component(i, 2));
-            mesh.vertices[i] = {points[i], n, uvs[i]};
+            mesh.vertices[i] = {points[i], n, uvs[i], colors[i]};
         }
         mesh.indices = std::move(corners);
         repairNormals(mesh, warnings);
@@ -155,8 +185,10 @@ Mesh buildPrimitiveMesh(const tinygltf::Model& model, const tinygltf::Primitive&
                         c = points[corners[t + 2]];
         // Degenerate triangles cover no pixel; any unit normal will do for them.
         const glm::vec3 normal = unitOr(glm::cross(b - a, c - a), {0, 1, 0});
-        for (size_t k = 0; k < 3; ++k)
-            mesh.vertices.push_back({points[corners[t + k]], normal, uvs[corners[t + k]]});
+        for (size_t k = 0; k < 3; ++k) {
+            const uint32_t corner = corners[t + k];
+            mesh.vertices.push_back({points[corner], normal, uvs[corner], colors[corner]});
+        }
     }
     return mesh;
 }
