@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cmath>
+#include <functional>
 #include <iostream>
 #include <sstream>
 
@@ -187,6 +188,64 @@ TEST_F(GltfFeatures, MorphTargetsWarnAboutTheirDefaultWeights) {
               std::string::npos)
         << said.str();
     EXPECT_EQ(scene.meshes.at(0).vertices.at(2).position, glm::vec3(1, 0, 1)); // the base shape
+}
+
+// Colours and samplers glTF does not define are bad input, named with their problem.
+TEST_F(GltfFeatures, BadColoursAndSamplersAreRefused) {
+    struct Case {
+        const char* name;
+        std::function<void(Gltf&)> change;
+        const char* message;
+    };
+    auto textured = [](Gltf& g, const json& sampler) {
+        // A white 1 x 1 PNG.
+        g.doc["images"] = {{{"uri", "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAf"
+                                    "FcSJAAAAC0lEQVR4nGP4DwQACfsD/fteaysAAAAASUVORK5CYII="}}};
+        g.doc["samplers"] = {sampler};
+        g.doc["textures"] = {{{"source", 0}, {"sampler", 0}}};
+        g.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 0}};
+    };
+    const Case cases[] = {
+        {"colour-above-one",
+         [](Gltf& g) {
+             g.attribute("COLOR_0", std::vector<float>{0, 0, 0, 1, 1, 1, 2, 0, 0, 1, 1, 1}, kFloat,
+                         "VEC3", 3);
+         },
+         "COLOR_0 2 is not within [0, 1]"},
+        {"colour-nan",
+         [](Gltf& g) {
+             g.attribute("COLOR_0", std::vector<float>(12, std::nanf("")), kFloat, "VEC3", 3);
+         },
+         "COLOR_0 0 is not within [0, 1]"},
+        {"wrap",
+         [&](Gltf& g) {
+             textured(g, {{"wrapS", 1234}});
+         },
+         "sampler 0: wrapS 1234 is not a glTF wrap mode"},
+        {"mag-filter",
+         [&](Gltf& g) {
+             textured(g, {{"magFilter", 9984}});
+         },
+         "sampler 0: magFilter 9984 is not a glTF magnification filter"},
+        {"missing-sampler",
+         [&](Gltf& g) {
+             textured(g, json::object());
+             g.doc["textures"][0]["sampler"] = 3;
+         },
+         "texture 0 refers to sampler 3, which does not exist"},
+    };
+    for (const Case& c : cases) {
+        Gltf g = floorGltf();
+        c.change(g);
+        const std::string path = write(std::string(c.name) + ".glb", g.glb());
+        try {
+            loadScene(path);
+            ADD_FAILURE() << c.name << " loaded";
+        } catch (const InputError& error) {
+            EXPECT_NE(std::string(error.what()).find(c.message), std::string::npos)
+                << c.name << ": " << error.what();
+        }
+    }
 }
 
 } // namespace
