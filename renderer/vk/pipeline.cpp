@@ -264,10 +264,17 @@ void dispatch(VkCommandBuffer cmd, const Pipeline& pipeline, uint32_t width, uin
 }
 
 VkSampler createSampler(const Context& ctx, VkFilter filter, VkSamplerAddressMode address) {
+    return createSampler(ctx, filter, filter, address, address);
+}
+
+VkSampler createSampler(const Context& ctx, VkFilter magnify, VkFilter minify,
+                        VkSamplerAddressMode addressU, VkSamplerAddressMode addressV) {
     VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-    info.magFilter = info.minFilter = filter;
+    info.magFilter = magnify;
+    info.minFilter = minify;
     info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-    info.addressModeU = info.addressModeV = info.addressModeW = address;
+    info.addressModeU = addressU;
+    info.addressModeV = info.addressModeW = addressV;
     info.maxLod = 0.0f;
     VkSampler sampler;
     VK_CHECK(vkCreateSampler(ctx.device, &info, nullptr, &sampler));

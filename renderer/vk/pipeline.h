@@ -87,5 +87,8 @@ void dispatch(VkCommandBuffer cmd, const Pipeline& pipeline, uint32_t width, uin
 }
 
 VkSampler createSampler(const Context& ctx, VkFilter filter, VkSamplerAddressMode address);
+// One level, each filter and each axis's addressing as given.
+VkSampler createSampler(const Context& ctx, VkFilter magnify, VkFilter minify,
+                        VkSamplerAddressMode addressU, VkSamplerAddressMode addressV);
 
 } // namespace ssgi::vk

@@ -80,7 +80,9 @@ SSGI_CHECK_SIZE(FrameUniforms, 10 * 64 + 20 * 16);
 struct DrawConstants {
     mat4 model;
     vec4 baseColorFactor;
-    vec4 material; // x = 1 when a base-colour texture is bound, y = alpha cutoff (0 = opaque)
+    // x = 1 when a base-colour texture is bound, y = alpha cutoff (0 = opaque), z = 1 when the
+    // vertex colours multiply the base colour
+    vec4 material;
 };
 SSGI_CHECK_SIZE(DrawConstants, 96);
 
