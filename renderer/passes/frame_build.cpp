@@ -18,13 +18,17 @@ FrameBuild::FrameBuild(vk::Context& ctx, graph::FrameGraph& graph, const SceneGp
             vk::createSampler(ctx, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
         linearSampler =
             vk::createSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
-    } catch (...) {
-        this->~FrameBuild();
+    } catch (...) { // a constructor that throws runs no destructor: give back what was made
+        release();
         throw;
     }
 }
 
 FrameBuild::~FrameBuild() {
+    release();
+}
+
+void FrameBuild::release() {
     for (vk::Pipeline& p : pipelines_)
         vk::destroyPipeline(ctx, p);
     for (vk::Buffer& b : buffers_)

@@ -60,6 +60,7 @@ public:
     const vk::Buffer& uniformBuffer(const void* data, VkDeviceSize bytes);
 
 private:
+    void release();                      // what the destructor gives back; idempotent
     std::deque<vk::Pipeline> pipelines_; // a deque: computePipeline hands out references
     std::map<std::string, size_t> computePipelines_; // computePipeline()'s, by what makes them
     std::deque<vk::Buffer> buffers_;
