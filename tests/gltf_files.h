@@ -85,6 +85,19 @@ struct Gltf {
 };
 
 // The floor every test draws: a 2 x 2 quad at y = 0, normals up, uv from -1 to 2 on each axis.
+// The loader refuses the file at `path` (case `name`) with an InputError whose message holds
+// `message`.
+inline void expectRefused(const std::string& path, const std::string& name,
+                          const std::string& message) {
+    try {
+        loadScene(path);
+        ADD_FAILURE() << name << " loaded";
+    } catch (const InputError& error) {
+        EXPECT_NE(std::string(error.what()).find(message), std::string::npos)
+            << name << ": " << error.what();
+    }
+}
+
 inline const std::vector<float> kCorners = {-1, 0, -1, 1, 0, -1, 1, 0, 1, -1, 0, 1};
 inline const std::vector<float> kUp = {0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0};
 inline const std::vector<float> kUvs = {-1, -1, 2, -1, 2, 2, -1, 2};
