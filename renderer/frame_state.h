@@ -25,8 +25,6 @@ struct FrameState {
     bool drawRsm = true;
     // An object moved since the sky maps were drawn (or they never were).
     bool drawSkyMaps = true;
-    // The camera moved or the sky maps changed: the sky's visibility is looked up again.
-    bool lookUpSkyVisibility = true;
     // Camera, light and objects unchanged for as many frames as a pixel needs rotations: every
     // pixel is converged, and the cached effects run over their refresh tiles alone.
     bool settled = false;

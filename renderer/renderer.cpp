@@ -184,7 +184,6 @@ void Renderer::updateUniforms(const Camera& worldCamera) {
     stillFrames_ = frameIndex_ > 0 && u.viewProjection == previousViewProjection_ && moved_.empty()
                        ? stillFrames_ + 1
                        : 0;
-    cameraStill_ = stillFrames_ > 0;
     u.lightViewProjection = light.viewProjection;
     u.inverseLightViewProjection = glm::inverse(light.viewProjection);
     u.lightPixelToWorld = pixelToWorld(light.view, light.projection, build_->rsmSize);
@@ -273,7 +272,6 @@ FrameState Renderer::decideFrame() {
     // Without the cache nothing persists from frame to frame: the RSM is drawn every frame.
     f.drawRsm = rsmStale_ || !settings.cache;
     f.drawSkyMaps = skyMapsStale_;
-    f.lookUpSkyVisibility = !cameraStill_ || skyMapsStale_;
     f.settled = stillFrames_ >= uint32_t(settings.cache_rotations);
     f.view = view_;
     f.effects = nextCacheFrames(*graph_, build_->caches);

@@ -116,7 +116,6 @@ private:
     uint32_t patternFrame() const { return patternStart_ + frameIndex_; }
     vk::HostSpan lastSubmission_;
     uint32_t stillFrames_ = 0;          // frames in a row with this camera and light
-    bool cameraStill_ = false;          // this frame's camera is last frame's, nothing moved
     bool rsmStale_ = true;              // the light changed since the RSM was drawn
     bool skyMapsStale_ = true;          // an object moved since the sky maps were drawn
     int view_ = 0;                      // what the composite shows (VIEW_*)

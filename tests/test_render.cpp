@@ -171,15 +171,17 @@ TEST_F(RenderTest, EmptyBoxUnderACentredLightIsMirrorSymmetric) {
 TEST_F(RenderTest, FrameReportsEveryPassInOrderWithTimings) {
     Scene scene = loadScene(test::sourcePath("tests/scenes/empty-box.json"));
     {
-        // Under a sky, the sky visibility passes run just before the composite.
+        // Under a sky, the sky visibility passes (cached) run just before the composite.
         Scene open = scene;
         open.sky.zenith = glm::vec3(0.5f);
         Renderer skyRenderer(test::context(), open, {32, 32, "final"});
         skyRenderer.renderFrame(open.camera);
         const auto& t = skyRenderer.timings();
-        ASSERT_GE(t.size(), 3u);
-        EXPECT_EQ(t[t.size() - 3].name, "sky.maps");
-        EXPECT_EQ(t[t.size() - 2].name, "sky_visibility");
+        ASSERT_GE(t.size(), 6u);
+        EXPECT_EQ(t[t.size() - 5].name, "sky.maps");
+        EXPECT_EQ(t[t.size() - 4].name, "sky_visibility.keep");
+        EXPECT_EQ(t[t.size() - 3].name, "sky_visibility");
+        EXPECT_EQ(t[t.size() - 2].name, "sky_visibility.temporal");
     }
     Renderer renderer(test::context(), scene, {64, 64, "final"});
     renderer.renderFrame(scene.camera);

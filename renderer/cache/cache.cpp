@@ -47,7 +47,7 @@ shader::CacheConstants cacheConstants(const Settings& settings, const EffectCach
     if (!cache) return c; // historyValid 0: no history, nothing converges
     const CachedEffectFrame& now = frame.effects[cache->slot];
     c.historyValid = now.hasHistory ? 1 : 0;
-    c.rotations = int(settings.cache_rotations);
+    c.rotations = cache->effect.exact ? 1 : int(settings.cache_rotations);
     c.refreshTileCorner = -1;
     if (cache->refresh && now.refreshTile >= 0) {
         const TileRect tile = cache->refresh->rect(uint32_t(now.refreshTile));

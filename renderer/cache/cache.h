@@ -35,6 +35,10 @@ struct CachedEffect {
     // those within `motionReach` of it, or those whose path to the light passes near it.
     int motionTest = MOTION_RESTART_ALL;
     float motionReach = 0.0f; // scene units
+    // An effect computed without noise (no turning pattern: the sky's visibility): one
+    // computation is converged (its rotations are 1), and a value computed again replaces its
+    // history rather than being blended into it.
+    bool exact = false;
 };
 
 // The temporal cache of one effect: its declaration, its history as two ping-pong pairs

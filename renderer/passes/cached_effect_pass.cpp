@@ -93,6 +93,7 @@ graph::ImageRef addCachedComputePass(FrameBuild& build, const GBuffer& gbuffer,
     for (ShaderImage& history : cacheBindings(build, cache, gbuffer.viewDepth))
         pass.images.push_back(std::move(history));
     pass.images.push_back({name + "Image", raw, graph::Use::StorageWrite});
+    pass.uniforms = std::move(desc.uniforms);
     pass.pushSize = desc.pushSize;
     pass.spec = std::move(desc.spec);
     addComputePass(build, std::move(pass),

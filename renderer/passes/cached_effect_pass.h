@@ -40,11 +40,12 @@ private:
 // A cached effect computed by one compute shader at full resolution. Its shader binds, in this
 // order: `inputs`, then "historyViewDepth" and "historyCount" (last frame's G-buffer view
 // depths and the effect's rotation counts, to skip converged pixels; temporal.glsl), then
-// "<name>Image", the RGBA16F image it writes (named <name> in the graph).
+// "<name>Image", the RGBA16F image it writes (named <name> in the graph); then `uniforms`.
 struct CachedComputePass {
     CachedEffect effect;
     std::string shader;
     std::vector<ShaderImage> inputs;
+    std::vector<ShaderBuffer> uniforms;
     uint32_t pushSize = 0;
     vk::Specialization spec;
 };

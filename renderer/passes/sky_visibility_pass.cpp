@@ -4,7 +4,13 @@
 // up in each map, and tests the scene's single quads and triangles (floors, walls) exactly, and
 // writes the fraction of the sky's light that arrives past the occluders farther than the AO's
 // radius (sky_visibility.comp). A static scene's maps are drawn once and again only after an
-// object moved; the lookup runs again only when the camera or the maps changed.
+// object moved. The lookup is a cached effect: a property of the surface point, computed without
+// noise, so that one computation is its value (CachedEffect::exact), reused wherever it
+// reprojects while the camera moves, and computed again for new surfaces, where its resampling
+// has blurred it past its budget (cache_blur_sky_visibility), in the refresh tile, and after the
+// maps were drawn again (a moved object restarts it).
+//   reads:  gbuffer.view_depth, gbuffer.normal, sky.maps (and its cache's history)
+//   writes: sky.maps, sky_visibility, sky_visibility.history
 #include "passes/passes.h"
 
 #include "scene/animation.h"
@@ -148,9 +154,6 @@ graph::ImageRef addSkyVisibilityPasses(FrameBuild& build, const GBufferAndRsm& i
         },
         [](const FrameState& frame) { return frame.drawSkyMaps; });
 
-    const graph::ImageRef visibility =
-        build.graph.createImage("sky_visibility", VK_FORMAT_R16G16B16A16_SFLOAT, build.size,
-                                VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, true);
     const vk::Buffer& exactTriangles =
         build.uniformBuffer(&occluders.exact, sizeof(occluders.exact));
     // Occluders nearer than the AO's radius are the AO's; with no AO, only a few texels' worth
@@ -161,21 +164,20 @@ graph::ImageRef addSkyVisibilityPasses(FrameBuild& build, const GBufferAndRsm& i
     const float nearest = m.settings.ao && !m.settings.ssdo ? aoRadius(m) : 0.0f;
     constants.aoReach = std::max(nearest, 3.0f * texel);
     constants.normalOffset = 1.5f * texel;
-    ComputePassDesc pass{"sky_visibility", "sky_visibility.comp"};
-    pass.images = {{"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
+    CachedComputePass pass;
+    pass.effect = {.name = "sky_visibility",
+                   .lightDependent = false,
+                   .scalar = false,
+                   .motionTest = MOTION_RESTART_ALL,
+                   .exact = true};
+    pass.shader = "sky_visibility.comp";
+    pass.inputs = {{"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
                    {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
-                   {"skyMaps", maps, Use::Sampled},
-                   {"visibilityImage", visibility, Use::StorageWrite}};
+                   {"skyMaps", maps, Use::Sampled}};
     pass.uniforms = {{"TrianglesBlock", exactTriangles}};
     pass.pushSize = sizeof(shader::SkyVisibilityConstants);
-    addComputePass(
-        build, std::move(pass),
-        [&build, constants](const ComputeRecorder& r) {
-            r.dispatch(build.size.width, build.size.height, constants);
-        },
-        // The same camera over the same maps looks up the same values.
-        [](const FrameState& frame) { return frame.lookUpSkyVisibility; });
-    return visibility;
+    return addCachedComputePass(build, in.gbuffer, std::move(pass),
+                                [constants](const CachedRecorder& r) { r.dispatch(constants); });
 }
 
 } // namespace ssgi

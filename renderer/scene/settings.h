@@ -126,12 +126,17 @@ namespace ssgi {
     X(cache_ssdo, bool, true, 0, 1, "Temporal cache", "SSDO cached (1), or computed anew")         \
     X(cache_indirect, bool, true, 0, 1, "Temporal cache",                                          \
       "the indirect light cached (1), or computed anew")                                           \
+    X(cache_sky_visibility, bool, true, 0, 1, "Temporal cache",                                    \
+      "the sky's visibility cached (1: computed once per surface point, reused where it "          \
+      "reprojects), or computed anew")                                                             \
     X(cache_tile_shadow, int, 64, 1, 4096, "Temporal cache",                                       \
       "refresh tile size of the shadow (pixels)")                                                  \
     X(cache_tile_ao, int, 64, 1, 4096, "Temporal cache", "refresh tile size of the AO (pixels)")   \
     X(cache_tile_ssdo, int, 64, 1, 4096, "Temporal cache", "refresh tile size of SSDO (pixels)")   \
     X(cache_tile_indirect, int, 16, 1, 4096, "Temporal cache",                                     \
       "refresh tile size of the indirect light (pixels)")                                          \
+    X(cache_tile_sky_visibility, int, 64, 1, 4096, "Temporal cache",                               \
+      "refresh tile size of the sky's visibility (pixels)")                                        \
     X(cache_blur_shadow, double, 0.0, 0, 1e6, "Temporal cache",                                    \
       "resampling blur (pixels^2) a moving camera may leave in the shadow's history before its "   \
       "weight is cut")                                                                             \
@@ -142,7 +147,9 @@ namespace ssgi {
       "what SSDO sees on screen changes with the view)")                                           \
     X(cache_blur_indirect, double, 0.0, 0, 1e6, "Temporal cache",                                  \
       "the same for the indirect light's history (pixels^2; 0: computed anew while the camera "    \
-      "moves; with 4, its resampled history left depth edges biased long after a stop)")
+      "moves; with 4, its resampled history left depth edges biased long after a stop)")           \
+    X(cache_blur_sky_visibility, double, 4.0, 0, 1e6, "Temporal cache",                            \
+      "the same for the sky's visibility (pixels^2): beyond it a value is computed again")
 
 struct Settings {
 #define SSGI_SETTING_MEMBER(name, type, value, lo, hi, group, meaning) type name = value;

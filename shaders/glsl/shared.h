@@ -321,8 +321,9 @@ struct SkyVisibilityConstants {
     float aoReach;
     float normalOffset;
     float unused[2];
+    CacheConstants cache;
 };
-SSGI_CHECK_SIZE(SkyVisibilityConstants, 48);
+SSGI_CHECK_SIZE(SkyVisibilityConstants, 96);
 
 // The sky's occluders the lookup tests exactly instead of through the maps: the triangles of
 // the scene's single quads and triangles (floors, walls), corners 3i..3i+2 in the GPU's

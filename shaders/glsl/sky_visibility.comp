@@ -8,7 +8,9 @@
 // `aoReach` (the AO radius: nearer ones are the AO's, so none is counted twice). The result is a ratio per colour channel,
 //   sum_k L(w_k) V_k max(n.w_k, 0) / sum_k L(w_k) max(n.w_k, 0),
 // the fraction of the unoccluded sky's irradiance that arrives, which the composite multiplies
-// into the closed-form sky term (common.glsl): 1 where nothing far blocks the sky.
+// into the closed-form sky term (common.glsl): 1 where nothing far blocks the sky. A property
+// of the surface point computed without noise, it is cached as an exact effect: a pixel whose
+// history reprojects (and has not blurred past its budget) is skipped (temporal.glsl).
 #include "shared.h"
 #include "common.glsl"
 #include "sky_maps.glsl"
@@ -19,11 +21,15 @@ layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; }
 layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
 layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
 layout(set = 0, binding = 3) uniform sampler2D skyMaps; // depth atlas
-layout(set = 0, binding = 4, rgba16f) uniform writeonly image2D visibilityImage;
-layout(set = 0, binding = 5, std140) uniform TrianglesBlock { SkyTriangles exact; };
+layout(set = 0, binding = 4) uniform sampler2D historyViewDepth;
+layout(set = 0, binding = 5) uniform sampler2D historyCount;
+layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D sky_visibilityImage;
+layout(set = 0, binding = 7, std140) uniform TrianglesBlock { SkyTriangles exact; };
 layout(push_constant) uniform VisibilityBlock { SkyVisibilityConstants constants; };
 
 #include "gbuffer_position.glsl"
+#include "screen_space.glsl"
+#include "temporal.glsl"
 
 // Whether the ray from p toward w meets one of the exact triangles farther than `reach`
 // (Moller and Trumbore 1997).
@@ -47,14 +53,18 @@ bool blockedExactly(vec3 p, vec3 w, float reach) {
 
 void main() {
     loadPixelToWorld(); // pixel_to_world.glsl
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 pixel = cachePixel(gl_GlobalInvocationID.xy, constants.cache, 1);
     if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
     vec4 position = gbufferPosition(pixel);
     if (position.w == 0.0) {
-        imageStore(visibilityImage, pixel, vec4(1.0));
+        imageStore(sky_visibilityImage, pixel, vec4(1.0));
         return;
     }
     vec3 n = normalize(texelFetch(gbufferNormal, pixel, 0).xyz);
+    if (converged(pixel, position.xyz, n, constants.cache)) {
+        imageStore(sky_visibilityImage, pixel, SKIPPED); // its cache holds the value
+        return;
+    }
     SkyMapView maps = constants.maps;
     float diameter = 2.0 * maps.sphere.w;
     // Off the surface along its normal, so that it does not shadow itself within a texel.
@@ -80,5 +90,5 @@ void main() {
         arriving += blocked ? vec3(0.0) : weight;
     }
     vec3 visibility = mix(vec3(1.0), arriving / max(open, vec3(1e-20)), greaterThan(open, vec3(0.0)));
-    imageStore(visibilityImage, pixel, vec4(visibility, 1.0));
+    imageStore(sky_visibilityImage, pixel, vec4(visibility, 1.0));
 }

@@ -128,11 +128,14 @@ void main() {
     float rotations = float(cache.rotations);
     vec3 value;
     float count, blur = 0.0;
+    // An exact effect (one rotation: no noise to average, CachedEffect::exact) takes a value
+    // computed again whole.
+    bool exact = cache.rotations <= 1;
     if (wasSkipped(now)) { // converged: its cache is the value
         value = history.rgb;
         count = r.count;
         blur = history.a;
-    } else if (!r.valid) {
+    } else if (!r.valid || exact) {
         value = now.rgb;
         count = 1.0;
     } else {
@@ -211,5 +214,7 @@ void main() {
     if (spread == 0.0 && blur > REACCUMULATE_BLUR && count >= rotations) count = rotations - 1.0;
     if (blur < 1e-3) blur = 0.0; // below a thirtieth of a pixel: gone
     storeHistory(pixel, value, blur);
-    imageStore(newCount, pixel, vec4(max(min(count, rotations), 1.0)));
+    // A count stays at least 1 (0 is a pixel that holds nothing), but for an exact effect, whose
+    // one rotation would make any count converged: there 0 has it computed again next frame.
+    imageStore(newCount, pixel, vec4(max(min(count, rotations), exact ? 0.0 : 1.0)));
 }
