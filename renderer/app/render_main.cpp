@@ -3,7 +3,7 @@
 #include "app/cli.h"
 #include "image_io.h"
 #include "renderer.h"
-#include "scene/camera.h"
+#include "scene/animation.h"
 
 #include <nlohmann/json.hpp>
 
@@ -130,10 +130,7 @@ int run(int argc, char** argv) {
     Renderer renderer(ctx, scene, {common.width, common.height, args.view});
     Camera camera = scene.camera;
     if (args.time >= 0.0f) {
-        if (scene.cameraPath.empty() && scene.objectPaths.empty())
-            throw InputError(common.scene +
-                             ": --time given but the scene has no camera_path or object_paths");
-        if (!scene.cameraPath.empty()) camera = cameraAt(scene.cameraPath, args.time);
+        camera = cameraAtTime(scene, args.time, common.scene);
         renderer.setTime(args.time);
     }
 
