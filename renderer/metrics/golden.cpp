@@ -25,6 +25,13 @@ Image displayImage(const Image& image, bool linear, double exposure) {
     return out;
 }
 
+float displayValue(float linear, float exposure) {
+    const float x = linear * exposure;
+    const float mapped =
+        std::clamp((x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f), 0.0f, 1.0f);
+    return mapped <= 0.0031308f ? mapped * 12.92f : 1.055f * std::pow(mapped, 1.0f / 2.4f) - 0.055f;
+}
+
 double fractionDiffering(const Image& test, const Image& reference, double maxDiff) {
     if (test.width != reference.width || test.height != reference.height)
         throw std::invalid_argument("image sizes differ");

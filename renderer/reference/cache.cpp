@@ -1,6 +1,7 @@
 #include "reference/cache.h"
 
 #include "reference/random.h"
+#include "scene/animation.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -8,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <type_traits>
 #include <unistd.h>
 
@@ -186,6 +188,26 @@ ReferenceImage cachedReference(const Scene& scene, const Camera& camera,
 
 ReferenceImage cachedReference(const Scene& scene, const ReferenceOptions& options) {
     return cachedReference(scene, scene.camera, options);
+}
+
+ReferenceImage requestedReference(Scene scene, const std::string& sceneName,
+                                  const ReferenceRequest& request, bool* fromCache) {
+    const Mode mode = request.options.mode;
+    if (request.options.jitter && mode != Mode::Full && mode != Mode::Multi)
+        throw InputError("--jitter: only for --mode full or multi; the per-effect modes sample "
+                         "pixel centres so that their edges match the real-time image");
+    if (request.lightRadius >= 0.0f) scene.light.radius = request.lightRadius;
+    Camera camera = scene.camera;
+    if (request.time >= 0.0f) {
+        camera = cameraAtTime(scene, request.time, sceneName);
+        scene = posedAt(scene, request.time);
+    } else {
+        scene = posedAt(scene, std::numeric_limits<float>::lowest()); // the paths' first keys
+    }
+    if (fromCache) *fromCache = false;
+    return request.useCache
+               ? cachedReference(scene, camera, request.options, request.cacheDir, fromCache)
+               : renderReference(scene, camera, request.options);
 }
 
 } // namespace ssgi::reference

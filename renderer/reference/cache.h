@@ -26,4 +26,21 @@ ReferenceImage cachedReference(const Scene& scene, const Camera& camera,
 // The scene's own camera.
 ReferenceImage cachedReference(const Scene& scene, const ReferenceOptions& options);
 
+// What the reference program renders of a loaded scene (and the Python module's reference()).
+struct ReferenceRequest {
+    ReferenceOptions options;
+    // Seconds along the scene's camera path and object paths; < 0: none, the camera the scene's
+    // own and the objects at their paths' first keys.
+    float time = -1.0f;
+    float lightRadius = -1.0f; // >= 0: replaces the light's disk radius
+    bool useCache = true;
+    std::string cacheDir = defaultCacheDir();
+};
+
+// The image `request` asks for, from the cache or rendered. `sceneName` names the scene in the
+// InputError for a time given to a scene without paths; InputError for jitter in a mode other
+// than full and multi.
+ReferenceImage requestedReference(Scene scene, const std::string& sceneName,
+                                  const ReferenceRequest& request, bool* fromCache = nullptr);
+
 } // namespace ssgi::reference
