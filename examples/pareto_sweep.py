@@ -36,4 +36,4 @@ plt.plot([p[0] for p in front], [p[1] for p in front], "r-", label="Pareto front
 [plt.annotate(label, (ms, error), fontsize=7) for ms, error, label in points]
 plt.xlabel("frame time, ms (host clock)"), plt.ylabel("relMSE against the path tracer")
 plt.yscale("log"), plt.legend(), plt.title(f"Cornell box {size}x{size}, cache off")
-plt.savefig(chart, dpi=110), print("wrote", chart)
+plt.savefig(chart, dpi=110, bbox_inches="tight"), print("wrote", chart)
