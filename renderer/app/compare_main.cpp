@@ -136,9 +136,17 @@ Args parseArgs(int argc, char** argv) {
 }
 
 Image load(const std::string& path) {
-    if (!fs::exists(path)) throw InputError(path + ": no such file");
     Image image;
     image.rgba = readImage(path, image.width, image.height);
+    // The figures read the colour as stored; a transparent pixel's colour is not weighed by it.
+    size_t transparent = 0;
+    for (size_t i = 0; i < image.pixels(); ++i)
+        transparent += image.rgba[4 * i + 3] < 1.0f;
+    if (transparent > 0)
+        std::fprintf(stderr,
+                     "warning: %s: %zu pixels are not opaque; their colour is compared as stored, "
+                     "alpha is not applied\n",
+                     path.c_str(), transparent);
     return image;
 }
 

@@ -69,11 +69,7 @@ Args parseArgs(int argc, char** argv) {
         } else if (arg == "--view") {
             a.view = cli::optionValue(argc, argv, i);
         } else if (arg == "--time") {
-            std::string v = cli::optionValue(argc, argv, i);
-            char* end = nullptr;
-            a.time = std::strtof(v.c_str(), &end);
-            if (v.empty() || *end != '\0' || !(a.time >= 0.0f))
-                throw InputError("--time: '" + v + "' is not a time >= 0");
+            a.time = float(cli::parseNumber(arg, cli::optionValue(argc, argv, i), 0.0, 1e9));
         } else if (arg == "--profile") {
             a.profile = true;
         } else if (arg == "--profile-json") {
