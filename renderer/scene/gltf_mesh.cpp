@@ -139,7 +139,16 @@ AccessorView viewAccessor(const tinygltf::Model& model, int index, int type,
                            " elements run past the end of buffer view " +
                            std::to_string(accessor.bufferView));
     }
-    view.data = buffer.data() + bufferView.byteOffset + accessor.byteOffset;
+    // The specification requires both; read anyway, the bytes would be other numbers (a shifted
+    // float is a tiny or huge one) and the error would be found far from its cause.
+    const size_t offset = bufferView.byteOffset + accessor.byteOffset;
+    if (offset % size_t(view.componentSize) != 0 || view.stride % size_t(view.componentSize) != 0)
+        fail(file, what + ": accessor " + std::to_string(index) + " starts at byte " +
+                       std::to_string(offset) + " of its buffer with a stride of " +
+                       std::to_string(view.stride) + ", not both multiples of its " +
+                       std::to_string(view.componentSize) +
+                       "-byte components (unaligned; the glTF specification requires them)");
+    view.data = buffer.data() + offset;
     return view;
 }
 

@@ -32,7 +32,12 @@ struct Range {
 constexpr Range kCoordinate{-1e9, 1e9};
 constexpr Range kLength{0.0, 1e9, true};
 constexpr Range kColor{0.0, 1e6};
-constexpr Range kAlbedo{0.0, 1.0};
+constexpr Range kAlbedo{0.0, kMaxAlbedo};
+// Path times: the programs walk a path from time 0 (render --time, walkthrough), so a key before
+// it would never be seen.
+constexpr Range kTime{0.0, 1e9};
+// Levels of arrays and objects a scene file may nest (it needs five).
+constexpr size_t kMaxJsonDepth = 64;
 
 std::string formatNumber(double x) {
     std::ostringstream out;
@@ -145,7 +150,7 @@ CameraSpec readCameraKeys(const JsonObject& in) {
     camera.target = in.optionalVec3("target", kCoordinate);
     camera.direction = in.optionalVec3("direction", kCoordinate);
     camera.up = in.optionalVec3("up", kCoordinate);
-    camera.yfovDegrees = in.optionalNumber("yfov_deg", {0.0, 179.0, true, true});
+    camera.yfovDegrees = in.optionalNumber("yfov_deg", {kMinFovDegrees, 179.0, false, true});
     camera.znear = in.optionalNumber("near", kLength);
     camera.zfar = in.optionalNumber("far", kLength);
     if (camera.target && camera.direction) in.fail("target", "and 'direction' exclude each other");
@@ -235,7 +240,7 @@ ObjectPath readObjectPath(const JsonObject& in) {
         key.allowOnly({"time", "translation"});
         if (!key.has("time")) key.fail("time", "is missing");
         ObjectKey k;
-        k.time = float(key.number("time", {-1e9, 1e9}));
+        k.time = float(key.number("time", kTime));
         if (!path.keys.empty() && k.time <= path.keys.back().time)
             key.fail("time", "is not later than the key before it; keys must be sorted by time");
         k.translation = key.optionalVec3("translation", kCoordinate).value_or(glm::vec3(0.0f));
@@ -265,23 +270,39 @@ SceneDescription readSceneDescription(const std::string& path) {
         // JSON allows a key twice in one object, and the parser keeps the last: a scene file
         // that says "intensity" twice would silently lose the first. That is an error here.
         struct Open {
-            std::string name; // "light", "objects[]": where it is, for the message
+            std::string key;   // "light", "objects": where it is, for the message
+            size_t arrays = 0; // inside that many arrays below the key ("objects[][]")
             bool isObject = false;
             std::set<std::string> keys;
+            std::string name() const {
+                std::string text = key;
+                for (size_t i = 0; i < arrays; ++i)
+                    text += "[]";
+                return text;
+            }
         };
         std::vector<Open> open;
         std::string lastKey;
-        auto nameOfNext = [&] {
-            return open.empty()           ? std::string()
-                   : open.back().isObject ? lastKey
-                                          : open.back().name + "[]";
-        };
         document = Json::parse(text, [&](int, Json::parse_event_t event, Json& parsed) {
             switch (event) {
             case Json::parse_event_t::object_start:
-            case Json::parse_event_t::array_start:
-                open.push_back({nameOfNext(), event == Json::parse_event_t::object_start, {}});
+            case Json::parse_event_t::array_start: {
+                // Scene files nest a few levels; a deeper file is not a scene, and the checks
+                // above must not grow with its depth.
+                if (open.size() >= kMaxJsonDepth)
+                    throw InputError(path + ": JSON nested more than " +
+                                     std::to_string(kMaxJsonDepth) + " levels deep");
+                Open next;
+                next.isObject = event == Json::parse_event_t::object_start;
+                if (!open.empty() && open.back().isObject) {
+                    next.key = lastKey;
+                } else if (!open.empty()) {
+                    next.key = open.back().key;
+                    next.arrays = open.back().arrays + 1;
+                }
+                open.push_back(std::move(next));
                 break;
+            }
             case Json::parse_event_t::object_end:
             case Json::parse_event_t::array_end:
                 if (!open.empty()) open.pop_back();
@@ -290,8 +311,9 @@ SceneDescription readSceneDescription(const std::string& path) {
                 lastKey = parsed.get<std::string>();
                 if (!open.empty() && !open.back().keys.insert(lastKey).second)
                     throw InputError(path + ": the key '" + lastKey + "' appears twice in " +
-                                     (open.back().name.empty() ? std::string("the top-level object")
-                                                               : "'" + open.back().name + "'") +
+                                     (open.back().name().empty()
+                                          ? std::string("the top-level object")
+                                          : "'" + open.back().name() + "'") +
                                      " (JSON would silently keep only the last)");
                 break;
             default:
@@ -364,7 +386,7 @@ SceneDescription readSceneDescription(const std::string& path) {
             in.allowOnly({"time", "position", "target", "direction", "up", "yfov_deg", "near",
                           "far", "cut"});
             if (!in.has("time")) in.fail("time", "is missing");
-            const float time = float(in.number("time", {-1e9, 1e9}));
+            const float time = float(in.number("time", kTime));
             // Equal times are allowed: they make a camera cut.
             if (!scene.cameraPath.empty() && time < scene.cameraPath.back().first)
                 in.fail("time", "is earlier than the key before it; keys must be sorted by time");
