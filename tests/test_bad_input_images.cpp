@@ -76,11 +76,13 @@ TEST_F(BadInput, CompareReadsWhatTheFileHolds) {
             EXPECT_NE(run.output.find("alpha is not applied"), std::string::npos) << run.output;
     }
 
-    // A PNG that declares 100000x100000 pixels (its IHDR, CRC included, and nothing after):
+    // A PNG that declares 100000x100000 pixels (its IHDR, CRCs included, and no pixels):
     // refused before anything is allocated, as is a FIFO.
     std::string png = "\x89PNG\r\n\x1a\n";
     png += std::string("\0\0\0\x0dIHDR\0\x01\x86\xa0\0\x01\x86\xa0\x08\x02\0\0\0", 21);
-    png += "\x27\x30\x9c\x9f"; // the chunk's CRC-32
+    png += "\x27\x30\x9c\x9f";                              // the chunk's CRC-32
+    png += std::string("\0\0\0\0IDAT\x35\xaf\x06\x1e", 12); // an empty IDAT: no pixels
+    png += std::string("\0\0\0\0IEND\xae\x42\x60\x82", 12);
     const std::string huge = write("huge.png", png);
     const fs::path fifo = dir_ / "fifo.png";
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
