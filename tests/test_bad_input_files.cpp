@@ -71,9 +71,10 @@ TEST_F(BadInput, EveryProgramWritesWholeOrNothing) {
         EXPECT_NE(run.output.find("error: "), std::string::npos) << run.output;
         EXPECT_NE(run.output.find(reason), std::string::npos) << run.output;
         // Nothing at all: no truncated file, no temporary (the folders may stay).
-        if (fs::exists(out))
+        if (fs::exists(out)) {
             for (const auto& entry : fs::recursive_directory_iterator(out))
                 EXPECT_TRUE(entry.is_directory()) << entry.path();
+        }
     }
 
     // A name of 255 bytes, the most a file name may have: the temporary's is short.
@@ -93,8 +94,9 @@ TEST_F(BadInput, EveryProgramWritesWholeOrNothing) {
                                                          pngA + " --json " + (out / name).string());
         EXPECT_EQ(run.status, 0) << run.output;
         EXPECT_TRUE(fs::is_symlink(out / name)) << name;
-        if (std::string(name) == "stdout.json")
+        if (std::string(name) == "stdout.json") {
             EXPECT_NE(run.output.find("\"regions\""), std::string::npos) << run.output;
+        }
     }
     std::ifstream real(out / "real.json");
     EXPECT_NE(std::string(std::istreambuf_iterator<char>(real), {}).find("\"regions\""),

@@ -72,8 +72,9 @@ TEST_F(BadInput, CompareReadsWhatTheFileHolds) {
             test::runCommand(compare + " " + (dir_ / a).string() + " " + (dir_ / b).string() +
                              " --max-relmse 0 --max-diff 0");
         EXPECT_EQ(run.status, 0) << a << " " << b << "\n" << run.output;
-        if (std::string(a).find("alpha") != std::string::npos)
+        if (std::string(a).find("alpha") != std::string::npos) {
             EXPECT_NE(run.output.find("alpha is not applied"), std::string::npos) << run.output;
+        }
     }
 
     // A PNG that declares 100000x100000 pixels (its IHDR, CRCs included, and no pixels):
