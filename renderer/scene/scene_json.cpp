@@ -270,39 +270,28 @@ SceneDescription readSceneDescription(const std::string& path) {
         // JSON allows a key twice in one object, and the parser keeps the last: a scene file
         // that says "intensity" twice would silently lose the first. That is an error here.
         struct Open {
-            std::string key;   // "light", "objects": where it is, for the message
-            size_t arrays = 0; // inside that many arrays below the key ("objects[][]")
+            std::string name; // "light", "objects[]": where it is, for the message
             bool isObject = false;
             std::set<std::string> keys;
-            std::string name() const {
-                std::string text = key;
-                for (size_t i = 0; i < arrays; ++i)
-                    text += "[]";
-                return text;
-            }
         };
         std::vector<Open> open;
         std::string lastKey;
+        auto nameOfNext = [&] {
+            return open.empty()           ? std::string()
+                   : open.back().isObject ? lastKey
+                                          : open.back().name + "[]";
+        };
         document = Json::parse(text, [&](int, Json::parse_event_t event, Json& parsed) {
             switch (event) {
             case Json::parse_event_t::object_start:
-            case Json::parse_event_t::array_start: {
-                // Scene files nest a few levels; a deeper file is not a scene, and the checks
-                // above must not grow with its depth.
+            case Json::parse_event_t::array_start:
+                // Scene files nest a few levels; a deeper file is not a scene, and the levels'
+                // names would grow with the square of its depth (each holds its parent's).
                 if (open.size() >= kMaxJsonDepth)
                     throw InputError(path + ": JSON nested more than " +
                                      std::to_string(kMaxJsonDepth) + " levels deep");
-                Open next;
-                next.isObject = event == Json::parse_event_t::object_start;
-                if (!open.empty() && open.back().isObject) {
-                    next.key = lastKey;
-                } else if (!open.empty()) {
-                    next.key = open.back().key;
-                    next.arrays = open.back().arrays + 1;
-                }
-                open.push_back(std::move(next));
+                open.push_back({nameOfNext(), event == Json::parse_event_t::object_start, {}});
                 break;
-            }
             case Json::parse_event_t::object_end:
             case Json::parse_event_t::array_end:
                 if (!open.empty()) open.pop_back();
@@ -311,9 +300,8 @@ SceneDescription readSceneDescription(const std::string& path) {
                 lastKey = parsed.get<std::string>();
                 if (!open.empty() && !open.back().keys.insert(lastKey).second)
                     throw InputError(path + ": the key '" + lastKey + "' appears twice in " +
-                                     (open.back().name().empty()
-                                          ? std::string("the top-level object")
-                                          : "'" + open.back().name() + "'") +
+                                     (open.back().name.empty() ? std::string("the top-level object")
+                                                               : "'" + open.back().name + "'") +
                                      " (JSON would silently keep only the last)");
                 break;
             default:
