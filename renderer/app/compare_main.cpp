@@ -174,7 +174,7 @@ size_t nonFinitePixels(const Image& image) {
     return count;
 }
 
-// Two images whose figures would mean nothing are bad input (issue 21): a tonemapped sRGB .png
+// Two images whose figures would mean nothing are bad input: a tonemapped sRGB .png
 // against linear radiance in an .exr gave a relMSE with exit status 0, and a reference holding
 // NaN gave NaN figures without a word.
 void requireComparable(const Args& args, const Image& reference) {

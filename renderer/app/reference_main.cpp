@@ -5,6 +5,7 @@
 #include "reference/cache.h"
 #include "scene/animation.h"
 #include "scene/camera.h"
+#include "shared.h"
 
 #include <algorithm>
 #include <chrono>
@@ -134,12 +135,9 @@ Args parseArgs(int argc, char** argv) {
     return a;
 }
 
-// The composite's display transform (composite.comp): exposure, Narkowicz's ACES fit, sRGB.
+// The composite's display transform (shared.h): exposure, Narkowicz's ACES fit, sRGB.
 float display(float linear, float exposure) {
-    const float x = linear * exposure;
-    const float mapped =
-        std::clamp((x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f), 0.0f, 1.0f);
-    return mapped <= 0.0031308f ? mapped * 12.92f : 1.055f * std::pow(mapped, 1.0f / 2.4f) - 0.055f;
+    return shader::encodeSrgb(shader::tonemapAces(linear * exposure));
 }
 
 int run(int argc, char** argv) {

@@ -64,13 +64,18 @@ private:
 void hashScene(Hasher& h, const Scene& scene) {
     // Field by field, never whole structs: padding bytes are not content.
     for (const Mesh& mesh : scene.meshes) {
-        h.vector(mesh.vertices); // Vertex is 32 bytes with no padding (static_assert in scene.h)
+        h.vector(mesh.vertices); // Vertex is 40 bytes with no padding (static_assert in scene.h)
         h.vector(mesh.indices);
         h.value(mesh.material);
+        h.value(uint8_t(mesh.vertexColors));
     }
     for (const Material& m : scene.materials) {
         h.value(m.baseColorFactor);
         h.value(m.baseColorTexture);
+        const TextureSampler& sampler = m.baseColorSampler;
+        for (uint8_t v : {uint8_t(sampler.wrapU), uint8_t(sampler.wrapV),
+                          uint8_t(sampler.magnifyNearest), uint8_t(sampler.minifyNearest)})
+            h.value(v);
         h.value(uint8_t(m.alphaMask));
         h.value(m.alphaCutoff);
     }

@@ -270,6 +270,67 @@ std::vector<int> convertTextures(const tinygltf::Model& model, const std::string
     return sceneTextureOf;
 }
 
+TextureWrap wrapOf(int mode, const std::string& file, const std::string& what) {
+    switch (mode) {
+    case TINYGLTF_TEXTURE_WRAP_REPEAT:
+        return TextureWrap::Repeat;
+    case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE:
+        return TextureWrap::ClampToEdge;
+    case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT:
+        return TextureWrap::MirroredRepeat;
+    default:
+        fail(file, what + " " + std::to_string(mode) +
+                       " is not a glTF wrap mode (10497, 33071 or 33648)");
+    }
+}
+
+// Whether a glTF filter reads the nearest texel (NEAREST, or a mipmap filter whose texel filter
+// is NEAREST) rather than bilinear; undefined filters are bilinear. Without mip maps a mipmap
+// filter keeps only its filter within the image.
+bool nearestFilter(int filter, bool minification, const std::string& file, const std::string& what,
+                   GltfWarnings& warnings) {
+    switch (filter) {
+    case -1:
+    case TINYGLTF_TEXTURE_FILTER_LINEAR:
+        return false;
+    case TINYGLTF_TEXTURE_FILTER_NEAREST:
+        return true;
+    case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST:
+    case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST:
+    case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR:
+    case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR:
+        if (minification) {
+            warnings.once("glTF mipmap filters read the full-size image (there are no mip maps)");
+            return filter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST ||
+                   filter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR;
+        }
+        [[fallthrough]];
+    default:
+        fail(file, what + " " + std::to_string(filter) + " is not a glTF " +
+                       (minification ? "minification" : "magnification") + " filter");
+    }
+}
+
+// The sampler of glTF texture `texture` (glTF's default, repeat and bilinear, without one).
+TextureSampler samplerOf(const tinygltf::Model& model, int texture, const std::string& file,
+                         GltfWarnings& warnings) {
+    const int index = model.textures[size_t(texture)].sampler;
+    if (index < 0) return {};
+    if (size_t(index) >= model.samplers.size())
+        fail(file, "texture " + std::to_string(texture) + " refers to sampler " +
+                       std::to_string(index) + ", which does not exist");
+    const tinygltf::Sampler& source = model.samplers[size_t(index)];
+    const std::string what = "sampler " + std::to_string(index);
+    TextureSampler sampler;
+    sampler.wrapU = wrapOf(source.wrapS, file, what + ": wrapS");
+    sampler.wrapV = wrapOf(source.wrapT, file, what + ": wrapT");
+    sampler.magnifyNearest =
+        nearestFilter(source.magFilter, false, file, what + ": magFilter", warnings);
+    sampler.minifyNearest =
+        nearestFilter(source.minFilter, true, file, what + ": minFilter", warnings);
+    return sampler;
+}
+
 void warnAboutIgnoredMaterialData(const tinygltf::Material& material, GltfWarnings& warnings) {
     const auto& pbr = material.pbrMetallicRoughness;
     if (material.normalTexture.index >= 0) warnings.once("glTF normal textures are ignored");
@@ -281,6 +342,9 @@ void warnAboutIgnoredMaterialData(const tinygltf::Material& material, GltfWarnin
     if (pbr.metallicFactor > 0.0 || pbr.metallicRoughnessTexture.index >= 0)
         warnings.once("glTF metallic-roughness data is ignored (every surface is diffuse)");
     if (material.alphaMode == "BLEND") warnings.once("glTF alphaMode BLEND is drawn as OPAQUE");
+    if (!material.doubleSided)
+        warnings.once("glTF doubleSided false is drawn two-sided (every surface of the scene "
+                      "model is)");
     if (pbr.baseColorTexture.index >= 0 && pbr.baseColorTexture.texCoord != 0)
         warnings.once("glTF texCoord sets other than 0 are ignored");
     for (const auto& extension : material.extensions)
@@ -319,7 +383,10 @@ void convertMaterials(const tinygltf::Model& model, const std::string& file,
         if (texture >= int(sceneTextureOf.size()))
             fail(file, "material " + std::to_string(m) + " refers to texture " +
                            std::to_string(texture) + ", which does not exist");
-        if (texture >= 0) material.baseColorTexture = sceneTextureOf[size_t(texture)];
+        if (texture >= 0) {
+            material.baseColorTexture = sceneTextureOf[size_t(texture)];
+            material.baseColorSampler = samplerOf(model, texture, file, warnings);
+        }
         material.alphaMask = source.alphaMode == "MASK";
         material.alphaCutoff = float(source.alphaCutoff);
         scene.materials.push_back(material);

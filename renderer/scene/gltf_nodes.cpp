@@ -133,7 +133,12 @@ private:
                            " (points or lines) are skipped");
             return -1;
         }
-        if (!primitive.targets.empty()) warnings_.once("glTF morph targets are ignored");
+        if (!primitive.targets.empty())
+            warnings_.once("glTF morph targets are ignored: the base shape is drawn, without the "
+                           "mesh's default morph weights");
+        for (const auto& attribute : primitive.attributes)
+            if (attribute.first.rfind("COLOR_", 0) == 0 && attribute.first != "COLOR_0")
+                warnings_.once("glTF vertex colours other than COLOR_0 are ignored");
         const std::string where =
             "mesh " + std::to_string(gltfMesh) + " primitive " + std::to_string(primitiveIndex);
         Mesh mesh = buildPrimitiveMesh(model_, primitive, file_, where, warnings_);
