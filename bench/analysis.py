@@ -286,11 +286,11 @@ def memory_totals(sweep):
 
 
 def memory_by_resource(images):
-    """History pairs ("X A", "X B") summed under X, largest first; an image in the shared block
-    is marked, its bytes counted in the block's row."""
+    """History pairs (both sides of pair X) summed under X, largest first; an image in the shared
+    block is marked, its bytes counted in the block's row."""
     grouped = {}
     for e in images:
-        name = e["image"][:-2] + " (pair)" if e["image"][-2:] in (" A", " B") else e["image"]
+        name = e["history"] + " (pair)" if e.get("history") else e["image"]
         if e.get("shared"):
             name += " (in the shared block)"
         grouped[name] = grouped.get(name, 0) + e["bytes"]

@@ -142,10 +142,10 @@ Json memoryJson(const Renderer& renderer) {
     const graph::FrameGraph& graph = renderer.frameGraph();
     const graph::FrameGraph::SharedMemory shared = graph.sharedMemory();
     Json list = Json::array();
-    for (const auto& [name, bytes] : graph.imageMemory()) {
+    for (const auto& [name, bytes, pair] : graph.imageMemory()) {
         const bool inBlock =
             std::find(shared.images.begin(), shared.images.end(), name) != shared.images.end();
-        list.push_back({{"image", name}, {"bytes", bytes}, {"shared", inBlock}});
+        list.push_back({{"image", name}, {"bytes", bytes}, {"shared", inBlock}, {"history", pair}});
     }
     // The transient images' one block: with the images not in it, what the graph holds.
     list.push_back({{"image", "shared block"}, {"bytes", shared.bytes}, {"block", true}});

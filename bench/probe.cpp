@@ -5,6 +5,7 @@
 #include "bench.h"
 
 #include "app/cli.h"
+#include "frame_state.h"
 #include "graph/frame_graph.h"
 #include "vk/pipeline.h"
 
@@ -51,7 +52,7 @@ struct CeilingProbe::Kernel {
                 const ProbePush size{{int(sourceSize.width), int(sourceSize.height), 0, 0}};
                 vk::dispatch(pc.cmd, fill, sourceSize.width, sourceSize.height, size);
             },
-            [this] { return phase == Fill; });
+            [this](const FrameState&) { return phase == Fill; });
         graph.addPass(
             "kernel", graph::PassKind::Compute,
             {{source, Use::Sampled}, {target, Use::StorageWrite}},
@@ -63,7 +64,7 @@ struct CeilingProbe::Kernel {
                     .push(ctx, pc.cmd, kernel);
                 vk::dispatch(pc.cmd, kernel, targetSize.width, targetSize.height, push);
             },
-            [this] { return phase == Run; });
+            [this](const FrameState&) { return phase == Run; });
         frame(ctx, Fill);
     }
 
@@ -96,9 +97,10 @@ CeilingProbe::CeilingProbe(vk::Context& ctx, VkExtent2D target) : ctx_(ctx), tar
     const VkDescriptorType storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
     pipelines_ = {vk::createComputePipeline(ctx, "probe_fill.comp", {storage}, sizeof(ProbePush)),
                   vk::createComputePipeline(ctx, "probe_taps.comp", {sampled, storage},
-                                            sizeof(ProbePush), {{kTaps, kLocalSpread}}),
+                                            sizeof(ProbePush),
+                                            {{{"TAPS", kTaps}, {"SPREAD", kLocalSpread}}}),
                   vk::createComputePipeline(ctx, "probe_taps.comp", {sampled, storage},
-                                            sizeof(ProbePush), {{kTaps, 0}}),
+                                            sizeof(ProbePush), {{{"TAPS", kTaps}, {"SPREAD", 0}}}),
                   vk::createComputePipeline(ctx, "probe_bandwidth.comp", {sampled, storage},
                                             sizeof(ProbePush))};
     sampler_ = vk::createSampler(ctx, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);

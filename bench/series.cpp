@@ -128,7 +128,7 @@ std::vector<Reference> referencesAt(const Scene& scene, const Options& options,
     return references;
 }
 
-// What the cache does where it used to fail (issue 20; docs/stability.md), each undone alone
+// What the cache does where it used to fail (docs/stability.md), each undone alone
 // beside the default that has them all, with the guard band (off by default) on, and the cache
 // off: the cost of each along the camera path and on a settled still camera.
 const std::vector<Method>& cacheFixMethods() {

@@ -26,7 +26,9 @@ metrics::Image imageArg(const py::handle& object, const std::string& what, const
         name = pathFrom(object);
         isLinear = std::filesystem::path(name).extension() == ".exr";
         py::gil_scoped_release release;
-        return metrics::loadImage(name);
+        metrics::Image image = metrics::loadImage(name);
+        metrics::warnIfNotOpaque(image, name); // as compare warns
+        return image;
     }
     name = what;
     isLinear = linear.is_none() || linear.cast<bool>();
@@ -90,7 +92,7 @@ py::array reference(const std::shared_ptr<SceneObject>& scene, const std::string
     reference::ReferenceRequest request;
     reference::ReferenceOptions& o = request.options;
     o.mode = reference::parseMode(mode, "mode");
-    sizeArg(size, o.width, o.height, 1, 16384); // reference's range (--size)
+    sizeArg(size, o.width, o.height, 1, kMaxImageSide); // reference's range (--size)
     o.spp = countArg("spp", spp, 1, 1u << 24);
     if (!noise.is_none()) o.noiseTarget = numberArg("noise", noise, 1e-6, 1.0);
     o.seed = countArg("seed", seed, 0, UINT32_MAX);

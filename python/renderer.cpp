@@ -7,6 +7,7 @@
 #include "renderer.h"
 #include "scene/animation.h"
 #include "scene/camera.h"
+#include "scene/gltf_internal.h"
 #include "vk/context.h"
 
 #include <pybind11/stl.h>
@@ -159,7 +160,8 @@ public:
             if (!(glm::length(upward) > 0.0f)) throw InputError("up: a zero vector");
             camera.orientation = lookRotation(to - camera.position, upward);
         }
-        if (!fov.is_none()) camera.yfov = glm::radians(float(numberArg("fov", fov, 0.01, 179)));
+        if (!fov.is_none())
+            camera.yfov = glm::radians(float(numberArg("fov", fov, kMinFovDegrees, 179.0)));
         camera_ = camera;
     }
 
@@ -190,7 +192,7 @@ public:
     }
 
     py::dict memory() const {
-        std::vector<std::pair<std::string, VkDeviceSize>> imageMemory;
+        std::vector<graph::FrameGraph::HeldImage> imageMemory;
         graph::FrameGraph::SharedMemory shared;
         VkDeviceSize held = 0;
         locked([&] {
@@ -200,8 +202,8 @@ public:
             held = graph.heldMemory();
         });
         py::dict images;
-        for (const auto& [name, bytes] : imageMemory)
-            images[py::str(name)] = bytes;
+        for (const graph::FrameGraph::HeldImage& image : imageMemory)
+            images[py::str(image.name)] = image.bytes;
         py::dict d;
         d["images"] = images;
         d["shared_bytes"] = shared.bytes;

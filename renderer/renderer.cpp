@@ -1,5 +1,9 @@
 #include "renderer.h"
 
+#include "frame_uniforms.h"
+
+#include "passes/passes.h"
+
 #include "scene/animation.h"
 #include "scene/camera.h"
 #include "shared.h"
@@ -17,62 +21,43 @@ namespace ssgi {
 // A quarter of half-float range: radiance up to this is kept in its own units.
 constexpr float kLargestUnscaledRadiance = 16384.0f;
 
-// Where the GPU's coordinates have their origin. A float holds about 7 digits, so a scene 1e5
-// units from the origin keeps about 1 cm of precision in its G-buffer positions, reprojection
-// tests and shadow lookups, and renders visibly wrong. Everything that reaches the GPU is
-// therefore moved, in double precision on the CPU, by minus the centre of the scene's bounds:
-// geometry (through the instance transforms), camera, light, light frustum and moved boxes; the
-// previous frame's matrices were made the same way. A scene near the origin (its centre within
-// 16 diagonals) keeps the origin where it is, so that its numbers do not change at all.
-static glm::dvec3 gpuOrigin(const Aabb& bounds) {
-    const glm::dvec3 centre = (glm::dvec3(bounds.min) + glm::dvec3(bounds.max)) * 0.5;
-    const double diagonal = glm::length(glm::dvec3(bounds.max) - glm::dvec3(bounds.min));
-    // A float itself, so that the GPU's float arithmetic (vertex minus origin, in the instance
-    // transform) gives the same exact differences as the CPU's double.
-    return glm::compMax(glm::abs(centre)) <= 16.0 * diagonal ? glm::dvec3(0.0)
-                                                             : glm::dvec3(glm::vec3(centre));
+namespace {
+// Each debug view's name beside its VIEW_* value (shared.h, which the composite reads), the
+// value its place in the list.
+struct NamedView {
+    int view;
+    const char* name;
+};
+constexpr NamedView kViews[] = {{VIEW_FINAL, "final"},
+                                {VIEW_ALBEDO, "albedo"},
+                                {VIEW_NORMAL, "normal"},
+                                {VIEW_DEPTH, "depth"},
+                                {VIEW_DIRECT, "direct"},
+                                {VIEW_RSM_FLUX, "rsm-flux"},
+                                {VIEW_RSM_NORMAL, "rsm-normal"},
+                                {VIEW_SHADOW, "shadow"},
+                                {VIEW_AO, "ao"},
+                                {VIEW_INDIRECT, "indirect"},
+                                {VIEW_SSDO, "ssdo"},
+                                {VIEW_CONTACT, "contact"},
+                                {VIEW_PEEL, "peel"},
+                                {VIEW_SKY_VISIBILITY, "sky-visibility"}};
+constexpr bool viewsInOrder() {
+    int place = 0;
+    for (const NamedView& v : kViews)
+        if (v.view != place++) return false;
+    return place == VIEW_COUNT;
 }
-
-static glm::vec3 moved(const glm::vec3& point, const glm::dvec3& origin) {
-    return glm::vec3(glm::dvec3(point) - origin);
-}
-
-// translate(-origin) * m, in double precision.
-static glm::mat4 moved(const glm::mat4& m, const glm::dvec3& origin) {
-    glm::dmat4 d(m);
-    for (int column = 0; column < 4; ++column)
-        d[column] -= glm::dvec4(origin * d[column].w, 0.0);
-    return glm::mat4(d);
-}
-
-// FrameUniforms::pixelToWorld: for the pixel centre p (in pixels of a `size` image) and the view
-// depth d there, M (p.x d, p.y d, d, 1) is the world position. The view-space ray through p,
-// scaled to reach one unit along the view axis, is affine in p for a perspective projection;
-// its three coefficients are found by unprojecting three pixels, in double precision, and
-// turned into the world by the view's rotation; the fourth column is the camera's position.
-static glm::mat4 pixelToWorld(const glm::mat4& view, const glm::mat4& projection, VkExtent2D size) {
-    const glm::dmat4 inverseProjection = glm::inverse(glm::dmat4(projection));
-    auto rayAt = [&](double x, double y) { // in view space, at view depth 1
-        const glm::dvec4 ndc(2.0 * x / size.width - 1.0, 2.0 * y / size.height - 1.0, 0.5, 1.0);
-        const glm::dvec4 q = inverseProjection * ndc;
-        return glm::dvec3(q) / -q.z;
-    };
-    const glm::dvec3 origin = rayAt(0.0, 0.0);
-    const glm::dmat4 toWorld = glm::inverse(glm::dmat4(view));
-    const glm::dmat3 rotation(toWorld);
-    glm::dmat4 m(1.0);
-    m[0] = glm::dvec4(rotation * (rayAt(1.0, 0.0) - origin), 0.0);
-    m[1] = glm::dvec4(rotation * (rayAt(0.0, 1.0) - origin), 0.0);
-    m[2] = glm::dvec4(rotation * origin, 0.0);
-    m[3] = toWorld[3];
-    return glm::mat4(m);
-}
+static_assert(viewsInOrder(), "kViews lists every VIEW_* of shared.h at its value's place");
+} // namespace
 
 const std::vector<std::string>& viewNames() {
-    // Order matches the VIEW_* values in shared.h.
-    static const std::vector<std::string> names = {
-        "final",  "albedo", "normal",   "depth", "direct",  "rsm-flux", "rsm-normal",
-        "shadow", "ao",     "indirect", "ssdo",  "contact", "peel",     "sky-visibility"};
+    static const std::vector<std::string> names = [] {
+        std::vector<std::string> list;
+        for (const NamedView& v : kViews)
+            list.push_back(v.name);
+        return list;
+    }();
     return names;
 }
 
@@ -141,20 +126,10 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
         origin_ = gpuOrigin(scene.bounds);
         uploadTransforms();
         graph_ = std::make_unique<graph::FrameGraph>(ctx);
-        setup_.reset(new PassSetup{ctx, *graph_, *sceneGpu_, scene});
-        setup_->gpuOrigin = origin_;
-        setup_->frameUniforms = vk::createBuffer(ctx, sizeof(shader::FrameUniforms),
-                                                 VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
-        setup_->nearestSampler =
-            vk::createSampler(ctx, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
-        setup_->linearSampler =
-            vk::createSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
-        setup_->size = rendered;
-        setup_->guardBand = band;
-        setup_->rsmSize = {rsmSize, rsmSize};
-
-        setup_->view = view;
-        addFramePasses(*setup_);
+        build_ = std::make_unique<FrameBuild>(ctx, *graph_, *sceneGpu_, scene, rendered, band,
+                                              VkExtent2D{rsmSize, rsmSize}, origin_);
+        view_ = view;
+        addFramePasses(*build_);
         for (const std::string& name : options.keep) {
             if (name == "*") graph_->keepAll();
             if (const graph::ImageRef ref = imageNamed(name); ref.valid()) graph_->keep(ref);
@@ -172,15 +147,8 @@ Renderer::~Renderer() {
 
 void Renderer::release() {
     vkDeviceWaitIdle(ctx_.device);
+    build_.reset();
     graph_.reset();
-    if (!setup_) return;
-    for (vk::Pipeline& p : setup_->pipelines)
-        vk::destroyPipeline(ctx_, p);
-    for (vk::Buffer& b : setup_->buffers)
-        vk::destroyBuffer(ctx_, b);
-    vk::destroyBuffer(ctx_, setup_->frameUniforms);
-    vkDestroySampler(ctx_.device, setup_->nearestSampler, nullptr);
-    vkDestroySampler(ctx_.device, setup_->linearSampler, nullptr);
 }
 
 void Renderer::uploadTransforms() {
@@ -191,7 +159,7 @@ void Renderer::uploadTransforms() {
 }
 
 void Renderer::updateUniforms(const Camera& worldCamera) {
-    const VkExtent2D size = setup_->size, output = setup_->output().extent;
+    const VkExtent2D size = build_->size, output = build_->output().extent;
     const float aspect = float(output.width) / float(output.height);
     // The camera, light and bounds as the GPU sees them (see gpuOrigin).
     Camera camera = worldCamera;
@@ -216,11 +184,10 @@ void Renderer::updateUniforms(const Camera& worldCamera) {
     stillFrames_ = frameIndex_ > 0 && u.viewProjection == previousViewProjection_ && moved_.empty()
                        ? stillFrames_ + 1
                        : 0;
-    setup_->settled = stillFrames_ >= uint32_t(scene_.settings.cache_rotations);
-    setup_->cameraStill = stillFrames_ > 0;
+    cameraStill_ = stillFrames_ > 0;
     u.lightViewProjection = light.viewProjection;
     u.inverseLightViewProjection = glm::inverse(light.viewProjection);
-    u.lightPixelToWorld = pixelToWorld(light.view, light.projection, setup_->rsmSize);
+    u.lightPixelToWorld = pixelToWorld(light.view, light.projection, build_->rsmSize);
     u.cameraPosition = glm::vec4(camera.position, 1.0f);
     u.lightPosition = glm::vec4(l.position, l.radius);
     u.lightDirection = glm::vec4(glm::normalize(l.direction), std::cos(l.outerConeAngle));
@@ -238,7 +205,7 @@ void Renderer::updateUniforms(const Camera& worldCamera) {
     u.radianceScale = glm::vec4(scale, 0.0f, 0.0f, 0.0f);
     u.lightColor = glm::vec4(emitted / scale, std::cos(l.innerConeAngle));
     u.lightFrustum =
-        glm::vec4(light.znear, light.zfar, light.tanHalfFov, float(setup_->rsmSize.width));
+        glm::vec4(light.znear, light.zfar, light.tanHalfFov, float(build_->rsmSize.width));
     u.skyZenith = glm::vec4(scene_.sky.zenith / scale, 0.0f);
     u.skyHorizon = glm::vec4(scene_.sky.horizon / scale, 0.0f);
     u.skyGround = glm::vec4(scene_.sky.ground / scale, 0.0f);
@@ -251,7 +218,7 @@ void Renderer::updateUniforms(const Camera& worldCamera) {
         u.movedBoxes[2 * i + 1] = glm::vec4(moved(moved_[i].max, origin_), 0.0f);
     }
     u.motion = glm::vec4(float(moved_.size()), 0.0f, 0.0f, 0.0f);
-    std::memcpy(setup_->frameUniforms.mapped, &u, sizeof(u));
+    std::memcpy(build_->frameUniforms.mapped, &u, sizeof(u));
     previousViewProjection_ = u.viewProjection;
     previousPixelToWorld_ = u.pixelToWorld;
     lastLightColor_ = glm::vec3(u.lightColor);
@@ -259,8 +226,7 @@ void Renderer::updateUniforms(const Camera& worldCamera) {
 
 // A cut: asked for (cut(), a path key), or a turn or jump between two frames beyond the
 // cache_cut_* settings. No history survives it: reprojection across a cut would keep values
-// that only look like the same surface (issue 20: 26% of the pixels kept theirs, at 11x a fresh
-// start's error there).
+// that only look like the same surface (docs/temporal-cache.md measures how many and how wrong).
 bool Renderer::startsAfresh(const Camera& camera) const {
     if (cutRequested_) return true;
     if (frameIndex_ == 0) return false;
@@ -280,27 +246,38 @@ void Renderer::renderFrame(const Camera& camera) {
     }
     cutRequested_ = false;
     previousCamera_ = camera;
-    // Every frame turns the sampling patterns by a fixed angle and varies their size a little
-    // (golden-ratio sequence), so successive frames take different samples (thesis 3.1.2;
-    // docs/temporal-cache.md).
-    const float turn = glm::radians(float(scene_.settings.cache_rotation_deg));
-    const float jitter = float(scene_.settings.cache_scale_jitter);
-    const float frame = float(patternFrame());
-    setup_->patternRotation = std::fmod(frame * turn, 2.0f * glm::pi<float>());
-    setup_->patternScale = 1.0f + jitter * (2.0f * std::fmod(frame * 0.618034f, 1.0f) - 1.0f);
-    // And moves each sample within its radial stratum (another low-discrepancy sequence, so
-    // that offset and scale do not repeat together).
-    setup_->patternOffset = std::fmod(0.5f + frame * 0.7548777f, 1.0f);
-    for (EffectCache& cache : setup_->caches)
-        cache.refreshTile =
-            cache.refresh && graph_->hasHistory(cache.value) ? int(cache.refresh->next()) : -1;
     updateUniforms(camera);
-    lastSubmission_ = ctx_.submitAndWait([&](VkCommandBuffer cmd) { graph_->record(cmd); });
+    lastFrame_ = decideFrame();
+    lastSubmission_ =
+        ctx_.submitAndWait([&](VkCommandBuffer cmd) { graph_->record(cmd, lastFrame_); });
     graph_->endFrame();
-    setup_->rsmStale = false;
-    setup_->skyMapsStale = false;
+    rsmStale_ = false;
+    skyMapsStale_ = false;
     moved_.clear();
     ++frameIndex_;
+}
+
+FrameState Renderer::decideFrame() {
+    const Settings& settings = scene_.settings;
+    FrameState f;
+    // Every frame turns the sampling patterns by a fixed angle and varies their size a little
+    // (golden-ratio sequence), so successive frames take different samples (thesis 3.1.2;
+    // docs/temporal-cache.md), and moves each sample within its radial stratum (another
+    // low-discrepancy sequence, so that offset and scale do not repeat together).
+    const float turn = glm::radians(float(settings.cache_rotation_deg));
+    const float jitter = float(settings.cache_scale_jitter);
+    const float frame = float(patternFrame());
+    f.patternRotation = std::fmod(frame * turn, 2.0f * glm::pi<float>());
+    f.patternScale = 1.0f + jitter * (2.0f * std::fmod(frame * 0.618034f, 1.0f) - 1.0f);
+    f.patternOffset = std::fmod(0.5f + frame * 0.7548777f, 1.0f);
+    // Without the cache nothing persists from frame to frame: the RSM is drawn every frame.
+    f.drawRsm = rsmStale_ || !settings.cache;
+    f.drawSkyMaps = skyMapsStale_;
+    f.lookUpSkyVisibility = !cameraStill_ || skyMapsStale_;
+    f.settled = stillFrames_ >= uint32_t(settings.cache_rotations);
+    f.view = view_;
+    f.effects = nextCacheFrames(*graph_, build_->caches);
+    return f;
 }
 
 void Renderer::continueFrom(Renderer& previous) {
@@ -318,7 +295,9 @@ void Renderer::continueFrom(Renderer& previous) {
     cuts_ = previous.cuts_;
     frameIndex_ = previous.frameIndex_;
     patternStart_ = previous.patternStart_;
-    if (scene_.settings.cache_resize && frameIndex_ > 0) carryCaches(*previous.setup_, *setup_);
+    if (scene_.settings.cache_resize && frameIndex_ > 0)
+        carryCaches(*previous.graph_, previous.build_->caches, previous.build_->size, *graph_,
+                    build_->caches);
 }
 
 FrameProfile Renderer::lastFrameProfile() const {
@@ -327,7 +306,7 @@ FrameProfile Renderer::lastFrameProfile() const {
 }
 
 void Renderer::setView(const std::string& view) {
-    setup_->view = viewIndex(view);
+    view_ = viewIndex(view);
 }
 
 void Renderer::setTime(float seconds) {
@@ -354,22 +333,18 @@ void Renderer::setTime(float seconds) {
     if (!any) return;
     transforms_ = next;
     uploadTransforms();
-    setup_->rsmStale = true;
-    setup_->skyMapsStale = true;
-    for (EffectCache& cache : setup_->caches)
-        if (cache.motionTest == MOTION_RESTART_ALL) {
-            restartCache(*graph_, cache);
-        }
+    rsmStale_ = true;
+    skyMapsStale_ = true;
+    for (const EffectCache& cache : build_->caches.effects)
+        if (cache.effect.motionTest == MOTION_RESTART_ALL) restartCache(*graph_, cache);
 }
 
 void Renderer::setLight(const SpotLight& light) {
     light_ = light;
-    setup_->rsmStale = true;
+    rsmStale_ = true;
     stillFrames_ = 0;
-    for (EffectCache& cache : setup_->caches)
-        if (cache.lightDependent) {
-            restartCache(*graph_, cache);
-        }
+    for (const EffectCache& cache : build_->caches.effects)
+        if (cache.effect.lightDependent) restartCache(*graph_, cache);
 }
 
 } // namespace ssgi

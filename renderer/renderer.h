@@ -1,8 +1,9 @@
 // The frame: wires the passes into the graph in declared order and renders frames of a scene.
 #pragma once
 
+#include "frame_state.h"
 #include "graph/frame_graph.h"
-#include "passes/pass_setup.h"
+#include "passes/frame_build.h"
 #include "scene/scene.h"
 #include "scene_gpu.h"
 
@@ -80,7 +81,7 @@ public:
     bool hasImage(const std::string& name) const;
     // The output's size ("hdr", "ldr"); the screen images the passes write are larger by the
     // guard band on each side.
-    VkExtent2D size() const { return setup_->output().extent; }
+    VkExtent2D size() const { return build_->output().extent; }
     // For the viewer: records into cmd, after the last frame, the barrier that makes image `name`
     // ("ldr") a transfer source, and returns it.
     const vk::Image& prepareCopySource(VkCommandBuffer cmd, const std::string& name);
@@ -98,6 +99,8 @@ private:
     const EffectCache* metaOf(const std::string& name) const;
     std::vector<float> readRsmVpls(graph::ImageRef ref); // readImage's decoding of "rsm.vpls"
     void updateUniforms(const Camera& camera);
+    // What this frame runs and with which patterns (frame_state.h), once the camera is known.
+    FrameState decideFrame();
     bool startsAfresh(const Camera& camera) const;
     void uploadTransforms(); // transforms_, moved to the GPU's origin
     void release();          // what the destructor gives back, also when the constructor fails
@@ -106,13 +109,18 @@ private:
     const Scene& scene_;
     std::unique_ptr<SceneGpu> sceneGpu_;
     std::unique_ptr<graph::FrameGraph> graph_;
-    std::unique_ptr<PassSetup> setup_;
+    std::unique_ptr<FrameBuild> build_;
     SpotLight light_;
     uint32_t frameIndex_ = 0;
     uint32_t patternStart_ = 0; // RenderOptions::patternStart
     uint32_t patternFrame() const { return patternStart_ + frameIndex_; }
     vk::HostSpan lastSubmission_;
     uint32_t stillFrames_ = 0;          // frames in a row with this camera and light
+    bool cameraStill_ = false;          // this frame's camera is last frame's, nothing moved
+    bool rsmStale_ = true;              // the light changed since the RSM was drawn
+    bool skyMapsStale_ = true;          // an object moved since the sky maps were drawn
+    int view_ = 0;                      // what the composite shows (VIEW_*)
+    FrameState lastFrame_;              // what the last frame ran
     std::vector<glm::mat4> transforms_; // where the instances stand
     std::vector<Aabb> moved_;           // boxes of the objects moved since the last frame
     glm::mat4 previousViewProjection_{1.0f};

@@ -9,25 +9,26 @@ namespace ssgi {
 graph::ImageRef Renderer::imageNamed(const std::string& name) const {
     using graph::FrameGraph;
     // After the frame every pair has swapped: what it wrote is now the "previous" side.
-    if (setup_->viewDepthHistory && name == "gbuffer.view_depth")
-        return FrameGraph::previous(*setup_->viewDepthHistory);
-    for (const EffectCache& cache : setup_->caches) {
-        if (name == cache.name + ".history") return FrameGraph::previous(cache.value);
-        if (name == cache.name + ".count") return FrameGraph::previous(cache.count);
+    const CacheSet& caches = build_->caches;
+    if (caches.viewDepthHistory && name == "gbuffer.view_depth")
+        return FrameGraph::previous(*caches.viewDepthHistory);
+    for (const EffectCache& cache : caches.effects) {
+        if (name == cache.name() + ".history") return FrameGraph::previous(cache.valueHistory);
+        if (name == cache.name() + ".count") return FrameGraph::previous(cache.countHistory);
     }
     return graph_->find(name);
 }
 
 const EffectCache* Renderer::metaOf(const std::string& name) const {
-    for (const EffectCache& cache : setup_->caches)
-        if (name == cache.name + ".meta") return &cache;
+    for (const EffectCache& cache : build_->caches.effects)
+        if (name == cache.name() + ".meta") return &cache;
     return nullptr;
 }
 
 std::vector<float> Renderer::readImage(const std::string& name) {
     if (name == "gbuffer.position") { // as gbuffer_position.glsl and pixel_to_world.glsl do
         std::vector<float> position = readImage("gbuffer.view_depth");
-        const VkRect2D output = setup_->output();
+        const VkRect2D output = build_->output();
         const glm::mat4& toWorld = previousPixelToWorld_; // the last frame's
         for (uint32_t y = 0; y < output.extent.height; ++y)
             for (uint32_t x = 0; x < output.extent.width; ++x) {
@@ -45,7 +46,7 @@ std::vector<float> Renderer::readImage(const std::string& name) {
     }
     if (const EffectCache* cache = metaOf(name)) { // the shared positions, the count in alpha
         std::vector<float> meta = readImage("gbuffer.position");
-        const std::vector<float> count = readImage(cache->name + ".count");
+        const std::vector<float> count = readImage(cache->name() + ".count");
         for (size_t i = 0; i < meta.size(); i += 4)
             meta[i + 3] = count[i];
         return meta;
@@ -55,11 +56,12 @@ std::vector<float> Renderer::readImage(const std::string& name) {
     if (name == "rsm.vpls") return readRsmVpls(ref);
     // A screen image is read where the output lies in it: its guard band left out.
     const VkExtent2D e = graph_->image(ref).extent;
-    const bool screen = e.width == setup_->size.width && e.height == setup_->size.height;
+    const bool screen = e.width == build_->size.width && e.height == build_->size.height;
     std::vector<float> texels =
-        graph_->download(ref, screen ? std::optional(setup_->output()) : std::nullopt);
-    for (const EffectCache& cache : setup_->caches)
-        if (cache.scalar && name == cache.name + ".history") // RG (value, blur) as RGB + blur
+        graph_->download(ref, screen ? std::optional(build_->output()) : std::nullopt);
+    for (const EffectCache& cache : build_->caches.effects)
+        if (cache.effect.scalar &&
+            name == cache.name() + ".history") // RG (value, blur) as RGB + blur
             for (size_t i = 0; i < texels.size(); i += 4) {
                 const float value = texels[i], blur = texels[i + 1];
                 texels[i + 1] = texels[i + 2] = value;
@@ -101,17 +103,20 @@ const vk::Image& Renderer::prepareCopySource(VkCommandBuffer cmd, const std::str
 
 std::vector<std::string> Renderer::cachedEffects() const {
     std::vector<std::string> names;
-    for (const EffectCache& cache : setup_->caches)
-        names.push_back(cache.name);
+    for (const EffectCache& cache : build_->caches.effects)
+        names.push_back(cache.name());
     return names;
 }
 
 VkRect2D Renderer::refreshedTile(const std::string& effect) const {
-    for (const EffectCache& cache : setup_->caches) {
-        if (cache.name != effect || !cache.refresh || cache.refreshTile < 0) continue;
-        const TileRect tile = cache.refresh->rect(uint32_t(cache.refreshTile));
+    for (const EffectCache& cache : build_->caches.effects) {
+        if (cache.name() != effect || !cache.refresh || cache.slot >= lastFrame_.effects.size())
+            continue;
+        const int index = lastFrame_.effects[cache.slot].refreshTile;
+        if (index < 0) continue;
+        const TileRect tile = cache.refresh->rect(uint32_t(index));
         // In the output's pixels: the tile less what of it lies in the guard band.
-        const VkRect2D v = setup_->output();
+        const VkRect2D v = build_->output();
         const int32_t x0 = std::max(int32_t(tile.x), v.offset.x);
         const int32_t y0 = std::max(int32_t(tile.y), v.offset.y);
         const int32_t x1 =

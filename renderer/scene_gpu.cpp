@@ -10,7 +10,8 @@ vk::VertexInput sceneVertexInput() {
     return {sizeof(Vertex),
             {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
              {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
-             {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)}}};
+             {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)},
+             {3, 0, VK_FORMAT_R16G16B16A16_UNORM, offsetof(Vertex, color)}}};
 }
 
 SceneGpu::SceneGpu(vk::Context& ctx, const Scene& scene) : ctx_(ctx), scene_(scene) {
@@ -49,7 +50,19 @@ SceneGpu::SceneGpu(vk::Context& ctx, const Scene& scene) : ctx_(ctx), scene_(sce
                                               {t.width, t.height}, t.rgba.data(), t.rgba.size()));
     const uint8_t white[4] = {255, 255, 255, 255};
     whiteTexture_ = vk::createTexture(ctx, "white", VK_FORMAT_R8G8B8A8_SRGB, {1, 1}, white, 4);
-    sampler_ = vk::createSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT);
+    auto address = [](TextureWrap wrap) {
+        return wrap == TextureWrap::ClampToEdge      ? VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE
+               : wrap == TextureWrap::MirroredRepeat ? VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT
+                                                     : VK_SAMPLER_ADDRESS_MODE_REPEAT;
+    };
+    auto filter = [](bool nearest) { return nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR; };
+    // The untextured draws read the white texel through the default sampler.
+    samplers_[TextureSampler{}] = VK_NULL_HANDLE;
+    for (const Material& material : scene.materials)
+        samplers_[material.baseColorSampler] = VK_NULL_HANDLE;
+    for (auto& [key, sampler] : samplers_)
+        sampler = vk::createSampler(ctx, filter(key.magnifyNearest), filter(key.minifyNearest),
+                                    address(key.wrapU), address(key.wrapV));
 }
 
 SceneGpu::~SceneGpu() {
@@ -61,7 +74,8 @@ SceneGpu::~SceneGpu() {
     for (vk::Image& t : textures_)
         vk::destroyImage(ctx_, t);
     vk::destroyImage(ctx_, whiteTexture_);
-    vkDestroySampler(ctx_.device, sampler_, nullptr);
+    for (auto& entry : samplers_)
+        vkDestroySampler(ctx_.device, entry.second, nullptr);
 }
 
 void SceneGpu::draw(VkCommandBuffer cmd, const vk::Pipeline& pipeline, VkBuffer frameUniforms,
@@ -80,12 +94,13 @@ void SceneGpu::draw(VkCommandBuffer cmd, const vk::Pipeline& pipeline, VkBuffer 
         constants.model = transforms_[i];
         constants.baseColorFactor = material.baseColorFactor;
         constants.material = {textured ? 1.0f : 0.0f,
-                              material.alphaMask ? material.alphaCutoff : 0.0f, 0.0f, 0.0f};
+                              material.alphaMask ? material.alphaCutoff : 0.0f,
+                              scene_.meshes[instance.mesh].vertexColors ? 1.0f : 0.0f, 0.0f};
         vk::Descriptors descriptors;
         descriptors.uniformBuffer(0, frameUniforms, frameUniformsSize)
             .sampledImage(1,
                           textured ? textures_[material.baseColorTexture].view : whiteTexture_.view,
-                          sampler_);
+                          samplers_.at(textured ? material.baseColorSampler : TextureSampler{}));
         if (extra) extra(descriptors);
         descriptors.push(ctx_, cmd, pipeline);
         vkCmdPushConstants(cmd, pipeline.layout, pipeline.stages, 0, sizeof(constants), &constants);

@@ -7,12 +7,13 @@
 #include "vk/resources.h"
 
 #include <functional>
+#include <map>
 #include <vector>
 
 namespace ssgi {
 
-// The layout of the scene's vertex buffers (ssgi::Vertex: position, normal, uv at locations 0,
-// 1, 2), for every pipeline that draws them.
+// The layout of the scene's vertex buffers (ssgi::Vertex: position, normal, uv, colour at
+// locations 0, 1, 2, 3), for every pipeline that draws them.
 vk::VertexInput sceneVertexInput();
 
 class SceneGpu {
@@ -23,7 +24,8 @@ public:
     SceneGpu& operator=(const SceneGpu&) = delete;
 
     // Draws every instance with `pipeline` (set 0: binding 0 = frame uniforms, binding 1 = the
-    // draw's base-colour texture, then whatever `extra` adds; push constants = DrawConstants);
+    // draw's base-colour texture with its material's sampler, then whatever `extra` adds; push
+    // constants = DrawConstants);
     // with `only` given, the instances it marks.
     void draw(VkCommandBuffer cmd, const vk::Pipeline& pipeline, VkBuffer frameUniforms,
               VkDeviceSize frameUniformsSize,
@@ -43,7 +45,7 @@ private:
     std::vector<glm::mat4> transforms_; // per instance
     std::vector<vk::Image> textures_;
     vk::Image whiteTexture_;
-    VkSampler sampler_ = VK_NULL_HANDLE;
+    std::map<TextureSampler, VkSampler> samplers_; // one for each sampler the materials use
 };
 
 } // namespace ssgi

@@ -154,7 +154,7 @@ TEST_F(AccuracyTest, BunnyEffectsAgainstTheReference) {
     EXPECT_LT(m.ssdo, 0.024); // measured 0.0181
 }
 
-// The unoccluded sky term on a gradient sky (issue 19): a lone sphere, so that every normal
+// The unoccluded sky term on a gradient sky: a lone sphere, so that every normal
 // direction is seen, against the path tracer. Evaluating the sky along the normal (the sky's
 // radiance in place of its irradiance) measured relMSE 0.156 on such a sphere; the closed form
 // leaves the reference's noise.
@@ -167,7 +167,7 @@ TEST_F(AccuracyTest, GradientSkyIrradianceOnASphereMatchesTheReference) {
     EXPECT_LT(error, 0.01);
 }
 
-// The sky term where screen-space AO cannot see the occluders (issue 19): Sponza's galleries
+// The sky term where screen-space AO cannot see the occluders: Sponza's galleries
 // under its roofs. The real-time image with no spot light and no bounce is the sky term alone,
 // measured against the reference's `sky` mode (the sky's light with true visibility). With the
 // sky visibility maps the AO keeps the near occluders and the maps the far ones.
@@ -187,7 +187,7 @@ TEST_F(AccuracyTest, SkyVisibilityBeyondTheScreenMatchesTheReferenceSkyLight) {
     EXPECT_LT(error[1], 0.1);
 }
 
-// The bunny on its floor (issue 18): the sky term against the reference's `sky` mode, with no
+// The bunny on its floor: the sky term against the reference's `sky` mode, with no
 // spot light and no bounce. The floor is tested exactly and the maps fit the bunny alone; when
 // both were drawn into maps around the 20 m floor, the bunny filled two texels of each and its
 // sky light came out 26% too bright (mean 0.0871 against 0.0690, docs/bench-indirect.md).
@@ -218,7 +218,7 @@ TEST_F(AccuracyTest, TheBunnysSkyLightMatchesTheReferenceSkyLight) {
     EXPECT_LT(std::abs(mean[1] - truthMean), 0.05 * truthMean);
 }
 
-// The one bounce lowers the bunny's error (issue 18; it tripled it when the sky term was too
+// The one bounce lowers the bunny's error (it tripled it when the sky term was too
 // bright): one uncached frame of the whole image against the reference's full image.
 TEST_F(AccuracyTest, TheBounceLowersTheBunnysError) {
     Scene scene = loadScene(test::sourcePath("scenes/bunny.json"));

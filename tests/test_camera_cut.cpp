@@ -1,4 +1,4 @@
-// Camera cuts (issue 20): a cut restarts every cached history, asked for (Renderer::cut(), a
+// Camera cuts: a cut restarts every cached history, asked for (Renderer::cut(), a
 // camera path key with "cut": true) or by itself when the camera turns or jumps beyond the
 // cache_cut_* settings between two frames; an ordinary step of a camera path is no cut.
 #include "renderer.h"

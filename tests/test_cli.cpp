@@ -183,7 +183,7 @@ TEST_F(Cli, WalkthroughWritesATraceAndTheHostClockBesideThePasses) {
 }
 
 // `cmake --install` gives programs that run from anywhere: their shaders are inside them and
-// their scenes beside them in PREFIX/share/ssgi (issue 22).
+// their scenes beside them in PREFIX/share/ssgi.
 TEST_F(Cli, InstalledRenderRunsFromAnyDirectory) {
     const fs::path prefix = dir / "prefix";
     Result install = ssgi::test::runCommand("cmake --install " + std::string(SSGI_BUILD_DIR) +

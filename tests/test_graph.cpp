@@ -1,5 +1,6 @@
 // The frame graph: declared image uses -> emitted barriers (CPU), where transient images lie in
 // memory (CPU), and history pairs and shared memory on the device.
+#include "frame_state.h"
 #include "graph/frame_graph.h"
 #include "graph/transient_memory.h"
 #include "support.h"
@@ -259,7 +260,7 @@ TEST_F(HistoryTest, TransientImagesTakeTurnsInOneBlockOfMemory) {
     }
 }
 
-// Timestamps (issue 16): on a CPU device (lavapipe) a full barrier follows every stamp, so the
+// Timestamps: on a CPU device (lavapipe) a full barrier follows every stamp, so the
 // stamp is written where it stands; a GPU records the stamps alone. Checked on what the graph
 // recorded, in both modes, on the real device; no timing is judged here.
 class TimestampTest : public test::VulkanTest {
@@ -277,7 +278,7 @@ protected:
         };
         graph.addPass("first", PassKind::Transfer, {{image, Use::TransferDst}}, clear);
         graph.addPass("off", PassKind::Transfer, {{image, Use::TransferDst}}, clear,
-                      [] { return false; });
+                      [](const FrameState&) { return false; });
         graph.addPass("second", PassKind::Transfer, {{image, Use::TransferDst}}, clear);
         ctx.submitAndWait([&](VkCommandBuffer cmd) { graph.record(cmd); });
         graph.endFrame();

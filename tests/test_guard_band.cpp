@@ -1,4 +1,4 @@
-// The guard band (issue 20, setting guard_band): the screen images are rendered that many pixels
+// The guard band (setting guard_band): the screen images are rendered that many pixels
 // beyond each edge of the output, so the screen-space effects see what lies just off screen,
 // while the output keeps its size and every pixel of it the ray it had without a band.
 #include "metrics/metrics.h"

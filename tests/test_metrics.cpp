@@ -209,7 +209,7 @@ TEST_F(Program, CompareNamesBadInput) {
     EXPECT_EQ(run("compare", a + " " + a + " --error-map " + (dir / "map.jpg").string(), output),
               2);
     EXPECT_FALSE(fs::exists(dir / "map.jpg"));
-    // Images that cannot be compared (issue 21): a tonemapped PNG against a linear EXR, and a
+    // Images that cannot be compared: a tonemapped PNG against a linear EXR, and a
     // reference holding NaN (written past writeImage, which refuses to write one).
     const std::string png = image("a.png", constant(32, 24, 0.5f));
     EXPECT_EQ(run("compare", png + " " + a, output), 2);

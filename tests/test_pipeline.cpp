@@ -1,6 +1,7 @@
-// The pipelines hold a pass's declared bindings to what its shader declares (vk/shader_bindings):
-// the reflection reads the shader's own layout, and a layout that disagrees is refused at
-// pipeline creation with the shader and the binding named.
+// The pipelines hold a pass's declared bindings and specialization constants to what its shader
+// declares (vk/shader_bindings): the reflection reads the shader's own layout, constants and
+// workgroup size, and a layout or a constant that disagrees is refused at pipeline creation with
+// the shader and the binding or constant named.
 #include "support.h"
 
 #include "vk/embedded_shaders.h"
@@ -8,6 +9,7 @@
 #include "vk/shader_bindings.h"
 
 #include <algorithm>
+#include <map>
 
 using namespace ssgi;
 
@@ -53,8 +55,9 @@ TEST(ShaderBindings, ReflectTheShadersOwnDeclarations) {
 class PipelineTest : public test::VulkanTest {};
 
 TEST_F(PipelineTest, TheShadersOwnLayoutIsAccepted) {
-    vk::Pipeline p = vk::createComputePipeline(test::context(), "indirect_reconstruct.comp",
-                                               kReconstruct, 80, {{4, 8}});
+    vk::Pipeline p =
+        vk::createComputePipeline(test::context(), "indirect_reconstruct.comp", kReconstruct, 80,
+                                  {{{"INTERLEAVE", 4}, {"RADIUS", 8}}});
     EXPECT_NE(p.pipeline, VK_NULL_HANDLE);
     vk::destroyPipeline(test::context(), p);
 }
@@ -82,7 +85,7 @@ TEST_F(PipelineTest, ALayoutThatDisagreesIsRefusedNamingShaderAndBinding) {
     EXPECT_NE(lacks.find("lacks"), std::string::npos) << lacks;
 
     // A storage image the pass would take as read only (graph::Use::StorageRead) that the shader
-    // may write: the graph would leave its writes out of the barriers (issue 18's VPL map).
+    // may write: the graph would leave its writes out of the barriers.
     std::vector<vk::LayoutBinding> readOnly = kReconstruct;
     readOnly[7].readOnly = true;
     const std::string writable = refusal(readOnly);
@@ -112,4 +115,43 @@ TEST_F(PipelineTest, ABindingTheShaderNamesOtherwiseIsRefusedNamingBoth) {
     EXPECT_NE(message.find("indirect_reconstruct.comp binding 3"), std::string::npos) << message;
     EXPECT_NE(message.find("historyViewDepth"), std::string::npos) << message;
     EXPECT_NE(message.find("declares historyCount"), std::string::npos) << message;
+}
+
+// The specialization constants and the workgroup size are read from the SPIR-V, as the bindings
+// are: a pass gives its constants by name, and the dispatch counts groups of the shader's size.
+TEST(ShaderBindings, ReflectSpecializationConstantsAndWorkgroupSize) {
+    const vk::EmbeddedShader& s = shader("composite.comp");
+    const std::map<std::string, uint32_t> constants = vk::shaderSpecConstants(s.code, s.bytes / 4);
+    const std::map<std::string, uint32_t> expected = {{"HAS_AO", 0},
+                                                      {"HAS_INDIRECT", 1},
+                                                      {"HAS_SSDO", 2},
+                                                      {"HAS_SKY_VISIBILITY", 3},
+                                                      {"HAS_CONTACT", 4}};
+    EXPECT_EQ(constants, expected);
+    const vk::WorkgroupSize group = vk::shaderWorkgroupSize(s.code, s.bytes / 4);
+    EXPECT_EQ(group.x, 8u);
+    EXPECT_EQ(group.y, 8u);
+    const vk::EmbeddedShader& probe = shader("probe_fill.comp");
+    EXPECT_TRUE(vk::shaderSpecConstants(probe.code, probe.bytes / 4).empty());
+}
+
+TEST_F(PipelineTest, SpecializationConstantsAreGivenByTheShadersNames) {
+    auto refusal = [](const vk::Specialization& spec) {
+        try {
+            vk::Pipeline p = vk::createComputePipeline(test::context(), "indirect_reconstruct.comp",
+                                                       kReconstruct, 80, spec);
+            vk::destroyPipeline(test::context(), p);
+        } catch (const vk::VulkanError& e) {
+            return std::string(e.what());
+        }
+        return std::string("accepted");
+    };
+    // In either order: each goes to the constant of its name.
+    EXPECT_EQ(refusal({{{"RADIUS", 8}, {"INTERLEAVE", 4}}}), "accepted");
+    const std::string unknown = refusal({{{"INTERLEAVE", 4}, {"RADIUS", 8}, {"TAPS", 9}}});
+    EXPECT_NE(unknown.find("indirect_reconstruct.comp declares no specialization constant TAPS"),
+              std::string::npos)
+        << unknown;
+    const std::string missing = refusal({{{"INTERLEAVE", 4}}});
+    EXPECT_NE(missing.find("RADIUS, which the pass does not give"), std::string::npos) << missing;
 }

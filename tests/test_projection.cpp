@@ -1,4 +1,5 @@
 // Projection and reprojection math (thesis 3.1.1, equations 1-3) against independent geometry.
+#include "frame_uniforms.h"
 #include "scene/camera.h"
 
 #include <gtest/gtest.h>
@@ -132,6 +133,35 @@ TEST(CameraPath, InterpolatesBetweenKeysAndClampsAtTheEnds) {
     EXPECT_NEAR(glm::degrees(mid.yfov), 50.0f, 1e-4f);
     EXPECT_EQ(cameraAt(path, -1.0f).position, a.position);
     EXPECT_EQ(cameraAt(path, 5.0f).position, b.position);
+}
+
+// The G-buffer keeps a view depth; pixelToWorld takes a pixel centre and that depth back to the
+// world point that projects there (gbuffer_position.glsl does the same on the GPU).
+TEST(FrameUniforms, PixelToWorldUndoesTheProjection) {
+    Camera c = lookingAt({1, 2, 3}, {4, 0, -5}, 50.0f);
+    const VkExtent2D size{160, 90};
+    const glm::mat4 view = viewMatrix(c), projection = projectionMatrix(c, 160.0f / 90.0f);
+    const glm::mat4 toWorld = pixelToWorld(view, projection, size);
+    for (const glm::vec3 world : {glm::vec3(4, 0, -5), glm::vec3(2, 1, -1), glm::vec3(-1, 3, -9)}) {
+        glm::vec3 uvd;
+        ASSERT_TRUE(projectToTexture(projection * view, world, uvd));
+        const glm::vec2 pixel = glm::vec2(uvd) * glm::vec2(size.width, size.height);
+        const float depth = -(view * glm::vec4(world, 1.0f)).z;
+        const glm::vec4 back = toWorld * glm::vec4(pixel * depth, depth, 1.0f);
+        EXPECT_NEAR(glm::distance(glm::vec3(back), world), 0.0f, 1e-4f) << world.x;
+    }
+}
+
+// A scene near the origin keeps it; one far away moves it to the centre of its bounds, which a
+// float holds exactly, and what moves to the GPU is the difference, taken in double precision.
+TEST(FrameUniforms, TheGpuOriginFollowsAFarScene) {
+    EXPECT_EQ(gpuOrigin(Aabb{{-1, 0, -1}, {1, 2, 1}}), glm::dvec3(0.0));
+    const Aabb far{{1e5f, 0, 1e5f}, {1e5f + 2, 2, 1e5f + 2}};
+    const glm::dvec3 origin = gpuOrigin(far);
+    EXPECT_EQ(origin, glm::dvec3(glm::vec3(1e5f + 1, 1, 1e5f + 1)));
+    EXPECT_EQ(moved(glm::vec3(1e5f + 2, 2, 1e5f), origin), glm::vec3(1, 1, -1));
+    const glm::mat4 at = glm::translate(glm::mat4(1.0f), glm::vec3(1e5f + 2, 2, 1e5f));
+    EXPECT_EQ(glm::vec3(moved(at, origin)[3]), glm::vec3(1, 1, -1));
 }
 
 } // namespace

@@ -1,4 +1,4 @@
-// A resize (issue 20): a new renderer of another size goes on from the old one
+// A resize: a new renderer of another size goes on from the old one
 // (Renderer::continueFrom). Its first frame reprojects every cached history at the old size, as
 // it would reproject any last frame, and the resampled image counts as one sample, so the new
 // size neither starts from noise nor stays held to what the old size converged to.

@@ -101,7 +101,7 @@ TEST_F(StabilityTest, AMovedObjectLeavesNoStaleLightingAfterOneFrame) {
 
 // Sponza, a cut from the west end of the atrium to the east end looking back (its path key is
 // marked "cut", and the 180-degree turn is beyond cache_cut_angle_deg as well): no history
-// survives it, and every pixel fares as a fresh renderer's does (issue 20). Before cuts existed,
+// survives it, and every pixel fares as a fresh renderer's does. Before cuts existed,
 // reprojection kept the AO history of 0.30 of the pixels, at 15x a fresh start's error there.
 TEST_F(StabilityTest, ACameraCutRestartsEveryHistory) {
     const CaseResult& r = result("cut");

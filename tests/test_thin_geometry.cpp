@@ -1,4 +1,4 @@
-// Thin geometry in the temporal cache (issue 20, setting cache_thin_geometry): a feature under a
+// Thin geometry in the temporal cache (setting cache_thin_geometry): a feature under a
 // pixel wide falls between texel centres from one frame to the next, so the nearest texel of its
 // reprojected point holds what lies behind it and the reprojection test fails. With the setting
 // on, the texels beside the nearest one are tried as well (temporal.glsl reproject), and the

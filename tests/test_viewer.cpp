@@ -1,4 +1,4 @@
-// The desktop viewer (issue 8) as a person would see it, without a person: it runs under Xvfb on
+// The desktop viewer as a person would see it, without a person: it runs under Xvfb on
 // the default Vulkan device (lavapipe without a GPU) with the validation layer on, plays the
 // Cornell box's camera path, is resized in the middle, and writes a screenshot of its window.
 // The screenshot must show the scene (the red and green walls, close to a headless render of the

@@ -3,7 +3,7 @@
 # refactor can be shown to change nothing: run it before and after, then compare the two folders.
 #   tools/render_set.sh OUT_DIR [RENDER]      # RENDER: the render program (default build/render)
 #   tools/render_set.sh --compare DIR_A DIR_B # every EXR of A against B's: exit 1 unless identical
-# About a minute on two cores. The EXRs' values are compared (build/compare's MAE is 0 only
+# About a minute and a half on two cores. The EXRs' values are compared (build/compare's MAE is 0 only
 # where every value is the same; the files' headers carry the program's build).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -46,3 +46,11 @@ run pine "scenes/scrub-pine.json" --size 96x96 --frames 2
 run bare-bunny "scenes/models/bunny.glb" --size 96x96
 run bare-knob-ground "scenes/models/mori-knob.glb" --size 96x96 --set ground_plane=0
 run sponza-path "scenes/sponza.json" --size 96x72 --frames 3 --time 1.5
+# Every debug view once: Sponza has a sky (sky-visibility), the bunny with SSDO the rest.
+for view in albedo normal depth direct rsm-flux rsm-normal shadow ao indirect sky-visibility; do
+  run "view-$view" "scenes/sponza.json" --size 64x48 --frames 2 --view "$view"
+done
+for view in ssdo contact peel; do
+  run "view-$view" "scenes/bunny.json" --size 64x48 --frames 2 --view "$view" \
+    --set ssdo=1 --set depth_peeling=1 --set contact_shadows=1
+done

@@ -134,6 +134,13 @@ Args parseArgs(int argc, char** argv) {
     return a;
 }
 
+// An image file; a warning on stderr when it has pixels that are not opaque.
+Image load(const std::string& path) {
+    Image image = loadImage(path);
+    warnIfNotOpaque(image, path);
+    return image;
+}
+
 nlohmann::json number(double v) {
     return std::isfinite(v) ? nlohmann::json(v) : nullptr;
 }
@@ -144,7 +151,7 @@ bool isLinear(const std::string& path) {
 
 int run(int argc, char** argv) {
     const Args args = parseArgs(argc, argv);
-    const Image test = loadImage(args.test), reference = loadImage(args.reference);
+    const Image test = load(args.test), reference = load(args.reference);
     requireSize(reference, args.reference, test, args.test);
     requireComparable(args.test, isLinear(args.test), args.reference, isLinear(args.reference),
                       reference);
@@ -158,7 +165,7 @@ int run(int argc, char** argv) {
         options.regions.emplace_back("edge band " + std::to_string(args.edgeBand) + " px",
                                      edgeBandMask(test.width, test.height, args.edgeBand));
     for (const std::string& path : args.masks) {
-        const Image mask = loadImage(path);
+        const Image mask = load(path);
         requireSize(mask, path, test, args.test);
         options.regions.emplace_back("mask " + path, thresholdMask(mask));
     }

@@ -87,8 +87,8 @@ Args parseArgs(int argc, char** argv) {
             const std::string v = value(i);
             const size_t x = v.find('x');
             if (x == std::string::npos) throw InputError("--size: expected WxH, got '" + v + "'");
-            a.options.width = uint32_t(parseWhole("--size", v.substr(0, x), 1, 16384));
-            a.options.height = uint32_t(parseWhole("--size", v.substr(x + 1), 1, 16384));
+            a.options.width = uint32_t(parseWhole("--size", v.substr(0, x), 1, kMaxImageSide));
+            a.options.height = uint32_t(parseWhole("--size", v.substr(x + 1), 1, kMaxImageSide));
         } else if (arg == "--spp") {
             a.options.spp = uint32_t(parseWhole(arg, value(i), 1, 1u << 24));
         } else if (arg == "--noise") {

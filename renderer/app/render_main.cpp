@@ -24,9 +24,9 @@ const char* kUsage = R"(usage: render [SCENE] [options]
                         and one timed); the image is the last frame's
   --output FILE.png     tonemapped sRGB image (default out/<scene>.png); the linear HDR image
                         (or the view's linear quantity) goes beside it as FILE.exr
-  --view NAME           final, albedo, normal, depth, direct, rsm-flux, rsm-normal, shadow,
-                        ao, indirect, ssdo, contact (red: what contact shadows darkened),
-                        peel (distance to the second depth layer)
+  --view NAME           what the image shows in place of the final image (the views below;
+                        contact: in red what contact shadows darkened; peel: the distance to
+                        the second depth layer; docs/effects.md)
   --time T              time in seconds along the scene's camera path and object paths
   --profile             print per-pass GPU milliseconds (median, min, max over the timed
                         frames) beside the host clock, and warn where they disagree
@@ -55,7 +55,10 @@ Args parseArgs(int argc, char** argv) {
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         if (arg == "--help" || arg == "-h") {
-            std::cout << kUsage << cli::kCommonUsage;
+            std::cout << kUsage << cli::kCommonUsage << "views:";
+            for (const std::string& view : viewNames())
+                std::cout << " " << view;
+            std::cout << "\n";
             std::exit(0);
         } else if (arg == "--memory") {
             a.memory = true;
@@ -69,11 +72,7 @@ Args parseArgs(int argc, char** argv) {
         } else if (arg == "--view") {
             a.view = cli::optionValue(argc, argv, i);
         } else if (arg == "--time") {
-            std::string v = cli::optionValue(argc, argv, i);
-            char* end = nullptr;
-            a.time = std::strtof(v.c_str(), &end);
-            if (v.empty() || *end != '\0' || !(a.time >= 0.0f))
-                throw InputError("--time: '" + v + "' is not a time >= 0");
+            a.time = float(cli::parseNumber(arg, cli::optionValue(argc, argv, i), 0.0, 1e9));
         } else if (arg == "--profile") {
             a.profile = true;
         } else if (arg == "--profile-json") {
@@ -110,7 +109,7 @@ void printMemory(const graph::FrameGraph& graph, uint32_t width, uint32_t height
     };
     constexpr double MiB = 1048576.0;
     double total = 0.0;
-    for (const auto& [name, bytes] : graph.imageMemory()) {
+    for (const auto& [name, bytes, pair] : graph.imageMemory()) {
         std::printf("%-34s %9.1f MiB%s\n", name.c_str(), double(bytes) / MiB,
                     isShared(name) ? "  (shared)" : "");
         total += double(bytes);

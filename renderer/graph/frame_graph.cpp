@@ -1,5 +1,7 @@
 #include "graph/frame_graph.h"
 
+#include "frame_state.h"
+
 #include <glm/gtc/packing.hpp>
 
 #include <algorithm>
@@ -58,6 +60,7 @@ uint32_t FrameGraph::createHistory(const std::string& name, VkFormat format, VkE
     h.usage = usage;
     h.resources[0] = addResource(name + " A", format, extent, usage, false);
     h.resources[1] = addResource(name + " B", format, extent, usage, false);
+    resources_[h.resources[0]].historyPair = resources_[h.resources[1]].historyPair = name;
     histories_.push_back(h);
     return uint32_t(histories_.size() - 1);
 }
@@ -92,7 +95,7 @@ ImageRef FrameGraph::find(const std::string& name) const {
 }
 
 void FrameGraph::addPass(const std::string& name, PassKind kind, std::vector<ImageUse> uses,
-                         RecordFn record, std::function<bool()> enabled) {
+                         RecordFn record, EnabledFn enabled) {
     passes_.push_back({name, kind, std::move(uses), std::move(record), std::move(enabled)});
 }
 
@@ -100,12 +103,11 @@ void FrameGraph::addPass(const std::string& name, PassKind kind, std::vector<Ima
 // pass's begin and end stamps mean. Lavapipe (Mesa 22.3, lvp_execute.c) does not: writing a
 // timestamp flushes what came before, then bins the end-query into a new rasterizer scene that
 // runs only at the next flush, while compute dispatches run at once and wait for themselves
-// (llvmpipe_launch_grid). So a compute pass's begin stamp was written after its own dispatch had
-// finished unless something flushed in between, and the pass read ~0 ms while its time fell into
-// the gap before it (issue 16: `ao` 0.063 ms for a pass of about 98 ms). A full barrier right
-// after each stamp flushes it at once, so every stamp is taken where it stands; a barrier before
-// a stamp does not help, since the stamp's own scene is what waits. It costs about 1 ms a frame
-// on lavapipe and changes no image; a GPU records the stamps alone.
+// (llvmpipe_launch_grid). Without help a compute pass's begin stamp is written after its own
+// dispatch has finished, and the pass reads about 0 ms while its time falls into the gap before
+// it. A full barrier right after each stamp flushes it at once, so every stamp is taken where it
+// stands; a barrier before a stamp does not help, since the stamp's own scene is what waits. It
+// changes no image; a GPU records the stamps alone (docs/profiling.md has the figures).
 void FrameGraph::writeTimestamp(VkCommandBuffer cmd, uint32_t query, const std::string& pass) {
     vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queryPool_, query);
     lastCommands_.push_back({RecordedCommand::Kind::Timestamp, pass});
@@ -122,6 +124,10 @@ void FrameGraph::writeTimestamp(VkCommandBuffer cmd, uint32_t query, const std::
 }
 
 void FrameGraph::record(VkCommandBuffer cmd) {
+    record(cmd, FrameState{});
+}
+
+void FrameGraph::record(VkCommandBuffer cmd, const FrameState& frame) {
     allocateTransients();
     const uint32_t queriesNeeded = uint32_t(2 * passes_.size());
     if (queryCapacity_ < queriesNeeded) {
@@ -140,7 +146,7 @@ void FrameGraph::record(VkCommandBuffer cmd) {
     ran_.assign(passes_.size(), false);
     for (uint32_t p = 0; p < passes_.size(); ++p) {
         const Pass& pass = passes_[p];
-        if (pass.enabled && !pass.enabled()) {
+        if (pass.enabled && !pass.enabled(frame)) {
             // Both stamps together: the pass spans nothing, where it would have stood.
             vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queryPool_, 2 * p);
             vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queryPool_, 2 * p + 1);
@@ -182,7 +188,7 @@ void FrameGraph::record(VkCommandBuffer cmd) {
             ctx_.cmdBeginLabel(cmd, &label);
         }
         writeTimestamp(cmd, 2 * p, pass.name);
-        pass.record(PassContext{cmd, *this, pass.name, pass.uses});
+        pass.record(PassContext{cmd, frame, *this, pass.name, pass.uses});
         lastCommands_.push_back({RecordedCommand::Kind::Pass, pass.name});
         writeTimestamp(cmd, 2 * p + 1, pass.name);
         if (ctx_.cmdEndLabel) ctx_.cmdEndLabel(cmd);

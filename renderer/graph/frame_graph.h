@@ -13,6 +13,10 @@
 #include <string>
 #include <vector>
 
+namespace ssgi {
+struct FrameState;
+}
+
 namespace ssgi::graph {
 
 // Names an image as a pass sees it: a plain image, or one side of a history pair, resolved to a
@@ -40,7 +44,8 @@ enum class TimestampMode {
 TimestampMode timestampModeFor(VkPhysicalDeviceType deviceType);
 
 // What record() put into the command buffer, in order, for inspection (tests). A pass turned off
-// this frame records only its two stamps back to back (they span nothing), not listed here.
+// this frame records only its two timestamps back to back (they span nothing), listed as no
+// command here.
 struct RecordedCommand {
     enum class Kind { Barrier, Timestamp, TimestampBarrier, Pass };
     Kind kind;
@@ -57,11 +62,12 @@ struct BarrierRecord {
 
 class FrameGraph;
 
-// What a pass's record function gets: the command buffer and the images behind the refs it
-// declared. A ref the pass did not declare is refused (std::logic_error naming the pass): no
-// barrier was derived for it.
+// What a pass's record function gets: the command buffer, this frame's state, and the images
+// behind the refs it declared. A ref the pass did not declare is refused (std::logic_error naming
+// the pass): no barrier was derived for it.
 struct PassContext {
     VkCommandBuffer cmd;
+    const FrameState& frame;
     const FrameGraph& graph;
     const std::string& pass;
     const std::vector<ImageUse>& uses;
@@ -69,6 +75,8 @@ struct PassContext {
 };
 
 using RecordFn = std::function<void(const PassContext&)>;
+// Whether a pass runs this frame.
+using EnabledFn = std::function<bool(const FrameState&)>;
 
 class FrameGraph {
 public:
@@ -110,9 +118,11 @@ public:
     // `enabled`, when given, is asked each frame; a pass it turns off records nothing, touches
     // none of its images, and reports 0 ms.
     void addPass(const std::string& name, PassKind kind, std::vector<ImageUse> uses,
-                 RecordFn record, std::function<bool()> enabled = {});
+                 RecordFn record, EnabledFn enabled = {});
 
-    // Records every pass of one frame (barriers, labels, timestamps) into cmd.
+    // Records every pass of one frame (barriers, labels, timestamps) into cmd; `frame` is what
+    // the passes' enable and record callbacks are handed (a default one without).
+    void record(VkCommandBuffer cmd, const FrameState& frame);
     void record(VkCommandBuffer cmd);
     // After the frame's submission has completed: reads the timestamps and swaps histories.
     void endFrame();
@@ -142,7 +152,12 @@ public:
     const vk::Image& prepareTransferSource(VkCommandBuffer cmd, ImageRef ref);
     ImageRef find(const std::string& name) const;
     // Every image the graph owns (history pairs as two), with the device memory it needs.
-    std::vector<std::pair<std::string, VkDeviceSize>> imageMemory() const;
+    struct HeldImage {
+        std::string name;
+        VkDeviceSize bytes = 0;
+        std::string historyPair; // for one side of a history pair, the pair's name; else empty
+    };
+    std::vector<HeldImage> imageMemory() const;
     // The transient images that share one block of memory, and the block's size (0 before the
     // first frame); the memory the graph holds is that block plus every other image's own.
     struct SharedMemory {
@@ -161,6 +176,7 @@ private:
         bool shared = false;              // bound into sharedBlock_
         std::vector<uint32_t> sharesWith; // the resources whose bytes overlap its own
         uint32_t firstPass = 0;           // its lifetime within the frame (shared ones)
+        std::string historyPair;          // the pair it is a side of, if any
     };
     struct History {
         uint32_t resources[2];
@@ -174,7 +190,7 @@ private:
         PassKind kind;
         std::vector<ImageUse> uses;
         RecordFn record;
-        std::function<bool()> enabled;
+        EnabledFn enabled;
     };
     uint32_t resolve(ImageRef ref) const;
     // Records the barrier (if any) that readies `r` for a transfer `use`, outside any pass.

@@ -95,10 +95,11 @@ VkDeviceSize FrameGraph::heldMemory() const {
     return bytes;
 }
 
-std::vector<std::pair<std::string, VkDeviceSize>> FrameGraph::imageMemory() const {
-    std::vector<std::pair<std::string, VkDeviceSize>> list;
+std::vector<FrameGraph::HeldImage> FrameGraph::imageMemory() const {
+    std::vector<HeldImage> list;
     for (const Resource& r : resources_)
-        if (r.image.image) list.push_back({r.image.name, r.image.memorySize}); // not released
+        if (r.image.image) // not released
+            list.push_back({r.image.name, r.image.memorySize, r.historyPair});
     return list;
 }
 

@@ -5,17 +5,26 @@
 #include "scene/scene.h"
 
 #include <cmath>
-#include <filesystem>
+#include <cstdio>
 
 namespace ssgi::metrics {
 
-namespace fs = std::filesystem;
-
 Image loadImage(const std::string& path) {
-    if (!fs::exists(path)) throw InputError(path + ": no such file");
     Image image;
     image.rgba = readImage(path, image.width, image.height);
     return image;
+}
+
+void warnIfNotOpaque(const Image& image, const std::string& name) {
+    // The figures read the colour as stored; a transparent pixel's colour is not weighed by it.
+    size_t transparent = 0;
+    for (size_t i = 0; i < image.pixels(); ++i)
+        transparent += image.rgba[4 * i + 3] < 1.0f;
+    if (transparent > 0)
+        std::fprintf(stderr,
+                     "warning: %s: %zu pixels are not opaque; their colour is compared as stored, "
+                     "alpha is not applied\n",
+                     name.c_str(), transparent);
 }
 
 size_t nonFinitePixels(const Image& image) {

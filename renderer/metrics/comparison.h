@@ -14,8 +14,13 @@
 
 namespace ssgi::metrics {
 
-// An image file as RGBA floats; InputError naming the file when it is missing or unreadable.
+// An image file as RGBA floats, as readImage reads it (the colour as stored, grey as R = G = B);
+// InputError naming the file when it is missing, unreadable, not a regular file or too large.
 Image loadImage(const std::string& path);
+
+// A warning on stderr naming `name` when pixels of `image` are not opaque: their colour is
+// compared as stored, alpha is not applied.
+void warnIfNotOpaque(const Image& image, const std::string& name);
 
 // Pixels with a NaN or infinite colour channel.
 size_t nonFinitePixels(const Image& image);

@@ -1,5 +1,7 @@
 #include "metrics/golden.h"
 
+#include "shared.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -11,12 +13,8 @@ Image displayImage(const Image& image, bool linear, double exposure) {
     for (size_t i = 0; i < image.pixels(); ++i)
         for (size_t c = 0; c < 3; ++c) {
             double v = image.rgba[4 * i + c];
-            if (linear) {
-                const double x = v * exposure;
-                const double t = (x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14);
-                v = std::isnan(t) ? t : std::clamp(t, 0.0, 1.0);
-                v = v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
-            }
+            if (linear) // the composite's display transform; NaN stays NaN
+                v = shader::encodeSrgb(shader::tonemapAces(float(v * exposure)));
             // What an 8-bit PNG of it would hold; a PNG read back is already on this grid.
             out.rgba[4 * i + c] = std::isnan(v)
                                       ? float(v)
@@ -26,10 +24,7 @@ Image displayImage(const Image& image, bool linear, double exposure) {
 }
 
 float displayValue(float linear, float exposure) {
-    const float x = linear * exposure;
-    const float mapped =
-        std::clamp((x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f), 0.0f, 1.0f);
-    return mapped <= 0.0031308f ? mapped * 12.92f : 1.055f * std::pow(mapped, 1.0f / 2.4f) - 0.055f;
+    return shader::encodeSrgb(shader::tonemapAces(linear * exposure));
 }
 
 double fractionDiffering(const Image& test, const Image& reference, double maxDiff) {

@@ -1,18 +1,16 @@
 // composite: the frame's terms added up into HDR radiance, then tonemapped to an sRGB image
 // (or a debug view of any intermediate in its place).
-#include "passes/pass_setup.h"
-
-#include "shared.h"
+#include "passes/passes.h"
 
 namespace ssgi {
 
-CompositeOutputs addCompositePass(PassSetup& s, const GBufferAndRsm& in,
+CompositeOutputs addCompositePass(FrameBuild& build, const GBufferAndRsm& in,
                                   const LightingTerms& terms) {
     const VkImageUsageFlags storage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     CompositeOutputs out;
-    const VkExtent2D output = s.output().extent;
-    out.hdr = s.graph.createImage("hdr", VK_FORMAT_R32G32B32A32_SFLOAT, output, storage);
-    out.ldr = s.graph.createImage("ldr", VK_FORMAT_R8G8B8A8_UNORM, output, storage);
+    const VkExtent2D output = build.output().extent;
+    out.hdr = build.graph.createImage("hdr", VK_FORMAT_R32G32B32A32_SFLOAT, output, storage);
+    out.ldr = build.graph.createImage("ldr", VK_FORMAT_R8G8B8A8_UNORM, output, storage);
     // Which terms exist is structural: the shader never reads the image bound in place of an
     // effect that is off (the direct term, so that every binding holds a valid image).
     auto orDirect = [&](graph::ImageRef ref) { return ref.valid() ? ref : terms.direct; };
@@ -32,13 +30,15 @@ CompositeOutputs addCompositePass(PassSetup& s, const GBufferAndRsm& in,
                    {"hdrImage", out.hdr, Use::StorageWrite},
                    {"ldrImage", out.ldr, Use::StorageWrite}};
     pass.pushSize = sizeof(shader::CompositeConstants);
-    pass.spec = {{terms.ao.valid() ? 1 : 0, terms.indirect.valid() ? 1 : 0,
-                  terms.ssdo.valid() ? 1 : 0, terms.skyVisibility.valid() ? 1 : 0,
-                  s.model.settings.contact_shadows ? 1 : 0}};
-    addComputePass(s, std::move(pass), [&s, output](const ComputeRecorder& r) {
+    pass.spec = {{{"HAS_AO", terms.ao.valid() ? 1 : 0},
+                  {"HAS_INDIRECT", terms.indirect.valid() ? 1 : 0},
+                  {"HAS_SSDO", terms.ssdo.valid() ? 1 : 0},
+                  {"HAS_SKY_VISIBILITY", terms.skyVisibility.valid() ? 1 : 0},
+                  {"HAS_CONTACT", build.settings.contact_shadows ? 1 : 0}}};
+    addComputePass(build, std::move(pass), [&build, output](const ComputeRecorder& r) {
         shader::CompositeConstants constants{};
-        constants.view = s.view;
-        constants.guardBand = int(s.guardBand);
+        constants.view = r.frame().view;
+        constants.guardBand = int(build.guardBand);
         r.dispatch(output.width, output.height, constants);
     });
     return out;

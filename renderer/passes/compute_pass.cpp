@@ -1,6 +1,6 @@
 #include "passes/compute_pass.h"
 
-#include "passes/pass_setup.h"
+#include "passes/frame_build.h"
 
 namespace ssgi {
 
@@ -15,25 +15,25 @@ static bool isStorage(graph::Use use) {
 
 void ComputeRecorder::dispatch(uint32_t width, uint32_t height, const void* constants,
                                uint32_t size) const {
-    const PassSetup& s = setup_;
+    const FrameBuild& build = build_;
     vk::Descriptors d;
-    d.uniformBuffer(0, s.frameUniforms.buffer, s.frameUniforms.size);
+    d.uniformBuffer(0, build.frameUniforms.buffer, build.frameUniforms.size);
     uint32_t binding = 1;
     for (const ShaderImage& i : desc_.images) {
         const VkImageView view = pass_.image(i.image).view;
         if (isSampled(i.use))
-            d.sampledImage(binding++, view, i.sampler ? i.sampler : s.nearestSampler);
+            d.sampledImage(binding++, view, i.sampler ? i.sampler : build.nearestSampler);
         else
             d.storageImage(binding++, view);
     }
     for (const ShaderBuffer& b : desc_.uniforms)
         d.uniformBuffer(binding++, b.buffer.buffer, b.buffer.size);
-    d.push(s.ctx, pass_.cmd, pipeline_);
+    d.push(build.ctx, pass_.cmd, pipeline_);
     vk::dispatch(pass_.cmd, pipeline_, width, height, constants, size);
 }
 
-void addComputePass(PassSetup& s, ComputePassDesc desc, ComputeRecordFn record,
-                    std::function<bool()> enabled) {
+void addComputePass(FrameBuild& build, ComputePassDesc desc, ComputeRecordFn record,
+                    graph::EnabledFn enabled) {
     std::vector<vk::LayoutBinding> layout = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, "FrameBlock"}};
     std::vector<graph::ImageUse> uses;
     for (const ShaderImage& i : desc.images) {
@@ -47,12 +47,12 @@ void addComputePass(PassSetup& s, ComputePassDesc desc, ComputeRecordFn record,
     }
     for (const ShaderBuffer& b : desc.uniforms)
         layout.push_back({VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, b.name});
-    const vk::Pipeline pipeline = s.computePipeline(desc, layout);
+    const vk::Pipeline pipeline = build.computePipeline(desc, layout);
     const std::string name = desc.name;
-    s.graph.addPass(
+    build.graph.addPass(
         name, graph::PassKind::Compute, std::move(uses),
-        [&s, desc = std::move(desc), record = std::move(record), pipeline](
-            const graph::PassContext& pc) { record(ComputeRecorder(s, pc, desc, pipeline)); },
+        [&build, desc = std::move(desc), record = std::move(record), pipeline](
+            const graph::PassContext& pc) { record(ComputeRecorder(build, pc, desc, pipeline)); },
         std::move(enabled));
 }
 

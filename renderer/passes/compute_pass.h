@@ -17,7 +17,8 @@
 
 namespace ssgi {
 
-struct PassSetup;
+class FrameBuild;
+struct FrameState;
 
 // One image a compute pass binds.
 struct ShaderImage {
@@ -43,13 +44,15 @@ struct ComputePassDesc {
     vk::Specialization spec;
 };
 
-// What a compute pass's record function gets: dispatch() pushes the declared descriptors, then
-// the constants, and dispatches enough 8x8 groups to cover width x height.
+// What a compute pass's record function gets: this frame's state, and dispatch(), which pushes
+// the declared descriptors, then the constants, and dispatches enough of the shader's workgroups
+// to cover width x height.
 class ComputeRecorder {
 public:
-    ComputeRecorder(const PassSetup& setup, const graph::PassContext& pass,
+    ComputeRecorder(const FrameBuild& build, const graph::PassContext& pass,
                     const ComputePassDesc& desc, const vk::Pipeline& pipeline)
-        : setup_(setup), pass_(pass), desc_(desc), pipeline_(pipeline) {}
+        : build_(build), pass_(pass), desc_(desc), pipeline_(pipeline) {}
+    const FrameState& frame() const { return pass_.frame; }
     template <typename T> void dispatch(uint32_t width, uint32_t height, const T& constants) const {
         dispatch(width, height, &constants, sizeof(T));
     }
@@ -57,7 +60,7 @@ public:
 
 private:
     void dispatch(uint32_t width, uint32_t height, const void* constants, uint32_t size) const;
-    const PassSetup& setup_;
+    const FrameBuild& build_;
     const graph::PassContext& pass_;
     const ComputePassDesc& desc_;
     const vk::Pipeline& pipeline_;
@@ -67,7 +70,7 @@ using ComputeRecordFn = std::function<void(const ComputeRecorder&)>;
 
 // Makes the pipeline (checked against the shader as above) and adds the pass to the graph, its
 // uses those of `desc.images`. `enabled` as FrameGraph::addPass.
-void addComputePass(PassSetup& setup, ComputePassDesc desc, ComputeRecordFn record,
-                    std::function<bool()> enabled = {});
+void addComputePass(FrameBuild& build, ComputePassDesc desc, ComputeRecordFn record,
+                    graph::EnabledFn enabled = {});
 
 } // namespace ssgi

@@ -1,16 +1,16 @@
 // contact: screen-space contact shadows (SSDO paper section 5) on top of the shadow term, where
 // the shadow map's bias lets light leak under the objects that cast the shadows.
-#include "passes/pass_setup.h"
+#include "passes/passes.h"
 
 #include "shared.h"
 
 namespace ssgi {
 
-graph::ImageRef addContactPass(PassSetup& s, const GBufferAndRsm& in, graph::ImageRef shadow,
+graph::ImageRef addContactPass(FrameBuild& build, const GBufferAndRsm& in, graph::ImageRef shadow,
                                graph::ImageRef secondLayer) {
     const graph::ImageRef contact =
-        s.graph.createImage("contact", VK_FORMAT_R16G16B16A16_SFLOAT, s.size,
-                            VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
+        build.graph.createImage("contact", VK_FORMAT_R16G16B16A16_SFLOAT, build.size,
+                                VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
     using graph::Use;
     ComputePassDesc pass{"contact", "contact.comp"};
     // Without the second layer the shader never reads it; the shadow term stands in.
@@ -20,11 +20,12 @@ graph::ImageRef addContactPass(PassSetup& s, const GBufferAndRsm& in, graph::Ima
                    {"secondLayer", secondLayer.valid() ? secondLayer : shadow, Use::Sampled},
                    {"contactShadow", contact, Use::StorageWrite}};
     pass.pushSize = sizeof(shader::ContactConstants);
-    pass.spec = {{int(s.model.settings.contact_shadow_steps), secondLayer.valid() ? 1 : 0}};
-    addComputePass(s, std::move(pass), [&s](const ComputeRecorder& r) {
+    pass.spec = {{{"STEPS", int(build.settings.contact_shadow_steps)},
+                  {"PEELING", secondLayer.valid() ? 1 : 0}}};
+    addComputePass(build, std::move(pass), [&build](const ComputeRecorder& r) {
         shader::ContactConstants constants{};
-        constants.segmentTexels = float(s.model.settings.contact_shadow_texels);
-        r.dispatch(s.size.width, s.size.height, constants);
+        constants.segmentTexels = float(build.settings.contact_shadow_texels);
+        r.dispatch(build.size.width, build.size.height, constants);
     });
     return contact;
 }

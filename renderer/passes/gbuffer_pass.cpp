@@ -1,16 +1,17 @@
 // gbuffer: the camera's view of the scene, what every screen-space pass reads. With caching on
 // its view depths (and so its world positions) are a history pair: last frame's are what the
 // caches reproject against.
-#include "passes/pass_setup.h"
+#include "passes/passes.h"
 
 namespace ssgi {
 
-GBuffer addGBufferPass(PassSetup& s) {
-    const SceneTargets t = addScenePass(s, "gbuffer", "gbuffer", s.size,
-                                        {{".view_depth", VK_FORMAT_R32_SFLOAT},
-                                         {".normal", VK_FORMAT_R16G16B16A16_SFLOAT},
-                                         {".albedo", VK_FORMAT_R8G8B8A8_UNORM}},
-                                        {}, s.model.settings.cache ? &s.viewDepthHistory : nullptr);
+GBuffer addGBufferPass(FrameBuild& build) {
+    const SceneTargets t =
+        addScenePass(build, "gbuffer", "gbuffer", build.size,
+                     {{".view_depth", VK_FORMAT_R32_SFLOAT},
+                      {".normal", VK_FORMAT_R16G16B16A16_SFLOAT},
+                      {".albedo", VK_FORMAT_R8G8B8A8_UNORM}},
+                     {}, build.settings.cache ? &build.caches.viewDepthHistory : nullptr);
     return {t.colors[0], t.colors[1], t.colors[2], t.depth};
 }
 

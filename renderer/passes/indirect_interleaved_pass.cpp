@@ -10,21 +10,19 @@
 //           sums of its VPLs' light), indirect.filtered_x + .filtered_x_directional (after the
 //           x axis), indirect again (after the y axis: the result; the y pass binds
 //           indirect.directional, unused by then, as its directional target and writes none)
-#include "passes/pass_setup.h"
-
-#include "shared.h"
+#include "passes/passes.h"
 
 #include <algorithm>
 #include <cmath>
 
 namespace ssgi {
 
-graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& in,
-                                             EffectCache* cache, const FluxVpls* fluxVpls) {
+graph::ImageRef addInterleavedIndirectPasses(FrameBuild& build, const GBufferAndRsm& in,
+                                             const EffectCache* cache, const FluxVpls* fluxVpls) {
     const VkImageUsageFlags usage =
         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     auto image = [&](const char* name) {
-        return s.graph.createImage(name, VK_FORMAT_R16G16B16A16_SFLOAT, s.size, usage);
+        return build.graph.createImage(name, VK_FORMAT_R16G16B16A16_SFLOAT, build.size, usage);
     };
     // Four full-resolution images: the subsets' estimates go into `indirect`, which the y axis
     // overwrites with the result once the x axis has read them (`result` below).
@@ -33,40 +31,45 @@ graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& 
     const graph::ImageRef across = image("indirect.filtered_x");
     const graph::ImageRef acrossDirectional = image("indirect.filtered_x_directional");
     // k^2 subsets of at least one VPL each: k at most the square root of the VPL count.
-    const int vpls = int(s.model.settings.indirect_vpls);
+    const int vpls = int(build.settings.indirect_vpls);
     const int k =
-        std::min(int(s.model.settings.indirect_interleave), int(std::sqrt(double(vpls)) + 1e-9));
-    const int radius = int(s.model.settings.indirect_filter_radius);
+        std::min(int(build.settings.indirect_interleave), int(std::sqrt(double(vpls)) + 1e-9));
+    const int radius = int(build.settings.indirect_filter_radius);
     // On settled frames the refresh tile's pixels need their neighbours: the gather and the x
     // axis run over the tile widened by the filter's reach (temporal.glsl cachePixelAround).
-    const uint32_t margin = uint32_t(std::max(radius, k / 2));
-    auto dispatchArea = [&s, cache](uint32_t widen) {
-        VkExtent2D area = cacheDispatch(s, cache, s.size);
-        if (cache && s.settled && area.width > 0)
+    const uint32_t margin = uint32_t(shader::interleavedFilterReach(radius, k));
+    auto dispatchArea = [&build, cache](const FrameState& frame, uint32_t widen) {
+        VkExtent2D area = cacheDispatch(cache, frame, build.size);
+        if (cache && frame.settled && area.width > 0)
             area = {area.width + 2 * widen, area.height + 2 * widen};
         return area;
     };
-    const Settings& m = s.model.settings;
-    vk::Specialization gatherSpec{
-        {vpls, int(m.indirect_visibility), int(m.indirect_visibility_steps), k, radius}};
-    if (fluxVpls) { // method 2: the VPL map's side, its flux-drawn VPLs, the tests drawn
+    const Settings& m = build.settings;
+    vk::Specialization gatherSpec{{{"VPLS", vpls},
+                                   {"VISIBILITY", int(m.indirect_visibility)},
+                                   {"VISIBILITY_STEPS", int(m.indirect_visibility_steps)},
+                                   {"INTERLEAVE", k},
+                                   {"RADIUS", radius}}};
+    if (fluxVpls) { // method 2: its flux-drawn VPLs, the tests drawn, the pool, the map's side
         const int cluster = int(m.indirect_vpl_cluster);
-        gatherSpec.values.push_back(int(m.indirect_flux_vpls));
-        gatherSpec.values.push_back(int(m.indirect_visibility_tests));
-        gatherSpec.values.push_back(int(std::max(m.indirect_flux_pool, m.indirect_flux_vpls)));
-        gatherSpec.values.push_back((int(s.rsmSize.width) + cluster - 1) / cluster);
+        gatherSpec.constants.insert(
+            gatherSpec.constants.end(),
+            {{"FLUX_VPLS", int(m.indirect_flux_vpls)},
+             {"TESTS", int(m.indirect_visibility_tests)},
+             {"POOL", int(std::max(m.indirect_flux_pool, m.indirect_flux_vpls))},
+             {"MAP_SIZE", (int(build.rsmSize.width) + cluster - 1) / cluster}});
     }
-    const vk::Specialization filterSpec{{k, radius}};
+    const vk::Specialization filterSpec{{{"INTERLEAVE", k}, {"RADIUS", radius}}};
 
-    const CacheInputs history = cacheInputs(s, cache, in.gbuffer.viewDepth);
-    auto constants = [&s, cache](glm::ivec2 axis) {
-        shader::IndirectConstants c = indirectConstants(s, cache, s.size);
+    auto constants = [&build, cache](const FrameState& frame, glm::ivec2 axis) {
+        shader::IndirectConstants c = indirectConstants(build, cache, frame, build.size);
         c.axisX = axis.x;
         c.axisY = axis.y;
         return c;
     };
+    const std::vector<ShaderImage> history = cacheBindings(build, cache, in.gbuffer.viewDepth);
 
-    addKeepPass(s, cache, {subsets, subsetsDirectional, across, acrossDirectional});
+    addKeepPass(build, cache, {subsets, subsetsDirectional, across, acrossDirectional});
     using graph::Use;
     // Method 1 gathers the RSM's texels; method 2 the VPL map's, and the flux's list.
     ComputePassDesc gather{"indirect",
@@ -81,17 +84,16 @@ graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& 
                               {"vplList", fluxVpls->list, Use::Sampled}});
     else
         gather.images.push_back({"rsmVpls", in.rsm.vpls, Use::Sampled});
+    gather.images.insert(gather.images.end(), history.begin(), history.end());
     gather.images.insert(gather.images.end(),
-                         {{"historyViewDepth", history.viewDepth, Use::Sampled},
-                          {"historyCount", history.count, Use::Sampled},
-                          {"interleavedIndirect", subsets, Use::StorageWrite},
+                         {{"interleavedIndirect", subsets, Use::StorageWrite},
                           {"interleavedDirectional", subsetsDirectional, Use::StorageWrite}});
     gather.pushSize = sizeof(shader::IndirectConstants);
     gather.spec = gatherSpec;
-    addComputePass(s, std::move(gather),
+    addComputePass(build, std::move(gather),
                    [dispatchArea, margin, constants](const ComputeRecorder& r) {
-                       const VkExtent2D area = dispatchArea(margin);
-                       r.dispatch(area.width, area.height, constants({0, 0}));
+                       const VkExtent2D area = dispatchArea(r.frame(), margin);
+                       r.dispatch(area.width, area.height, constants(r.frame(), {0, 0}));
                    });
     // The filter, one axis a pass: x from the subsets, y from x's result.
     struct Axis {
@@ -105,19 +107,20 @@ graph::ImageRef addInterleavedIndirectPasses(PassSetup& s, const GBufferAndRsm& 
     for (const Axis& a : axes) {
         ComputePassDesc filter{a.pass, "indirect_reconstruct.comp"};
         filter.images = {{"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
-                         {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
-                         {"historyViewDepth", history.viewDepth, Use::Sampled},
-                         {"historyCount", history.count, Use::Sampled},
-                         {"estimates", a.source, Use::Sampled},
-                         {"directionals", a.sourceDirectional, Use::Sampled},
-                         {"filtered", a.target, Use::StorageWrite},
-                         {"filteredDirectional", a.targetDirectional, Use::StorageWrite}};
+                         {"gbufferNormal", in.gbuffer.normal, Use::Sampled}};
+        filter.images.insert(filter.images.end(), history.begin(), history.end());
+        filter.images.insert(filter.images.end(),
+                             {{"estimates", a.source, Use::Sampled},
+                              {"directionals", a.sourceDirectional, Use::Sampled},
+                              {"filtered", a.target, Use::StorageWrite},
+                              {"filteredDirectional", a.targetDirectional, Use::StorageWrite}});
         filter.pushSize = sizeof(shader::IndirectConstants);
         filter.spec = filterSpec;
-        addComputePass(s, std::move(filter),
+        addComputePass(build, std::move(filter),
                        [axis = a.axis, dispatchArea, margin, constants](const ComputeRecorder& r) {
-                           const VkExtent2D area = dispatchArea(axis.x == 1 ? margin : 0);
-                           r.dispatch(area.width, area.height, constants(axis));
+                           const VkExtent2D area =
+                               dispatchArea(r.frame(), axis.x == 1 ? margin : 0);
+                           r.dispatch(area.width, area.height, constants(r.frame(), axis));
                        });
     }
     return subsets; // the y axis's result

@@ -5,17 +5,15 @@
 //   writes: indirect.vpl_position, .vpl_normal, .vpl_flux (the VPL map, RGBA32F, the RSM's
 //           side / indirect_vpl_cluster), indirect.flux_pyramid (R32F, the luminance's sums),
 //           indirect.vpl_list (RGBA32F, indirect_flux_pool + 1 columns, 3 rows)
-#include "passes/pass_setup.h"
-
-#include "shared.h"
+#include "passes/passes.h"
 
 #include <algorithm>
 
 namespace ssgi {
 
-FluxVpls addFluxVplPasses(PassSetup& s, const GBufferAndRsm& in, EffectCache* cache) {
-    const Settings& m = s.model.settings;
-    const uint32_t mapSize = s.rsmSize.width;
+FluxVpls addFluxVplPasses(FrameBuild& build, const GBufferAndRsm& in, const EffectCache* cache) {
+    const Settings& m = build.settings;
+    const uint32_t mapSize = build.rsmSize.width;
     const uint32_t clusterSide = uint32_t(m.indirect_vpl_cluster);
     const uint32_t vplMapSize = (mapSize + clusterSide - 1) / clusterSide;
     uint32_t padded = 8, levels = 3;
@@ -27,19 +25,19 @@ FluxVpls addFluxVplPasses(PassSetup& s, const GBufferAndRsm& in, EffectCache* ca
     const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     // With the cache on, the VPL map is made again only when the RSM is drawn again (the light
     // moved), so it and the pyramid's levels over it persist; the list is drawn every frame.
-    const bool persistent = s.model.settings.cache;
+    const bool persistent = m.cache;
     auto vplImage = [&](const char* name) {
-        return s.graph.createImage(name, VK_FORMAT_R32G32B32A32_SFLOAT, {vplMapSize, vplMapSize},
-                                   usage, persistent);
+        return build.graph.createImage(name, VK_FORMAT_R32G32B32A32_SFLOAT,
+                                       {vplMapSize, vplMapSize}, usage, persistent);
     };
     FluxVpls out;
     out.position = vplImage("indirect.vpl_position");
     out.normal = vplImage("indirect.vpl_normal");
     out.flux = vplImage("indirect.vpl_flux");
-    const graph::ImageRef pyramid = s.graph.createImage(
+    const graph::ImageRef pyramid = build.graph.createImage(
         "indirect.flux_pyramid", VK_FORMAT_R32_SFLOAT, {padded / 2, padded}, usage, persistent);
-    out.list = s.graph.createImage("indirect.vpl_list", VK_FORMAT_R32G32B32A32_SFLOAT,
-                                   {uint32_t(count) + 1, 3}, usage);
+    out.list = build.graph.createImage("indirect.vpl_list", VK_FORMAT_R32G32B32A32_SFLOAT,
+                                       {uint32_t(count) + 1, 3}, usage);
 
     shader::VplDrawConstants c{};
     c.cached = cache ? 1 : 0;
@@ -64,14 +62,15 @@ FluxVpls addFluxVplPasses(PassSetup& s, const GBufferAndRsm& in, EffectCache* ca
             {"fluxPyramid", pyramid, stage == 0 ? Use::StorageWrite : Use::StorageReadWrite},
             {"vplList", out.list, Use::StorageWrite}};
         pass.pushSize = sizeof(shader::VplDrawConstants);
-        pass.spec = {{stage, count, int(clusterSide)}};
+        pass.spec = {{{"STAGE", stage}, {"FLUX_VPLS", count}, {"CLUSTER", int(clusterSide)}}};
         // Stage 0: an 8 x 8 group per 8 x 8 VPLs of the padded map; stage 1: one group.
         const uint32_t side = stage == 0 ? padded : 8;
-        std::function<bool()> enabled;
-        if (stage == 0 && persistent) enabled = [&s] { return s.rsmStale; };
+        graph::EnabledFn enabled;
+        if (stage == 0 && persistent)
+            enabled = [](const FrameState& frame) { return frame.drawRsm; };
         addComputePass(
-            s, std::move(pass), [side, c](const ComputeRecorder& r) { r.dispatch(side, side, c); },
-            std::move(enabled));
+            build, std::move(pass),
+            [side, c](const ComputeRecorder& r) { r.dispatch(side, side, c); }, std::move(enabled));
     }
     return out;
 }

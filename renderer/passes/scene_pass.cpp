@@ -1,14 +1,13 @@
 // Rasterises the whole scene into its colour targets and a depth target (G-buffer, RSM).
-#include "passes/pass_setup.h"
+#include "passes/scene_pass.h"
 
 #include "shared.h"
 
 namespace ssgi {
 
-SceneTargets addScenePass(PassSetup& s, const std::string& name, const std::string& shader,
+SceneTargets addScenePass(FrameBuild& build, const std::string& name, const std::string& shader,
                           VkExtent2D extent, const std::vector<SceneTarget>& targets,
-                          std::function<bool()> enabled,
-                          std::optional<uint32_t>* firstTargetHistory) {
+                          graph::EnabledFn enabled, std::optional<uint32_t>* firstTargetHistory) {
     const bool persistent = bool(enabled);
     const VkImageUsageFlags color =
         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
@@ -18,15 +17,15 @@ SceneTargets addScenePass(PassSetup& s, const std::string& name, const std::stri
     for (const SceneTarget& target : targets) {
         const std::string image = name + target.suffix;
         if (firstTargetHistory && t.colors.empty()) {
-            *firstTargetHistory = s.graph.createHistory(image, target.format, extent, color);
+            *firstTargetHistory = build.graph.createHistory(image, target.format, extent, color);
             t.colors.push_back(graph::FrameGraph::current(**firstTargetHistory));
         } else {
             t.colors.push_back(
-                s.graph.createImage(image, target.format, extent, color, persistent));
+                build.graph.createImage(image, target.format, extent, color, persistent));
         }
         formats.push_back(target.format);
     }
-    t.depth = s.graph.createImage(
+    t.depth = build.graph.createImage(
         name + ".depth", VK_FORMAT_D32_SFLOAT, extent,
         VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, persistent);
 
@@ -39,17 +38,16 @@ SceneTargets addScenePass(PassSetup& s, const std::string& name, const std::stri
     desc.bindings = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, "FrameBlock"},
                      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, "baseColorTexture"}};
     desc.pushConstantSize = sizeof(shader::DrawConstants);
-    s.pipelines.push_back(vk::createGraphicsPipeline(s.ctx, desc));
-    const vk::Pipeline pipeline = s.pipelines.back();
+    const vk::Pipeline pipeline = build.graphicsPipeline(desc);
 
     using graph::Use;
     std::vector<graph::ImageUse> uses;
     for (const graph::ImageRef& c : t.colors)
         uses.push_back({c, Use::ColorAttachment});
     uses.push_back({t.depth, Use::DepthAttachment});
-    s.graph.addPass(
+    build.graph.addPass(
         name, graph::PassKind::Graphics, uses,
-        [&s, t, extent, pipeline](const graph::PassContext& pc) {
+        [&build, t, extent, pipeline](const graph::PassContext& pc) {
             std::vector<VkRenderingAttachmentInfo> attachments;
             for (const graph::ImageRef& c : t.colors) {
                 VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
@@ -76,7 +74,8 @@ SceneTargets addScenePass(PassSetup& s, const std::string& name, const std::stri
             VkRect2D scissor{{0, 0}, extent};
             vkCmdSetViewport(pc.cmd, 0, 1, &viewport);
             vkCmdSetScissor(pc.cmd, 0, 1, &scissor);
-            s.scene.draw(pc.cmd, pipeline, s.frameUniforms.buffer, s.frameUniforms.size);
+            build.sceneGpu.draw(pc.cmd, pipeline, build.frameUniforms.buffer,
+                                build.frameUniforms.size);
             vkCmdEndRendering(pc.cmd);
         },
         enabled);

@@ -5,7 +5,7 @@
 // writes the fraction of the sky's light that arrives past the occluders farther than the AO's
 // radius (sky_visibility.comp). A static scene's maps are drawn once and again only after an
 // object moved; the lookup runs again only when the camera or the maps changed.
-#include "passes/pass_setup.h"
+#include "passes/passes.h"
 
 #include "scene/animation.h"
 #include "shared.h"
@@ -72,24 +72,24 @@ SkyOccluders splitSkyOccluders(const Scene& scene, const glm::dvec3& gpuOrigin) 
 
 } // namespace
 
-graph::ImageRef addSkyVisibilityPasses(PassSetup& s, const GBufferAndRsm& in) {
-    const Scene& m = s.model;
+graph::ImageRef addSkyVisibilityPasses(FrameBuild& build, const GBufferAndRsm& in) {
+    const Scene& m = build.scene;
     const int count = int(m.settings.sky_visibility_directions);
     const int tileSize = int(m.settings.sky_visibility_map_size);
     const int perRow = int(std::ceil(std::sqrt(double(count))));
     const VkExtent2D atlas{uint32_t(perRow * tileSize),
                            uint32_t(((count + perRow - 1) / perRow) * tileSize)};
-    const uint32_t limit = s.ctx.properties.limits.maxImageDimension2D;
+    const uint32_t limit = build.ctx.properties.limits.maxImageDimension2D;
     if (atlas.width > limit || atlas.height > limit)
         throw InputError("sky_visibility_map_size " + std::to_string(tileSize) + " with " +
                          std::to_string(count) + " directions needs a " +
                          std::to_string(atlas.width) + "x" + std::to_string(atlas.height) +
                          " atlas, beyond this device's largest 2D image (" + std::to_string(limit) +
                          ")");
-    const SkyOccluders occluders = splitSkyOccluders(m, s.gpuOrigin);
+    const SkyOccluders occluders = splitSkyOccluders(m, build.gpuOrigin);
     // In the GPU's coordinates, as the G-buffer and the draws are.
     const Aabb& drawn = occluders.mappedBounds;
-    const glm::vec3 centre = glm::vec3(glm::dvec3(drawn.center()) - s.gpuOrigin);
+    const glm::vec3 centre = glm::vec3(glm::dvec3(drawn.center()) - build.gpuOrigin);
     const float radius = std::max(0.5f * glm::length(drawn.size()) * 1.02f, 1e-6f);
     const shader::SkyMapView view{glm::vec4(centre, radius),
                                   glm::ivec4(0, count, perRow, tileSize)};
@@ -98,18 +98,15 @@ graph::ImageRef addSkyVisibilityPasses(PassSetup& s, const GBufferAndRsm& in) {
     // 256th of a texel of the default 256-texel maps, a 16th at the largest (4096), below the
     // test's offsets (more than a texel).
     const VkFormat depthFormat = VK_FORMAT_D16_UNORM;
-    const graph::ImageRef maps = s.graph.createImage(
+    const graph::ImageRef maps = build.graph.createImage(
         "sky.maps", depthFormat, atlas,
         VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, true);
     // One uniform buffer per map: the draw binds the map's view where the camera's would be.
     std::vector<VkBuffer> views;
     for (int k = 0; k < count; ++k) {
-        s.buffers.push_back(vk::createBuffer(s.ctx, sizeof(shader::SkyMapView),
-                                             VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true));
         shader::SkyMapView map = view;
         map.tile.x = k;
-        std::memcpy(s.buffers.back().mapped, &map, sizeof(map));
-        views.push_back(s.buffers.back().buffer);
+        views.push_back(build.uniformBuffer(&map, sizeof(map)).buffer);
     }
     vk::GraphicsPipelineDesc desc;
     desc.vertices = sceneVertexInput();
@@ -119,13 +116,12 @@ graph::ImageRef addSkyVisibilityPasses(PassSetup& s, const GBufferAndRsm& in) {
     desc.bindings = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, "MapBlock"},
                      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, "baseColorTexture"}};
     desc.pushConstantSize = sizeof(shader::DrawConstants);
-    s.pipelines.push_back(vk::createGraphicsPipeline(s.ctx, desc));
-    const vk::Pipeline draw = s.pipelines.back();
+    const vk::Pipeline draw = build.graphicsPipeline(desc);
 
     using graph::Use;
-    s.graph.addPass(
+    build.graph.addPass(
         "sky.maps", graph::PassKind::Graphics, {{maps, Use::DepthAttachment}},
-        [&s, maps, atlas, views, perRow, tileSize, draw,
+        [&build, maps, atlas, views, perRow, tileSize, draw,
          mapped = occluders.mapped](const graph::PassContext& pc) {
             VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
             depth.imageView = pc.image(maps).view;
@@ -146,18 +142,17 @@ graph::ImageRef addSkyVisibilityPasses(PassSetup& s, const GBufferAndRsm& in) {
                                  {uint32_t(tileSize), uint32_t(tileSize)}};
                 vkCmdSetViewport(pc.cmd, 0, 1, &viewport);
                 vkCmdSetScissor(pc.cmd, 0, 1, &scissor);
-                s.scene.draw(pc.cmd, draw, views[k], sizeof(shader::SkyMapView), {}, mapped);
+                build.sceneGpu.draw(pc.cmd, draw, views[k], sizeof(shader::SkyMapView), {}, mapped);
             }
             vkCmdEndRendering(pc.cmd);
         },
-        [&s] { return s.skyMapsStale; });
+        [](const FrameState& frame) { return frame.drawSkyMaps; });
 
     const graph::ImageRef visibility =
-        s.graph.createImage("sky_visibility", VK_FORMAT_R16G16B16A16_SFLOAT, s.size,
-                            VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, true);
-    s.buffers.push_back(vk::createBuffer(s.ctx, sizeof(shader::SkyTriangles),
-                                         VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true));
-    std::memcpy(s.buffers.back().mapped, &occluders.exact, sizeof(occluders.exact));
+        build.graph.createImage("sky_visibility", VK_FORMAT_R16G16B16A16_SFLOAT, build.size,
+                                VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, true);
+    const vk::Buffer& exactTriangles =
+        build.uniformBuffer(&occluders.exact, sizeof(occluders.exact));
     // Occluders nearer than the AO's radius are the AO's; with no AO, only a few texels' worth
     // of nearness is left out (the map's own resolution).
     const float texel = 2.0f * radius / float(tileSize);
@@ -171,15 +166,15 @@ graph::ImageRef addSkyVisibilityPasses(PassSetup& s, const GBufferAndRsm& in) {
                    {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
                    {"skyMaps", maps, Use::Sampled},
                    {"visibilityImage", visibility, Use::StorageWrite}};
-    pass.uniforms = {{"TrianglesBlock", s.buffers.back()}}; // the exact triangles
+    pass.uniforms = {{"TrianglesBlock", exactTriangles}};
     pass.pushSize = sizeof(shader::SkyVisibilityConstants);
     addComputePass(
-        s, std::move(pass),
-        [&s, constants](const ComputeRecorder& r) {
-            r.dispatch(s.size.width, s.size.height, constants);
+        build, std::move(pass),
+        [&build, constants](const ComputeRecorder& r) {
+            r.dispatch(build.size.width, build.size.height, constants);
         },
         // The same camera over the same maps looks up the same values.
-        [&s] { return !s.cameraStill || s.skyMapsStale; });
+        [](const FrameState& frame) { return frame.lookUpSkyVisibility; });
     return visibility;
 }
 

@@ -1,46 +1,43 @@
 // ssdo: screen-space directional occlusion of the sky plus one bounce of the direct-lit frame
-// (Ritschel et al. 2009); replaces sky x AO in the composite when on.
-#include "passes/pass_setup.h"
-
-#include "shared.h"
+// (Ritschel et al. 2009), cached; replaces sky x AO in the composite when on.
+//   reads:  gbuffer.view_depth, .normal, .albedo, direct, peel.position with depth peeling (and
+//           its cache's history)
+//   writes: ssdo (radiance), ssdo.history
+#include "passes/passes.h"
 
 namespace ssgi {
 
-graph::ImageRef addSsdoPass(PassSetup& s, const GBufferAndRsm& in, graph::ImageRef direct,
-                            graph::ImageRef secondLayer, EffectCache* cache) {
-    graph::ImageRef ssdo = s.graph.createImage(
-        "ssdo", VK_FORMAT_R16G16B16A16_SFLOAT, s.size,
-        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
-    const double radius = s.model.settings.ssdo_radius;
-    const float rMax = radius > 0.0 ? float(radius) : aoRadius(s.model);
-    const CacheInputs history = cacheInputs(s, cache, in.gbuffer.viewDepth);
-
-    addKeepPass(s, cache, {ssdo});
+graph::ImageRef addSsdoPass(FrameBuild& build, const GBufferAndRsm& in, graph::ImageRef direct,
+                            graph::ImageRef secondLayer) {
+    const Settings& settings = build.settings;
+    const float rMax =
+        settings.ssdo_radius > 0.0 ? float(settings.ssdo_radius) : aoRadius(build.scene);
+    CachedComputePass pass;
+    // Its bounce carries the direct light: a moved light, or any moved object (whose shadow
+    // moved too), restarts it whole.
+    pass.effect = {
+        .name = "ssdo", .lightDependent = true, .scalar = false, .motionTest = MOTION_RESTART_ALL};
+    pass.shader = "ssdo.comp";
     using graph::Use;
-    ComputePassDesc pass{"ssdo", "ssdo.comp"};
     // Without peeling the shader never reads its second layer: any valid image will do.
-    pass.images = {
+    pass.inputs = {
         {"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
         {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
         {"gbufferAlbedo", in.gbuffer.albedo, Use::Sampled},
         {"directRadiance", direct, Use::Sampled},
-        {"historyViewDepth", history.viewDepth, Use::Sampled},
-        {"historyCount", history.count, Use::Sampled},
-        {"secondLayer", secondLayer.valid() ? secondLayer : in.gbuffer.viewDepth, Use::Sampled},
-        {"ssdoImage", ssdo, Use::StorageWrite}};
+        {"secondLayer", secondLayer.valid() ? secondLayer : in.gbuffer.viewDepth, Use::Sampled}};
     pass.pushSize = sizeof(shader::SsdoConstants);
-    pass.spec = {{int(s.model.settings.ssdo_samples), secondLayer.valid() ? 1 : 0}};
-    addComputePass(s, std::move(pass), [&s, cache, rMax](const ComputeRecorder& r) {
-        shader::SsdoConstants constants{};
-        constants.rotation = s.patternRotation;
-        constants.scale = s.patternScale;
-        constants.rMax = rMax;
-        constants.bounceStrength = float(s.model.settings.ssdo_bounce);
-        constants.cache = cacheConstants(s, cache);
-        const VkExtent2D area = cacheDispatch(s, cache, s.size);
-        r.dispatch(area.width, area.height, constants);
-    });
-    return ssdo;
+    pass.spec = {
+        {{"SAMPLES", int(settings.ssdo_samples)}, {"PEELING", secondLayer.valid() ? 1 : 0}}};
+    return addCachedComputePass(build, in.gbuffer, std::move(pass),
+                                [&build, rMax](const CachedRecorder& r) {
+                                    shader::SsdoConstants constants{};
+                                    constants.rotation = r.frame().patternRotation;
+                                    constants.scale = r.frame().patternScale;
+                                    constants.rMax = rMax;
+                                    constants.bounceStrength = float(build.settings.ssdo_bounce);
+                                    r.dispatch(constants);
+                                });
 }
 
 } // namespace ssgi

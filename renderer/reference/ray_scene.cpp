@@ -29,6 +29,13 @@ glm::vec2 interpolatedUv(const RayScene::Geometry& g, unsigned prim, float u, fl
     return (1.0f - u - v) * g.uvs[tri[0]] + u * g.uvs[tri[1]] + v * g.uvs[tri[2]];
 }
 
+// The vertex colour at a hit, exactly 1 where the mesh has none.
+glm::vec4 interpolatedColor(const RayScene::Geometry& g, unsigned prim, float u, float v) {
+    if (g.colors.empty()) return glm::vec4(1.0f);
+    const uint32_t* tri = &g.indices[3 * size_t(prim)];
+    return (1.0f - u - v) * g.colors[tri[0]] + u * g.colors[tri[1]] + v * g.colors[tri[2]];
+}
+
 // Embree calls this for every candidate hit on an alpha-masked geometry; rejecting the hit
 // makes the traversal continue behind it, for the nearest-hit and the any-hit query alike.
 void alphaMaskFilter(const RTCFilterFunctionNArguments* args) {
@@ -36,9 +43,10 @@ void alphaMaskFilter(const RTCFilterFunctionNArguments* args) {
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] != -1) continue;
         const unsigned prim = RTCHitN_primID(args->hit, args->N, i);
-        const glm::vec2 uv = interpolatedUv(*g, prim, RTCHitN_u(args->hit, args->N, i),
-                                            RTCHitN_v(args->hit, args->N, i));
-        if (maskedOut(*g->material, g->texture, uv)) args->valid[i] = 0;
+        const float u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
+        if (maskedOut(*g->material, g->texture, interpolatedUv(*g, prim, u, v),
+                      interpolatedColor(*g, prim, u, v)))
+            args->valid[i] = 0;
     }
 }
 
@@ -57,6 +65,7 @@ std::unique_ptr<RayScene::Geometry> bake(const Scene& scene, const Instance& ins
         g->positions.push_back(glm::vec3(instance.transform * glm::vec4(v.position, 1.0f)));
         g->normals.push_back(normalMatrix * v.normal); // normalised after interpolation
         g->uvs.push_back(v.uv);
+        if (mesh.vertexColors) g->colors.push_back(glm::vec4(v.color) / 65535.0f);
     }
     if (mesh.indices.empty()) {
         for (uint32_t i = 0; i + 2 < uint32_t(mesh.vertices.size()); i += 3)
@@ -133,7 +142,8 @@ RayScene::RayScene(const Scene& scene) : embree_(std::make_unique<Embree>()) {
                                 ? 1.0f
                                 : glm::length(bounds.size()) +
                                       std::max(glm::length(bounds.min), glm::length(bounds.max));
-    epsilon_ = 2e-5f * std::max(magnitude, 1e-3f);
+    // Relative to the scene alone: a floor in absolute units would be most of a tiny scene.
+    epsilon_ = 2e-5f * std::max(magnitude, std::numeric_limits<float>::min());
 }
 
 RayScene::~RayScene() = default;
@@ -169,8 +179,8 @@ bool RayScene::intersect(glm::vec3 origin, glm::vec3 direction, float tfar, Surf
     // with the interpolated normal.
     hit.geometricNormal = glm::dot(ng, direction) > 0.0f ? -ng : ng;
     hit.normal = glm::dot(n, direction) > 0.0f ? -n : n;
-    hit.albedo =
-        glm::vec3(baseColor(*g.material, g.texture, interpolatedUv(g, rh.hit.primID, u, v)));
+    hit.albedo = glm::vec3(baseColor(*g.material, g.texture, interpolatedUv(g, rh.hit.primID, u, v),
+                                     interpolatedColor(g, rh.hit.primID, u, v)));
     return true;
 }
 

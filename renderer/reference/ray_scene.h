@@ -1,6 +1,6 @@
 // The scene as Embree sees it: every instance baked into world-space triangles, with the
-// per-vertex normals and texture coordinates the shading needs, and the alpha mask applied as
-// an intersection filter so masked-out texels are holes for every ray (camera, shadow, AO).
+// per-vertex normals, texture coordinates and colours the shading needs, and the alpha mask applied
+// as an intersection filter so masked-out texels are holes for every ray (camera, shadow, AO).
 #pragma once
 
 #include "scene/scene.h"
@@ -41,6 +41,7 @@ public:
     struct Geometry {
         std::vector<glm::vec3> positions, normals; // world space
         std::vector<glm::vec2> uvs;
+        std::vector<glm::vec4> colors; // Vertex::color as floats; empty without vertex colours
         std::vector<uint32_t> indices; // three per triangle
         const Material* material = nullptr;
         const Texture* texture = nullptr;

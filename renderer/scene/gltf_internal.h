@@ -6,10 +6,24 @@
 
 #include <tiny_gltf.h>
 
+#include <initializer_list>
+#include <memory>
 #include <set>
 #include <string>
+#include <vector>
 
 namespace ssgi {
+
+// The largest albedo (a base colour's R, G and B) a scene file or a glTF may give: a surface
+// reflects at most the light it receives, and the path tracer's estimators assume it.
+constexpr float kMaxAlbedo = 1.0f;
+
+// The narrowest field of view (vertical, in degrees) a camera may have: narrower, the projection's
+// scale outgrows what 32-bit floats resolve and the image is black.
+constexpr float kMinFovDegrees = 0.01f;
+// The most a camera's far plane may be beyond its near plane (far / near): the depth buffer and
+// the path tracer's rays lose their precision past it.
+constexpr float kMaxClipRatio = 1e5f;
 
 // The whole file as bytes; InputError naming it when it is missing or unreadable.
 std::string readInputFile(const std::string& path);
@@ -24,6 +38,31 @@ private:
     std::string file_;
     std::set<std::string> said_;
 };
+
+// One accessor's elements after its offsets and length have been checked against its buffer
+// (gltf_accessor.cpp), so reading any element below `count` stays inside the buffer.
+struct AccessorView {
+    const uint8_t* data = nullptr; // null: no bufferView, so every element is zero (glTF rule)
+    size_t stride = 0;
+    size_t count = 0;
+    int componentType = 0;
+    int componentSize = 0;
+    bool normalized = false;
+    std::shared_ptr<std::vector<uint8_t>> dense; // a sparse accessor's elements, made dense
+
+    // Component c of an element as a float (normalized integers mapped as glTF says).
+    float component(size_t element, int c) const;
+    // An element of an unsigned integer SCALAR accessor.
+    uint32_t index(size_t element) const;
+};
+
+// Accessor `index` checked to be a `type` (TINYGLTF_TYPE_*) of one of `allowedComponents`, the
+// component types the glTF spec allows for this use; a normalized integer type is written as its
+// negative (-UNSIGNED_BYTE = normalized unsigned byte). A sparse accessor is made dense, its
+// indices and values checked as any other data. `what` names the use in messages.
+AccessorView viewAccessor(const tinygltf::Model& model, int index, int type,
+                          std::initializer_list<int> allowedComponents, const std::string& file,
+                          const std::string& what);
 
 // Triangle data out of glTF accessors (gltf_mesh.cpp), with every offset, stride, count and
 // index checked, so that a malformed file is an InputError, never a read past a buffer's end.

@@ -14,133 +14,8 @@ void GltfWarnings::once(const std::string& message) {
 
 namespace {
 
-template <typename T> T load(const uint8_t* bytes) {
-    T value;
-    std::memcpy(&value, bytes, sizeof(T)); // glTF data need not be aligned for T
-    return value;
-}
-
-// One accessor's elements after its offsets and length have been checked against its buffer,
-// so reading any element below `count` stays inside the buffer.
-struct AccessorView {
-    const uint8_t* data = nullptr; // null: no bufferView, so every element is zero (glTF rule)
-    size_t stride = 0;
-    size_t count = 0;
-    int componentType = 0;
-    int componentSize = 0;
-    bool normalized = false;
-
-    float component(size_t element, int c) const {
-        if (!data) return 0.0f;
-        const uint8_t* p = data + element * stride + size_t(c) * size_t(componentSize);
-        switch (componentType) {
-        case TINYGLTF_COMPONENT_TYPE_FLOAT:
-            return load<float>(p);
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-            return normalized ? *p / 255.0f : *p;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-            const float v = load<uint16_t>(p);
-            return normalized ? v / 65535.0f : v;
-        }
-        case TINYGLTF_COMPONENT_TYPE_BYTE: {
-            const float v = load<int8_t>(p);
-            return normalized ? std::max(v / 127.0f, -1.0f) : v;
-        }
-        case TINYGLTF_COMPONENT_TYPE_SHORT: {
-            const float v = load<int16_t>(p);
-            return normalized ? std::max(v / 32767.0f, -1.0f) : v;
-        }
-        default:
-            return float(load<uint32_t>(p));
-        }
-    }
-    uint32_t index(size_t element) const {
-        if (!data) return 0;
-        const uint8_t* p = data + element * stride;
-        switch (componentType) {
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-            return *p;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-            return load<uint16_t>(p);
-        default:
-            return load<uint32_t>(p);
-        }
-    }
-};
-
 [[noreturn]] void fail(const std::string& file, const std::string& problem) {
     throw InputError(file + ": " + problem);
-}
-
-std::string typeName(int type) {
-    switch (type) {
-    case TINYGLTF_TYPE_SCALAR:
-        return "SCALAR";
-    case TINYGLTF_TYPE_VEC2:
-        return "VEC2";
-    case TINYGLTF_TYPE_VEC3:
-        return "VEC3";
-    case TINYGLTF_TYPE_VEC4:
-        return "VEC4";
-    default:
-        return "type " + std::to_string(type);
-    }
-}
-
-// `allowedComponents` lists the component types the glTF spec allows for this use; a normalized
-// integer type is written as its negative (-UNSIGNED_BYTE = normalized unsigned byte).
-AccessorView viewAccessor(const tinygltf::Model& model, int index, int type,
-                          std::initializer_list<int> allowedComponents, const std::string& file,
-                          const std::string& what) {
-    if (index < 0 || size_t(index) >= model.accessors.size())
-        fail(file, what + ": accessor " + std::to_string(index) + " does not exist");
-    const tinygltf::Accessor& accessor = model.accessors[size_t(index)];
-    const int code = accessor.normalized ? -accessor.componentType : accessor.componentType;
-    if (std::find(allowedComponents.begin(), allowedComponents.end(), code) ==
-        allowedComponents.end())
-        fail(file, what + ": component type " + std::to_string(accessor.componentType) +
-                       (accessor.normalized ? " (normalized)" : "") + " is not allowed here");
-    if (accessor.type != type)
-        fail(file,
-             what + ": accessor is " + typeName(accessor.type) + ", expected " + typeName(type));
-    if (accessor.sparse.isSparse) fail(file, what + ": sparse accessors are not supported");
-
-    AccessorView view;
-    view.count = accessor.count;
-    view.componentType = accessor.componentType;
-    view.componentSize = tinygltf::GetComponentSizeInBytes(uint32_t(accessor.componentType));
-    view.normalized = accessor.normalized;
-    if (accessor.bufferView < 0) return view;
-    if (size_t(accessor.bufferView) >= model.bufferViews.size())
-        fail(file,
-             what + ": buffer view " + std::to_string(accessor.bufferView) + " does not exist");
-    const tinygltf::BufferView& bufferView = model.bufferViews[size_t(accessor.bufferView)];
-    if (bufferView.buffer < 0 || size_t(bufferView.buffer) >= model.buffers.size())
-        fail(file, what + ": buffer " + std::to_string(bufferView.buffer) + " does not exist");
-    const std::vector<unsigned char>& buffer = model.buffers[size_t(bufferView.buffer)].data;
-    if (bufferView.byteOffset > buffer.size() ||
-        bufferView.byteLength > buffer.size() - bufferView.byteOffset)
-        fail(file, what + ": buffer view " + std::to_string(accessor.bufferView) +
-                       " runs past the end of its buffer (truncated file?)");
-    const size_t elementSize =
-        size_t(view.componentSize) * size_t(tinygltf::GetNumComponentsInType(uint32_t(type)));
-    view.stride = bufferView.byteStride ? bufferView.byteStride : elementSize;
-    if (view.stride < elementSize)
-        fail(file,
-             what + ": byteStride " + std::to_string(view.stride) + " is smaller than one element");
-    if (view.count > 0) {
-        const bool fits =
-            accessor.byteOffset <= bufferView.byteLength &&
-            elementSize <= bufferView.byteLength - accessor.byteOffset &&
-            view.count - 1 <=
-                (bufferView.byteLength - accessor.byteOffset - elementSize) / view.stride;
-        if (!fits)
-            fail(file, what + ": " + std::to_string(view.count) +
-                           " elements run past the end of buffer view " +
-                           std::to_string(accessor.bufferView));
-    }
-    view.data = buffer.data() + bufferView.byteOffset + accessor.byteOffset;
-    return view;
 }
 
 bool finite(glm::vec3 v) {
@@ -179,6 +54,31 @@ void repairNormals(Mesh& mesh, GltfWarnings& warnings) {
     }
     for (size_t i = 0; i < mesh.vertices.size(); ++i)
         if (broken[i]) mesh.vertices[i].normal = unitOr(mesh.vertices[i].normal, {0, 1, 0});
+}
+
+// COLOR_0 (VEC3 or VEC4 of floats or normalized unsigned bytes or shorts; glTF 2.0 section
+// 3.7.2.1) as the scene model's 16-bit RGBA, alpha 1 where the file gives RGB.
+std::vector<glm::u16vec4> vertexColors(const tinygltf::Model& model, int accessor,
+                                       size_t vertexCount, const std::string& file,
+                                       const std::string& where) {
+    const bool rgba = accessor >= 0 && size_t(accessor) < model.accessors.size() &&
+                      model.accessors[size_t(accessor)].type == TINYGLTF_TYPE_VEC4;
+    const AccessorView view =
+        viewAccessor(model, accessor, rgba ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3,
+                     {TINYGLTF_COMPONENT_TYPE_FLOAT, -TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                      -TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+                     file, where + " COLOR_0");
+    if (view.count != vertexCount) fail(file, where + ": COLOR_0 count != POSITION count");
+    std::vector<glm::u16vec4> colors(vertexCount);
+    for (size_t i = 0; i < vertexCount; ++i)
+        for (int c = 0; c < 4; ++c) {
+            const float value = c < 3 || rgba ? view.component(i, c) : 1.0f;
+            // Float colours outside [0, 1] are invalid glTF; NaN would pass a clamp unnoticed.
+            if (!(value >= 0.0f && value <= 1.0f))
+                fail(file, where + ": COLOR_0 " + std::to_string(i) + " is not within [0, 1]");
+            colors[i][c] = uint16_t(std::lround(value * 65535.0f));
+        }
+    return colors;
 }
 
 // The corners of a TRIANGLES, TRIANGLE_STRIP or TRIANGLE_FAN primitive as a triangle list, in
@@ -257,6 +157,11 @@ Mesh buildPrimitiveMesh(const tinygltf::Model& model, const tinygltf::Primitive&
     }
 
     Mesh mesh;
+    std::vector<glm::u16vec4> colors(vertexCount, glm::u16vec4(65535));
+    if (attribute("COLOR_0") >= 0) {
+        colors = vertexColors(model, attribute("COLOR_0"), vertexCount, file, where);
+        mesh.vertexColors = true;
+    }
     if (attribute("NORMAL") >= 0) {
         const AccessorView normals = viewAccessor(model, attribute("NORMAL"), TINYGLTF_TYPE_VEC3,
                                                   {kFloat}, file, where + " NORMAL");
@@ -265,7 +170,7 @@ Mesh buildPrimitiveMesh(const tinygltf::Model& model, const tinygltf::Primitive&
         for (size_t i = 0; i < vertexCount; ++i) {
             const glm::vec3 n(normals.component(i, 0), normals.component(i, 1),
                               normals.component(i, 2));
-            mesh.vertices[i] = {points[i], n, uvs[i]};
+            mesh.vertices[i] = {points[i], n, uvs[i], colors[i]};
         }
         mesh.indices = std::move(corners);
         repairNormals(mesh, warnings);
@@ -280,8 +185,10 @@ Mesh buildPrimitiveMesh(const tinygltf::Model& model, const tinygltf::Primitive&
                         c = points[corners[t + 2]];
         // Degenerate triangles cover no pixel; any unit normal will do for them.
         const glm::vec3 normal = unitOr(glm::cross(b - a, c - a), {0, 1, 0});
-        for (size_t k = 0; k < 3; ++k)
-            mesh.vertices.push_back({points[corners[t + k]], normal, uvs[corners[t + k]]});
+        for (size_t k = 0; k < 3; ++k) {
+            const uint32_t corner = corners[t + k];
+            mesh.vertices.push_back({points[corner], normal, uvs[corner], colors[corner]});
+        }
     }
     return mesh;
 }

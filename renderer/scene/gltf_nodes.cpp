@@ -133,7 +133,12 @@ private:
                            " (points or lines) are skipped");
             return -1;
         }
-        if (!primitive.targets.empty()) warnings_.once("glTF morph targets are ignored");
+        if (!primitive.targets.empty())
+            warnings_.once("glTF morph targets are ignored: the base shape is drawn, without the "
+                           "mesh's default morph weights");
+        for (const auto& attribute : primitive.attributes)
+            if (attribute.first.rfind("COLOR_", 0) == 0 && attribute.first != "COLOR_0")
+                warnings_.once("glTF vertex colours other than COLOR_0 are ignored");
         const std::string where =
             "mesh " + std::to_string(gltfMesh) + " primitive " + std::to_string(primitiveIndex);
         Mesh mesh = buildPrimitiveMesh(model_, primitive, file_, where, warnings_);
@@ -172,6 +177,13 @@ private:
         const auto& p = source.perspective;
         if (!(p.yfov > 0.0 && p.yfov < 3.1) || !(p.znear > 0.0) || !(p.zfar >= 0.0))
             fail(file_, "camera " + std::to_string(index) + " has an invalid yfov/znear/zfar");
+        if (p.yfov < glm::radians(double(kMinFovDegrees)))
+            fail(file_, "camera " + std::to_string(index) + ": yfov " + std::to_string(p.yfov) +
+                            " is narrower than " + std::to_string(kMinFovDegrees) + " degrees");
+        // zfar 0 (absent) is an infinite projection, whose far plane is fitted to the scene.
+        if (p.zfar > 0.0 && p.znear >= p.zfar)
+            fail(file_, "camera " + std::to_string(index) + ": znear " + std::to_string(p.znear) +
+                            " is not less than zfar " + std::to_string(p.zfar));
         Camera camera;
         camera.position = glm::vec3(world[3]);
         camera.orientation = orientationOf(world);

@@ -5,6 +5,7 @@
 
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_precision.hpp>
 
 #include "scene/settings.h"
 
@@ -26,15 +27,32 @@ struct Vertex {
     glm::vec3 position; // object space
     glm::vec3 normal;   // object space, unit length
     glm::vec2 uv;
+    // Linear RGBA that multiplies the material's base colour (glTF COLOR_0), as 16-bit unsigned
+    // normalized numbers: the GPU and the path tracer read the same values. Used only where the
+    // mesh says it has vertex colours.
+    glm::u16vec4 color{65535};
 };
-static_assert(sizeof(Vertex) == 32);
+static_assert(sizeof(Vertex) == 40);
 
-// Lambertian: albedo = baseColorFactor * baseColorTexture (texture is sRGB-encoded).
+// How a texture is read between and beyond its texels (a glTF sampler). There are no mip maps:
+// a minification filter's mipmap part has no image to read.
+enum class TextureWrap : uint8_t { Repeat, ClampToEdge, MirroredRepeat };
+struct TextureSampler {
+    TextureWrap wrapU = TextureWrap::Repeat, wrapV = TextureWrap::Repeat;
+    bool magnifyNearest = false, minifyNearest = false; // false: bilinear
+    bool operator==(const TextureSampler&) const = default;
+    auto operator<=>(const TextureSampler&) const = default;
+};
+
+// Lambertian: albedo = baseColorFactor * baseColorTexture (texture is sRGB-encoded) * the
+// vertex colour where the mesh has one. Every surface is two-sided: both renderers shade each
+// side with the normal turned toward the side it is seen from.
 struct Material {
     std::string name;
     glm::vec4 baseColorFactor{1.0f};
     int baseColorTexture = -1; // index into Scene::textures, -1 = none
-    bool alphaMask = false;    // glTF alphaMode MASK
+    TextureSampler baseColorSampler;
+    bool alphaMask = false; // glTF alphaMode MASK
     float alphaCutoff = 0.5f;
 };
 
@@ -50,6 +68,7 @@ struct Mesh {
     std::vector<Vertex> vertices;
     std::vector<uint32_t> indices;
     int material = 0;
+    bool vertexColors = false; // whether Vertex::color multiplies the albedo
 };
 
 // A mesh placed in the world (glTF node transform, or identity for primitives). `name` is the

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <stdexcept>
 
 namespace ssgi {
 
@@ -62,6 +63,12 @@ Settings withOverrides(Settings settings, const SettingOverrides& overrides,
         row.set(settings, checked(row, where, value));
     }
     return settings;
+}
+
+double settingValue(const Settings& settings, const std::string& name) {
+    for (const SettingRow& row : settingTable())
+        if (name == row.name) return row.get(settings);
+    throw std::logic_error("no setting named '" + name + "' in the settings table");
 }
 
 SettingOverrides settingValues(const Settings& settings) {

@@ -175,6 +175,9 @@ Settings withOverrides(Settings settings, const SettingOverrides& overrides,
                        const std::string& where);
 // Every setting's value by name (what a benchmark records beside its figures).
 SettingOverrides settingValues(const Settings& settings);
+// One setting's value by name; std::logic_error for a name the table lacks (code asking for a
+// row nobody declared, such as a cached effect's cache_<effect>).
+double settingValue(const Settings& settings, const std::string& name);
 
 // The table as docs/settings.md shows it (`render --list-settings` prints it; a test checks that
 // the docs hold it).

@@ -2,6 +2,8 @@
 
 #include "stability/run.h"
 
+#include "shared.h"
+
 namespace ssgi::stability {
 
 namespace detail {
@@ -16,9 +18,8 @@ RenderOptions rendererOptions(uint32_t width, uint32_t height) {
 // light-view images change only when the light moves, so `withRsm` says whether to read them.
 size_t countNonFiniteImages(Renderer& r, bool withRsm, std::set<std::string>& offenders) {
     std::set<std::string> names;
-    for (const auto& [name, bytes] : r.frameGraph().imageMemory()) {
-        std::string n = name;
-        if (n.ends_with(" A") || n.ends_with(" B")) n.resize(n.size() - 2);
+    for (const auto& [name, bytes, pair] : r.frameGraph().imageMemory()) {
+        const std::string& n = pair.empty() ? name : pair; // a pair is read by its name
         if (withRsm || !n.starts_with("rsm.")) names.insert(n);
     }
     size_t total = 0;
@@ -142,16 +143,12 @@ double aoReused(Renderer& r, const View& v, Mask* kept = nullptr) {
     return geometry ? double(reused) / double(geometry) : kNaN;
 }
 
-// Linear radiance as the composite pass shows it: exposure, Narkowicz's ACES fit, sRGB.
+// Linear radiance as the composite pass shows it (shared.h): exposure, ACES fit, sRGB.
 Pixels tonemapped(const Pixels& hdr, float exposure) {
     Pixels out(hdr.size(), 1.0f);
     for (size_t i = 0; i < hdr.size(); i += 4)
-        for (size_t c = 0; c < 3; ++c) {
-            const float x = hdr[i + c] * exposure;
-            const float t = std::clamp(
-                (x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f), 0.0f, 1.0f);
-            out[i + c] = t <= 0.0031308f ? 12.92f * t : 1.055f * std::pow(t, 1.0f / 2.4f) - 0.055f;
-        }
+        for (size_t c = 0; c < 3; ++c)
+            out[i + c] = shader::encodeSrgb(shader::tonemapAces(hdr[i + c] * exposure));
     return out;
 }
 

@@ -55,20 +55,45 @@ static void createLayout(Context& ctx, Pipeline& p, const std::vector<LayoutBind
     p.pushConstantSize = pushSize;
 }
 
+// The map entries that give each of `spec`'s constants to the shader's constant of that name;
+// VulkanError naming the shader and the constant where one is given that the shader lacks, or
+// one the shader declares is not given.
+static std::vector<VkSpecializationMapEntry> specEntries(const std::string& name,
+                                                         const Specialization& spec) {
+    const EmbeddedShader& shader = findShader(name);
+    std::map<std::string, uint32_t> declared =
+        shaderSpecConstants(shader.code, shader.bytes / sizeof(uint32_t));
+    std::vector<VkSpecializationMapEntry> entries;
+    for (uint32_t i = 0; i < spec.constants.size(); ++i) {
+        const auto found = declared.find(spec.constants[i].name);
+        if (found == declared.end())
+            throw VulkanError(name + " declares no specialization constant " +
+                              spec.constants[i].name);
+        entries.push_back({found->second, uint32_t(i * sizeof(int32_t)), sizeof(int32_t)});
+        declared.erase(found);
+    }
+    if (!declared.empty())
+        throw VulkanError(name + " declares specialization constant " + declared.begin()->first +
+                          ", which the pass does not give");
+    return entries;
+}
+
 Pipeline createComputePipeline(Context& ctx, const std::string& shader,
                                const std::vector<LayoutBinding>& bindings,
                                uint32_t pushConstantSize, const Specialization& spec) {
     checkBindings(shader, declaredBindings(shader), bindings);
+    const std::vector<VkSpecializationMapEntry> entries = specEntries(shader, spec);
+    std::vector<int32_t> values;
+    for (const SpecConstant& c : spec.constants)
+        values.push_back(c.value);
+    VkSpecializationInfo specInfo{uint32_t(entries.size()), entries.data(),
+                                  values.size() * sizeof(int32_t), values.data()};
     Pipeline p;
     p.bindPoint = VK_PIPELINE_BIND_POINT_COMPUTE;
     p.stages = VK_SHADER_STAGE_COMPUTE_BIT;
+    const EmbeddedShader& code = findShader(shader);
+    p.workgroup = shaderWorkgroupSize(code.code, code.bytes / sizeof(uint32_t));
     createLayout(ctx, p, bindings, VK_NULL_HANDLE, pushConstantSize);
-
-    std::vector<VkSpecializationMapEntry> entries;
-    for (uint32_t i = 0; i < spec.values.size(); ++i)
-        entries.push_back({i, uint32_t(i * sizeof(int32_t)), sizeof(int32_t)});
-    VkSpecializationInfo specInfo{uint32_t(entries.size()), entries.data(),
-                                  spec.values.size() * sizeof(int32_t), spec.values.data()};
 
     VkShaderModule module = loadShader(ctx, shader);
     VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
@@ -234,14 +259,22 @@ void dispatch(VkCommandBuffer cmd, const Pipeline& pipeline, uint32_t width, uin
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.pipeline);
     if (pushSize)
         vkCmdPushConstants(cmd, pipeline.layout, pipeline.stages, 0, pushSize, pushConstants);
-    vkCmdDispatch(cmd, (width + 7) / 8, (height + 7) / 8, 1);
+    const WorkgroupSize group = pipeline.workgroup;
+    vkCmdDispatch(cmd, (width + group.x - 1) / group.x, (height + group.y - 1) / group.y, 1);
 }
 
 VkSampler createSampler(const Context& ctx, VkFilter filter, VkSamplerAddressMode address) {
+    return createSampler(ctx, filter, filter, address, address);
+}
+
+VkSampler createSampler(const Context& ctx, VkFilter magnify, VkFilter minify,
+                        VkSamplerAddressMode addressU, VkSamplerAddressMode addressV) {
     VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-    info.magFilter = info.minFilter = filter;
+    info.magFilter = magnify;
+    info.minFilter = minify;
     info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-    info.addressModeU = info.addressModeV = info.addressModeW = address;
+    info.addressModeU = addressU;
+    info.addressModeV = info.addressModeW = addressV;
     info.maxLod = 0.0f;
     VkSampler sampler;
     VK_CHECK(vkCreateSampler(ctx.device, &info, nullptr, &sampler));

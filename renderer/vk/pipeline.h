@@ -18,15 +18,22 @@ struct Pipeline {
     VkPipelineBindPoint bindPoint = VK_PIPELINE_BIND_POINT_COMPUTE;
     uint32_t pushConstantSize = 0;
     VkShaderStageFlags stages = 0;
+    WorkgroupSize workgroup; // a compute shader's, as its SPIR-V declares it
 };
 
-// Structural settings (kernel sizes, variants) go in as specialization constants 0..n-1.
+// Structural settings (kernel sizes, variants) go in as specialization constants, by the names
+// the shader gives them.
+struct SpecConstant {
+    std::string name;
+    int32_t value;
+};
 struct Specialization {
-    std::vector<int32_t> values;
+    std::vector<SpecConstant> constants;
 };
 
 // Set 0's layout is `bindings` (binding i is bindings[i]); the shader's own declarations must
-// agree with it, names included where given (checkBindings), or this throws naming both.
+// agree with it, names included where given (checkBindings), or this throws naming both. Each
+// specialization constant the shader declares must be given by name, and no other.
 Pipeline createComputePipeline(Context& ctx, const std::string& shader,
                                const std::vector<LayoutBinding>& bindings,
                                uint32_t pushConstantSize, const Specialization& spec = {});
@@ -68,8 +75,8 @@ private:
     std::deque<VkDescriptorBufferInfo> buffers_;
 };
 
-// Binds, pushes constants (size checked against the pipeline) and dispatches enough 8x8 groups
-// to cover width x height.
+// Binds, pushes constants (size checked against the pipeline) and dispatches enough of the
+// shader's workgroups to cover width x height.
 void dispatch(VkCommandBuffer cmd, const Pipeline& pipeline, uint32_t width, uint32_t height,
               const void* pushConstants, uint32_t pushSize);
 
@@ -80,5 +87,8 @@ void dispatch(VkCommandBuffer cmd, const Pipeline& pipeline, uint32_t width, uin
 }
 
 VkSampler createSampler(const Context& ctx, VkFilter filter, VkSamplerAddressMode address);
+// One level, each filter and each axis's addressing as given.
+VkSampler createSampler(const Context& ctx, VkFilter magnify, VkFilter minify,
+                        VkSamplerAddressMode addressU, VkSamplerAddressMode addressV);
 
 } // namespace ssgi::vk

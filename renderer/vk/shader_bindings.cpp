@@ -11,6 +11,9 @@ namespace {
 // The SPIR-V instructions read here (SPIR-V specification, section 3).
 enum Op : uint32_t {
     OpName = 5,
+    OpExecutionMode = 16,
+    OpConstant = 43,
+    OpExecutionModeId = 331,
     OpTypeImage = 25,
     OpTypeSampledImage = 27,
     OpTypeArray = 28,
@@ -22,11 +25,23 @@ enum Op : uint32_t {
 enum Decoration : uint32_t {
     DecorationBlock = 2,
     DecorationBufferBlock = 3,
+    SpecId = 1,
     NonWritable = 24,
     Binding = 33,
     Set = 34
 };
 enum StorageClass : uint32_t { UniformConstant = 0, Uniform = 2, StorageBuffer = 12 };
+enum ExecutionMode : uint32_t { LocalSize = 17, LocalSizeId = 38 };
+
+// Calls visit(op, operands, operand count) for each instruction after the module's header.
+template <typename Visit> void forEachInstruction(const uint32_t* code, size_t words, Visit visit) {
+    for (size_t i = 5; i < words;) {
+        const uint32_t count = code[i] >> 16, op = code[i] & 0xffff;
+        if (count == 0 || i + count > words) break;
+        visit(op, code + i + 1, count - 1);
+        i += count;
+    }
+}
 
 } // namespace
 
@@ -52,13 +67,10 @@ std::map<uint32_t, ShaderBinding> shaderBindings(const uint32_t* code, size_t wo
     std::map<uint32_t, uint32_t> elementOf;  // array type -> element type
     std::map<uint32_t, std::pair<uint32_t, uint32_t>> pointers; // id -> storage class, pointee
     std::vector<std::pair<uint32_t, uint32_t>> variables;       // id, pointer type
-    for (size_t i = 5; i < words;) {
-        const uint32_t count = code[i] >> 16, op = code[i] & 0xffff;
-        if (count == 0 || i + count > words) break;
-        const uint32_t* w = code + i + 1;
+    forEachInstruction(code, words, [&](uint32_t op, const uint32_t* w, uint32_t operands) {
         switch (op) {
         case OpName:
-            nameOf[w[0]] = literalString(w + 1, count - 2);
+            nameOf[w[0]] = literalString(w + 1, operands - 1);
             break;
         case OpDecorate:
             if (w[1] == Binding) bindingOf[w[0]] = w[2];
@@ -85,8 +97,7 @@ std::map<uint32_t, ShaderBinding> shaderBindings(const uint32_t* code, size_t wo
         default:
             break;
         }
-        i += count;
-    }
+    });
     std::map<uint32_t, ShaderBinding> result;
     for (const auto& [id, pointerType] : variables) {
         if (!bindingOf.count(id) || (setOf.count(id) ? setOf[id] : 0) != set) continue;
@@ -113,6 +124,37 @@ std::map<uint32_t, ShaderBinding> shaderBindings(const uint32_t* code, size_t wo
         result[bindingOf[id]] = {descriptor, name, !nonWritable.count(id)};
     }
     return result;
+}
+
+std::map<std::string, uint32_t> shaderSpecConstants(const uint32_t* code, size_t words) {
+    std::map<uint32_t, std::string> nameOf;
+    std::map<uint32_t, uint32_t> specIdOf;
+    forEachInstruction(code, words, [&](uint32_t op, const uint32_t* w, uint32_t operands) {
+        if (op == OpName) nameOf[w[0]] = literalString(w + 1, operands - 1);
+        if (op == OpDecorate && w[1] == SpecId) specIdOf[w[0]] = w[2];
+    });
+    std::map<std::string, uint32_t> result;
+    for (const auto& [id, specId] : specIdOf)
+        result[nameOf.count(id) ? nameOf[id] : "constant " + std::to_string(specId)] = specId;
+    return result;
+}
+
+WorkgroupSize shaderWorkgroupSize(const uint32_t* code, size_t words) {
+    // Literal sizes (LocalSize), or the ids of constants that hold them (LocalSizeId, which
+    // glslang writes for Vulkan 1.3).
+    WorkgroupSize size;
+    std::map<uint32_t, uint32_t> constants; // id -> a 32-bit constant's value
+    uint32_t xId = 0, yId = 0;
+    forEachInstruction(code, words, [&](uint32_t op, const uint32_t* w, uint32_t operands) {
+        if (op == OpConstant && operands == 3) constants[w[1]] = w[2];
+        if (op == OpExecutionMode && operands >= 4 && w[1] == LocalSize) size = {w[2], w[3]};
+        if (op == OpExecutionModeId && operands >= 4 && w[1] == LocalSizeId) {
+            xId = w[2];
+            yId = w[3];
+        }
+    });
+    if (constants.count(xId) && constants.count(yId)) size = {constants[xId], constants[yId]};
+    return size;
 }
 
 std::string descriptorTypeName(VkDescriptorType type) {

@@ -26,6 +26,17 @@ struct ShaderBinding {
 // combined image samplers, sampled and storage images).
 std::map<uint32_t, ShaderBinding> shaderBindings(const uint32_t* code, size_t words, uint32_t set);
 
+// The specialization constants a shader declares (layout(constant_id = N) const int NAME): name
+// -> constant id.
+std::map<std::string, uint32_t> shaderSpecConstants(const uint32_t* code, size_t words);
+
+// A compute shader's workgroup size (layout(local_size_x = X, local_size_y = Y) in); {1, 1} for
+// a shader that declares none.
+struct WorkgroupSize {
+    uint32_t x = 1, y = 1;
+};
+WorkgroupSize shaderWorkgroupSize(const uint32_t* code, size_t words);
+
 // One binding of a pipeline's layout: its type and, where the caller names it, the name the
 // shader must give it (empty: only the type is checked); `readOnly`: the caller takes the
 // shader never to write it (a frame graph's StorageRead), which the shader must then declare.

@@ -42,7 +42,7 @@ void main() {
     vec3 p = position.xyz;
     vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     if (converged(pixel, p, n, constants.cache)) {
-        imageStore(aoImage, pixel, vec4(0.0)); // alpha 0: skipped, the cache holds the value
+        imageStore(aoImage, pixel, SKIPPED); // converged: the cache holds the value
         return;
     }
     float radius = constants.radius * constants.scale;

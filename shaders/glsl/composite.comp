@@ -32,14 +32,12 @@ layout(push_constant) uniform CompositeBlock { CompositeConstants constants; };
 #include "gbuffer_position.glsl"
 #include "rsm_vpl.glsl"
 
-// Narkowicz's fit of the ACES filmic curve.
+// The display transform of shared.h, channel by channel.
 vec3 tonemap(vec3 x) {
-    return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
+    return vec3(tonemapAces(x.r), tonemapAces(x.g), tonemapAces(x.b));
 }
-
 vec3 encodeSrgb(vec3 linear) {
-    return mix(linear * 12.92, 1.055 * pow(linear, vec3(1.0 / 2.4)) - 0.055,
-               step(vec3(0.0031308), linear));
+    return vec3(encodeSrgb(linear.r), encodeSrgb(linear.g), encodeSrgb(linear.b));
 }
 
 // Irradiance/pi from an unoccluded sky on a surface with normal n (closed form, common.glsl);

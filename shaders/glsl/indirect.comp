@@ -30,7 +30,7 @@ void main() {
     ivec2 pixel = cachePixel(gl_GlobalInvocationID.xy, constants.cache, 2);
     if (any(greaterThanEqual(pixel, ivec2(constants.width, constants.height)))) return;
     ivec2 source = pixel * 2;
-    // Skipped (alpha 0) when every full-resolution pixel of the block is converged.
+    // Skipped when every full-resolution pixel of the block is converged.
     bool allConverged = true;
     for (int j = 0; j < 4 && allConverged; ++j) {
         ivec2 q = min(source + ivec2(j & 1, j >> 1), ivec2(frame.viewport.xy) - 1);
@@ -39,7 +39,7 @@ void main() {
                        converged(q, w.xyz, texelFetch(gbufferNormal, q, 0).xyz, constants.cache);
     }
     if (allConverged) {
-        imageStore(halfIndirect, pixel, vec4(0.0));
+        imageStore(halfIndirect, pixel, SKIPPED);
         return;
     }
     vec4 position = gbufferPosition(source);

@@ -14,7 +14,7 @@
 // runs on TESTS of the subset's VPLs only, drawn in proportion to the light each brings
 // unoccluded (systematic sampling: each is tested n_i times in expectation m L_i / L, with
 // L_i its luminance and L their sum, and weighted L / (m L_i)): bright VPLs are tested, dim
-// ones rarely, and the estimate is still unbiased. A converged pixel is skipped (alpha 0).
+// ones rarely, and the estimate is still unbiased. A converged pixel is skipped.
 #include "shared.h"
 #include "common.glsl"
 
@@ -101,15 +101,15 @@ void main() {
     loadPixelToWorld(); // pixel_to_world.glsl
     bool cached = constants.radialOffset >= 0.0;
     loadList(cached);
-    int margin = max(RADIUS, INTERLEAVE / 2);
+    int margin = interleavedFilterReach(RADIUS, INTERLEAVE);
     ivec2 pixel = cachePixelAround(gl_GlobalInvocationID.xy, constants.cache, margin);
     if (any(lessThan(pixel, ivec2(0))) || any(greaterThanEqual(pixel, ivec2(frame.viewport.xy))))
         return;
     vec4 position = gbufferPosition(pixel);
     vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     if (position.w == 0.0 || convergedAround(pixel, position.xyz, n, constants.cache, margin)) {
-        imageStore(interleavedIndirect, pixel, vec4(0.0));
-        imageStore(interleavedDirectional, pixel, vec4(0.0));
+        imageStore(interleavedIndirect, pixel, SKIPPED);
+        imageStore(interleavedDirectional, pixel, SKIPPED);
         return;
     }
     vec3 p = position.xyz;

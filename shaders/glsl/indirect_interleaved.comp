@@ -8,7 +8,7 @@
 // estimate from its neighbours on the same surface. Beside its irradiance / pi each pixel
 // writes the directional sums of its VPLs' light (indirect_gather.glsl), with which the filter
 // carries a neighbour's estimate over to the pixel's own normal. A converged pixel is skipped
-// (alpha 0): its cache holds it.
+//: its cache holds it.
 #include "shared.h"
 #include "common.glsl"
 
@@ -38,7 +38,7 @@ layout(push_constant) uniform IndirectBlock { IndirectConstants constants; };
 void main() {
     loadPixelToWorld(); // pixel_to_world.glsl
     // The refresh tile with a margin as wide as the filter's two axes reach.
-    int margin = max(RADIUS, INTERLEAVE / 2);
+    int margin = interleavedFilterReach(RADIUS, INTERLEAVE);
     ivec2 pixel = cachePixelAround(gl_GlobalInvocationID.xy, constants.cache, margin);
     if (any(lessThan(pixel, ivec2(0))) || any(greaterThanEqual(pixel, ivec2(frame.viewport.xy))))
         return;
@@ -50,8 +50,8 @@ void main() {
     }
     vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     if (convergedAround(pixel, position.xyz, n, constants.cache, margin)) {
-        imageStore(interleavedIndirect, pixel, vec4(0.0));
-        imageStore(interleavedDirectional, pixel, vec4(0.0));
+        imageStore(interleavedIndirect, pixel, SKIPPED);
+        imageStore(interleavedDirectional, pixel, SKIPPED);
         return;
     }
     // Cached, the subsets also turn frame by frame (a low-discrepancy sequence over the frame

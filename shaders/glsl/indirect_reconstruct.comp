@@ -11,7 +11,7 @@
 // bumpy surface keeps its shading instead of being blurred flat. The directional sums are
 // averaged alike for the next axis. Both axes together give a pixel the mean of up to
 // (2 RADIUS)^2 subset estimates, the whole VPL set's many times over; at an edge or a contact,
-// those of its own side. A converged pixel is skipped (alpha 0): its cache holds it. On
+// those of its own side. A converged pixel is skipped: its cache holds it. On
 // settled frames the x axis runs over the refresh tile and a margin of RADIUS rows above and
 // below it, the y axis over the tile alone.
 #include "shared.h"
@@ -46,7 +46,7 @@ void main() {
     loadPixelToWorld(); // pixel_to_world.glsl
     ivec2 axis = ivec2(constants.axisX, constants.axisY);
     // Only the x axis's directional sums are read (by the y axis); the y axis writes none.
-    int reach = max(RADIUS, INTERLEAVE / 2);
+    int reach = interleavedFilterReach(RADIUS, INTERLEAVE);
     // The x axis also filters the refresh tile's margin rows, which the y axis reads.
     int margin = axis.x == 1 ? reach : 0;
     ivec2 pixel = cachePixelAround(gl_GlobalInvocationID.xy, constants.cache, margin);
@@ -80,7 +80,7 @@ void main() {
         ivec2 q = pixel + d * axis;
         if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
         vec4 estimate = texelFetch(estimates, q, 0);
-        if (estimate.a < 0.5) continue; // background, or skipped
+        if (wasSkipped(estimate)) continue; // skipped, or background (stored alike)
         vec3 delta = gbufferPosition(q).xyz - p;
         if (abs(dot(n, delta)) > 1.5 * footprint * max(1.0, abs(float(d)))) continue;
         vec3 nq = texelFetch(gbufferNormal, q, 0).xyz;

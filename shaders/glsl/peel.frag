@@ -9,18 +9,19 @@ layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; }
 layout(set = 0, binding = 1) uniform sampler2D baseColorTexture;
 layout(set = 0, binding = 2) uniform sampler2D firstLayerViewDepth; // the G-buffer's
 layout(push_constant) uniform DrawBlock { DrawConstants draw; };
+#include "base_color.glsl"
 
 layout(location = 0) in vec3 worldPosition;
 layout(location = 1) in vec3 worldNormal;
 layout(location = 2) in vec2 uv;
+layout(location = 3) in vec4 color;
 
 layout(location = 0) out vec4 outPosition;
 
 float viewDepth(vec3 world) { return -(frame.view * vec4(world, 1.0)).z; }
 
 void main() {
-    vec4 albedo = draw.baseColorFactor;
-    if (draw.material.x > 0.5) albedo *= texture(baseColorTexture, uv);
+    vec4 albedo = baseColor(uv, color);
     if (albedo.a < draw.material.y) discard;
     float first = texelFetch(firstLayerViewDepth, ivec2(gl_FragCoord.xy), 0).r;
     // A sliver of relative depth keeps the first layer's own surface from peeling itself.

@@ -4,9 +4,10 @@
 // eye + (x * centre.x + y * centre.y + origin) * depth, the columns of FrameUniforms'
 // pixelToWorld, previousPixelToWorld and lightPixelToWorld (renderer.cpp).
 // Every shader that includes this calls loadPixelToWorld() first thing in main(): it copies the
-// three mappings, and the camera's projection back to pixels, out of the frame's uniforms once. Read from the uniforms at each use inside the
-// passes' sample loops, they cost lavapipe the AO pass 42 -> 68 ms a frame (bunny, 512x512); read
-// once, 42 again. A shader that does not call it reconstructs every position as the origin.
+// three mappings, and the camera's projection back to pixels, out of the frame's uniforms once,
+// since reading the uniforms at each use inside the passes' sample loops is slow on a CPU device
+// (docs/frame.md measures it). A shader that does not call it reconstructs every position as the
+// origin.
 // Needs: frame.
 #ifndef SSGI_PIXEL_TO_WORLD_GLSL
 #define SSGI_PIXEL_TO_WORLD_GLSL

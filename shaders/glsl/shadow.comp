@@ -55,7 +55,7 @@ void main() {
     }
     vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     if (converged(pixel, position.xyz, n, constants.cache)) {
-        imageStore(shadowImage, pixel, vec4(0.0)); // alpha 0: skipped, the cache holds the value
+        imageStore(shadowImage, pixel, SKIPPED); // converged: the cache holds the value
         return;
     }
     // Normal-offset lookup: a surface the light grazes covers less than a texel of the map.

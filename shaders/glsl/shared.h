@@ -10,16 +10,20 @@
 #include <glm/glm.hpp>
 namespace ssgi::shader {
 using vec2 = glm::vec2;
+using vec3 = glm::vec3;
 using vec4 = glm::vec4;
 using mat4 = glm::mat4;
 using ivec4 = glm::ivec4;
 using glm::clamp;
 using glm::length;
 using glm::max;
+using glm::mix;
+using glm::step;
 using std::asinh;
 using std::cos;
 using std::exp;
 using std::floor;
+using std::pow;
 using std::sin;
 using std::sinh;
 #define SSGI_CHECK_SIZE(type, bytes) static_assert(sizeof(type) == bytes, #type " layout")
@@ -76,7 +80,9 @@ SSGI_CHECK_SIZE(FrameUniforms, 10 * 64 + 20 * 16);
 struct DrawConstants {
     mat4 model;
     vec4 baseColorFactor;
-    vec4 material; // x = 1 when a base-colour texture is bound, y = alpha cutoff (0 = opaque)
+    // x = 1 when a base-colour texture is bound, y = alpha cutoff (0 = opaque), z = 1 when the
+    // vertex colours multiply the base colour
+    vec4 material;
 };
 SSGI_CHECK_SIZE(DrawConstants, 96);
 
@@ -91,23 +97,46 @@ SSGI_CHECK_SIZE(DrawConstants, 96);
 #define REPROJECT_THIN_GEOMETRY 1
 #define REPROJECT_SCREEN_EDGE 2
 
+// The display transform, per colour channel: Narkowicz's fit of the ACES filmic curve of
+// exposed linear radiance, then the sRGB encoding. The composite applies it on the GPU; the
+// programs that show a linear image the same way (reference --png, compare's and the golden
+// tests' display images, the stability panels) apply it on the CPU.
+SSGI_INLINE float tonemapAces(float x) {
+    return clamp((x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f), 0.0f, 1.0f);
+}
+SSGI_INLINE float encodeSrgb(float linear) {
+    return mix(linear * 12.92f, 1.055f * pow(linear, 1.0f / 2.4f) - 0.055f,
+               step(0.0031308f, linear));
+}
+
+// How far the interleaved indirect light's filter reaches along each axis, in pixels: its
+// radius, and at least across the k x k block of VPL subsets (indirect_reconstruct.comp). A
+// settled frame's refresh tile is widened by as much, so that its pixels find their neighbours.
+SSGI_INLINE int interleavedFilterReach(int radius, int interleave) {
+    return max(radius, interleave / 2);
+}
+
+// CacheConstants.refreshTileCorner packs a pixel's x and y into one int (screens are narrower).
+#define REFRESH_TILE_ROW 65536
+
 // The temporal cache of one effect (thesis 3.1; docs/temporal-cache.md), as its passes see it
 // each frame. Push constants (std430) pack these scalars as C++ does.
 struct CacheConstants {
-    int historyValid;     // 1 when last frame's history may be read
-    int rotations;        // rotations until a pixel is converged
-    int refreshTile;      // this frame's refresh tile (-1 = none)
-    int tileSize;         // the refresh tile's side, pixels
-    float confidenceBias; // bias of the thesis's confidence rule (eq. 4)
-    float epsilon;        // reprojection test (eq. 3), in pixel footprints
-    int runningMean;      // 1 for the running mean, 0 for the thesis's rule
-    int settled;          // 1 when the whole screen is converged and passes run over the
-                          // refresh tile alone
-    int motionTest;       // MOTION_*: what a moved object (FrameUniforms.motion) restarts
-    float motionReach;    // scene units
-    float blurBudget;     // the resampling blur (squared pixels) a cached value may carry:
-                          // beyond it the history's weight is cut and the pixel recomputed
-    int reprojection;     // REPROJECT_* flags (temporal.glsl reproject)
+    int historyValid;      // 1 when last frame's history may be read
+    int rotations;         // rotations until a pixel is converged
+    int refreshTileCorner; // this frame's refresh tile's top-left pixel, x + REFRESH_TILE_ROW * y
+                           // (TileRefresh::rect places it), or -1: none
+    int tileSize;          // the refresh tile's side, pixels
+    float confidenceBias;  // bias of the thesis's confidence rule (eq. 4)
+    float epsilon;         // reprojection test (eq. 3), in pixel footprints
+    int runningMean;       // 1 for the running mean, 0 for the thesis's rule
+    int settled;           // 1 when the whole screen is converged and passes run over the
+                           // refresh tile alone
+    int motionTest;        // MOTION_*: what a moved object (FrameUniforms.motion) restarts
+    float motionReach;     // scene units
+    float blurBudget;      // the resampling blur (squared pixels) a cached value may carry:
+                           // beyond it the history's weight is cut and the pixel recomputed
+    int reprojection;      // REPROJECT_* flags (temporal.glsl reproject)
 };
 SSGI_CHECK_SIZE(CacheConstants, 48);
 
@@ -328,6 +357,7 @@ SSGI_CHECK_SIZE(CompositeConstants, 16);
 #define VIEW_CONTACT 11
 #define VIEW_PEEL 12
 #define VIEW_SKY_VISIBILITY 13
+#define VIEW_COUNT 14 // renderer.cpp names them in this order
 
 #ifdef __cplusplus
 } // namespace ssgi::shader

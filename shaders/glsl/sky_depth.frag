@@ -6,11 +6,12 @@
 
 layout(set = 0, binding = 1) uniform sampler2D baseColorTexture;
 layout(push_constant) uniform DrawBlock { DrawConstants draw; };
+#include "base_color.glsl"
 
 layout(location = 0) in vec2 uv;
+layout(location = 1) in vec4 color;
 
 void main() {
-    float alpha = draw.baseColorFactor.a;
-    if (draw.material.x > 0.5) alpha *= texture(baseColorTexture, uv).a;
+    float alpha = baseColor(uv, color).a;
     if (alpha < draw.material.y) discard;
 }

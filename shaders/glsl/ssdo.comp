@@ -22,9 +22,9 @@ layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
 layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
 layout(set = 0, binding = 3) uniform sampler2D gbufferAlbedo;
 layout(set = 0, binding = 4) uniform sampler2D directRadiance;
-layout(set = 0, binding = 5) uniform sampler2D historyViewDepth;
-layout(set = 0, binding = 6) uniform sampler2D historyCount;
-layout(set = 0, binding = 7) uniform sampler2D secondLayer; // peel.position (PEELING only)
+layout(set = 0, binding = 5) uniform sampler2D secondLayer; // peel.position (PEELING only)
+layout(set = 0, binding = 6) uniform sampler2D historyViewDepth;
+layout(set = 0, binding = 7) uniform sampler2D historyCount;
 layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D ssdoImage;
 layout(push_constant) uniform SsdoBlock { SsdoConstants constants; };
 
@@ -44,7 +44,7 @@ void main() {
     vec3 p = position.xyz;
     vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     if (converged(pixel, p, n, constants.cache)) {
-        imageStore(ssdoImage, pixel, vec4(0.0)); // alpha 0: skipped, the cache holds the value
+        imageStore(ssdoImage, pixel, SKIPPED); // converged: the cache holds the value
         return;
     }
     vec3 albedo = texelFetch(gbufferAlbedo, pixel, 0).rgb;

@@ -31,7 +31,7 @@ const float REACCUMULATE_BLUR = 0.05;
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
 layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
 layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
-layout(set = 0, binding = 3) uniform sampler2D current; // a = 1 computed this frame, 0 skipped
+layout(set = 0, binding = 3) uniform sampler2D current; // wasSkipped: converged, not computed
 layout(set = 0, binding = 4) uniform sampler2D historyValue;
 layout(set = 0, binding = 5) uniform sampler2D historyViewDepth;
 layout(set = 0, binding = 6) uniform sampler2D historyCount;
@@ -120,16 +120,15 @@ void main() {
     // The first frame after a resize, whose history still has the old size: a colour history
     // (the indirect light, SSDO: smooth) keeps its weight through the one resampling, whatever
     // its budget; a scalar one keeps it within its budget only, and the sharp shadow (budget 0)
-    // starts over. Keeping the shadow's too made a still camera's resize worse, not better (the
-    // stability suite's resize-still: 19.4x the error of a renderer that never resized over the
-    // first 8 frames, running mean; 7.4x without).
+    // starts over: a shadow resampled to another size is wrong along every edge, and a still
+    // camera would keep it (docs/temporal-cache.md, "Resize", measures it).
     bool resized = SCALAR_HISTORY == 0 &&
                    any(notEqual(textureSize(historyValue, 0), ivec2(frame.viewport.xy)));
     float budget = cache.blurBudget;
     float rotations = float(cache.rotations);
     vec3 value;
     float count, blur = 0.0;
-    if (now.a < 0.5) { // skipped by the effect: converged, its cache is the value
+    if (wasSkipped(now)) { // converged: its cache is the value
         value = history.rgb;
         count = r.count;
         blur = history.a;
@@ -186,8 +185,8 @@ void main() {
             // The refresh tile on a still camera, over a converged history that no motion
             // resampled: it holds `rotations` frames at exactly this pixel, and the refresh, which
             // exists to pull back resampling blur (thesis ch. 4), has none to pull back. Blending
-            // one noisy frame in there was all the flicker of a still camera (up to 3.7e-4 a
-            // frame, the stability suite's pine), so the history is kept as it is.
+            // one noisy frame in there would be all the flicker of a still camera, so the history
+            // is kept as it is.
             fresh = 0.0;
             count = r.count;
         }

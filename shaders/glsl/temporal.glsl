@@ -8,6 +8,14 @@
 
 #include "pixel_to_world.glsl"
 
+// What an effect stores for a pixel it skips (converged: its cache holds the value), where a
+// value computed this frame has alpha 1; the temporal pass and the indirect light's filter tell
+// the two apart with wasSkipped.
+const vec4 SKIPPED = vec4(0.0);
+bool wasSkipped(vec4 value) {
+    return value.a < 0.5;
+}
+
 // Last frame's world position (xyz) and the effect's rotation count (w) at texel q: the ray
 // through the texel's centre in last frame's view, taken to its view depth (pixel_to_world.glsl).
 vec4 historyMeta(ivec2 q) {
@@ -127,10 +135,10 @@ Reprojection reproject(vec3 world, vec3 normal, CacheConstants cache) {
     return r;
 }
 
-// The top-left pixel of this frame's refresh tile (cache.refreshTile >= 0).
+// The top-left pixel of this frame's refresh tile (cache.refreshTileCorner >= 0).
 ivec2 refreshTileCorner(CacheConstants cache) {
-    int tilesX = (int(frame.viewport.x) + cache.tileSize - 1) / cache.tileSize;
-    return ivec2(cache.refreshTile % tilesX, cache.refreshTile / tilesX) * cache.tileSize;
+    return ivec2(cache.refreshTileCorner % REFRESH_TILE_ROW,
+                 cache.refreshTileCorner / REFRESH_TILE_ROW);
 }
 
 // Where a thread's pixel lies. Once the whole screen is settled (camera and light unchanged for
@@ -138,7 +146,7 @@ ivec2 refreshTileCorner(CacheConstants cache) {
 // temporal passes run over the refresh tile alone, offset to it; `divisor` 2 is for the
 // half-resolution pass.
 ivec2 cachePixel(uvec2 thread, CacheConstants cache, int divisor) {
-    if (cache.settled == 0 || cache.refreshTile < 0) return ivec2(thread);
+    if (cache.settled == 0 || cache.refreshTileCorner < 0) return ivec2(thread);
     return ivec2(thread) + refreshTileCorner(cache) / divisor;
 }
 
@@ -148,7 +156,7 @@ ivec2 cachePixel(uvec2 thread, CacheConstants cache, int divisor) {
 // (indirect_interleaved_pass.cpp); the threads offset to the widened tile's corner may fall
 // outside the image.
 ivec2 cachePixelAround(uvec2 thread, CacheConstants cache, int margin) {
-    if (cache.settled == 0 || cache.refreshTile < 0) return ivec2(thread);
+    if (cache.settled == 0 || cache.refreshTileCorner < 0) return ivec2(thread);
     return ivec2(thread) + refreshTileCorner(cache) - margin;
 }
 
@@ -156,7 +164,7 @@ ivec2 cachePixelAround(uvec2 thread, CacheConstants cache, int margin) {
 // tile, widened by `margin` pixels on every side, is computed although converged.
 bool convergedAround(ivec2 pixel, Reprojection r, CacheConstants cache, int margin) {
     if (!r.valid || r.count < float(cache.rotations)) return false;
-    if (cache.refreshTile < 0) return true;
+    if (cache.refreshTileCorner < 0) return true;
     ivec2 corner = refreshTileCorner(cache);
     return any(lessThan(pixel, corner - margin)) ||
            any(greaterThanEqual(pixel, corner + cache.tileSize + margin));

@@ -3,7 +3,7 @@
 // Half-resolution indirect light to full resolution (thesis ch. 4): each pixel interpolates
 // bilinearly among the four surrounding half-res samples whose G-buffer position and normal
 // are close to its own; a pixel with no such neighbour (an edge, thin geometry) gathers its
-// VPLs at full resolution instead. A converged pixel is skipped (alpha 0): its cache holds it.
+// VPLs at full resolution instead. A converged pixel is skipped: its cache holds it.
 #include "shared.h"
 #include "common.glsl"
 

@@ -1,0 +1,121 @@
+// The temporal cache's data: making an effect's history, this frame's part of each cache, the
+// constants its passes read, and what restarts or carries a history.
+#include "cache/cache.h"
+
+#include <glm/gtc/packing.hpp>
+
+#include <algorithm>
+#include <cstring>
+
+namespace ssgi {
+
+EffectCache* createCache(graph::FrameGraph& graph, CacheSet& caches, const Settings& settings,
+                         VkExtent2D size, const CachedEffect& effect) {
+    const std::string& name = effect.name;
+    if (!settings.cache || settingValue(settings, "cache_" + name) == 0.0) return nullptr;
+    const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    EffectCache& c = caches.effects.emplace_back();
+    c.effect = effect;
+    c.slot = uint32_t(caches.effects.size() - 1);
+    c.valueHistory = graph.createHistory(
+        name + ".history", effect.scalar ? VK_FORMAT_R16G16_SFLOAT : VK_FORMAT_R16G16B16A16_SFLOAT,
+        size, usage);
+    // Counts are whole numbers up to cache_rotations, or a blend's effective number of samples:
+    // a half float holds them to 1/1000 of their value.
+    c.countHistory = graph.createHistory(name + ".count", VK_FORMAT_R16_SFLOAT, size, usage);
+    if (settings.cache_refresh)
+        c.refresh = std::make_unique<TileRefresh>(
+            size.width, size.height, uint32_t(settingValue(settings, "cache_tile_" + name)),
+            uint32_t(caches.effects.size()));
+    c.blurBudget = float(settingValue(settings, "cache_blur_" + name));
+    return &c;
+}
+
+std::vector<CachedEffectFrame> nextCacheFrames(const graph::FrameGraph& graph, CacheSet& caches) {
+    std::vector<CachedEffectFrame> frames;
+    for (EffectCache& cache : caches.effects) {
+        CachedEffectFrame& f = frames.emplace_back();
+        f.hasHistory = graph.hasHistory(cache.valueHistory);
+        f.refreshTile = cache.refresh && f.hasHistory ? int(cache.refresh->next()) : -1;
+    }
+    return frames;
+}
+
+shader::CacheConstants cacheConstants(const Settings& settings, const EffectCache* cache,
+                                      const FrameState& frame) {
+    shader::CacheConstants c{};
+    if (!cache) return c; // historyValid 0: no history, nothing converges
+    const CachedEffectFrame& now = frame.effects[cache->slot];
+    c.historyValid = now.hasHistory ? 1 : 0;
+    c.rotations = int(settings.cache_rotations);
+    c.refreshTileCorner = -1;
+    if (cache->refresh && now.refreshTile >= 0) {
+        const TileRect tile = cache->refresh->rect(uint32_t(now.refreshTile));
+        c.refreshTileCorner = int(tile.x) + REFRESH_TILE_ROW * int(tile.y);
+    }
+    c.tileSize = cache->refresh ? int(cache->refresh->tileSize()) : 1;
+    c.confidenceBias = float(settings.cache_bias);
+    c.epsilon = float(settings.cache_epsilon);
+    c.runningMean = settings.cache_method != 0 ? 1 : 0;
+    c.settled = frame.settled ? 1 : 0;
+    c.motionTest = cache->effect.motionTest;
+    c.motionReach = cache->effect.motionReach;
+    c.blurBudget = cache->blurBudget;
+    c.reprojection = (settings.cache_thin_geometry ? REPROJECT_THIN_GEOMETRY : 0) |
+                     (settings.cache_screen_edge ? REPROJECT_SCREEN_EDGE : 0);
+    return c;
+}
+
+float radialOffset(const EffectCache* cache, const FrameState& frame) {
+    return cache ? frame.patternOffset : -1.0f;
+}
+
+VkExtent2D cacheDispatch(const EffectCache* cache, const FrameState& frame, VkExtent2D full,
+                         uint32_t divisor) {
+    if (!cache || !frame.settled) return full;
+    const int tileIndex = frame.effects[cache->slot].refreshTile;
+    if (!cache->refresh || tileIndex < 0) return {0, 0};
+    const TileRect tile = cache->refresh->rect(uint32_t(tileIndex));
+    return {(tile.width + divisor - 1) / divisor, (tile.height + divisor - 1) / divisor};
+}
+
+void restartCache(graph::FrameGraph& graph, const EffectCache& cache) {
+    graph.resetHistory(cache.valueHistory);
+    graph.resetHistory(cache.countHistory);
+}
+
+void carryCaches(graph::FrameGraph& from, const CacheSet& fromCaches, VkExtent2D fromSize,
+                 graph::FrameGraph& to, const CacheSet& toCaches) {
+    if (!fromCaches.viewDepthHistory || !toCaches.viewDepthHistory) return;
+    // After its last frame every pair of `from` has swapped: what it wrote is the previous side.
+    using graph::FrameGraph;
+    auto last = [&from](uint32_t history) {
+        return from.readTexels(FrameGraph::previous(history));
+    };
+    bool carried = false;
+    for (const EffectCache& old : fromCaches.effects) {
+        if (!from.hasHistory(old.valueHistory)) continue;
+        for (const EffectCache& cache : toCaches.effects) {
+            if (cache.name() != old.name()) continue;
+            to.carryHistory(cache.valueHistory, fromSize, last(old.valueHistory));
+            // Each pixel's history counts as one sample (rotation count 1): screen-space effects
+            // converge to another value at another size (their samples snap to other pixels),
+            // and a history converged at the old size would hold the new one off for dozens of
+            // frames (docs/temporal-cache.md, "Resize"). The shadow, which allows no blur, starts
+            // over; the others blend the new frames into the resampled image.
+            std::vector<uint8_t> count = last(old.countHistory);
+            for (size_t i = 0; i + 2 <= count.size(); i += 2) { // R16F
+                uint16_t n = 0;
+                std::memcpy(&n, &count[i], 2);
+                n = glm::packHalf1x16(std::min(glm::unpackHalf1x16(n), 1.0f));
+                std::memcpy(&count[i], &n, 2);
+            }
+            to.carryHistory(cache.countHistory, fromSize, count);
+            carried = true;
+        }
+    }
+    if (carried)
+        to.carryHistory(*toCaches.viewDepthHistory, fromSize, last(*fromCaches.viewDepthHistory));
+}
+
+} // namespace ssgi

@@ -1,0 +1,38 @@
+// What one frame does and why: computed once by the Renderer before the frame is recorded
+// (Renderer::decideFrame) and handed by the frame graph to every pass's enable and record
+// callback. Nothing else a pass reads changes from frame to frame.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace ssgi {
+
+// One cached effect's part of the frame, in the order FrameBuild::caches holds the effects.
+struct CachedEffectFrame {
+    bool hasHistory = false; // last frame's value is there to reproject
+    int refreshTile = -1;    // the tile its tiled refresh recomputes this frame, or none
+};
+
+struct FrameState {
+    // The sampling patterns' turn, scale and place in their radial strata this frame (thesis
+    // 3.1.2): successive frames take different samples, which the cache accumulates.
+    float patternRotation = 0.0f;
+    float patternScale = 1.0f;
+    float patternOffset = 0.5f;
+    // The light changed since the RSM was last drawn (always so without the cache): the RSM and
+    // what is made from it alone (the flux's VPL map) are made again.
+    bool drawRsm = true;
+    // An object moved since the sky maps were drawn (or they never were).
+    bool drawSkyMaps = true;
+    // The camera moved or the sky maps changed: the sky's visibility is looked up again.
+    bool lookUpSkyVisibility = true;
+    // Camera, light and objects unchanged for as many frames as a pixel needs rotations: every
+    // pixel is converged, and the cached effects run over their refresh tiles alone.
+    bool settled = false;
+    // What the composite shows (a VIEW_* value of shared.h).
+    int view = 0;
+    std::vector<CachedEffectFrame> effects;
+};
+
+} // namespace ssgi

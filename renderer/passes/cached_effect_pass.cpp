@@ -1,0 +1,105 @@
+// <effect>.keep and <effect>.temporal: the temporal cache of one effect (thesis 3.1) around the
+// effect's own passes: reverse reprojection, accumulation with the thesis's confidence rule or a
+// running mean, reuse of converged pixels (the effect's passes skip them), tiled refresh. The
+// history pair swaps each frame in the graph.
+#include "passes/cached_effect_pass.h"
+
+namespace ssgi {
+
+std::vector<ShaderImage> cacheBindings(const FrameBuild& build, const EffectCache* cache,
+                                       graph::ImageRef fallback) {
+    using graph::FrameGraph;
+    using graph::Use;
+    if (!cache)
+        return {{"historyViewDepth", fallback, Use::Sampled},
+                {"historyCount", fallback, Use::Sampled}};
+    return {
+        {"historyViewDepth", FrameGraph::previous(*build.caches.viewDepthHistory), Use::Sampled},
+        {"historyCount", FrameGraph::previous(cache->countHistory), Use::Sampled}};
+}
+
+void addKeepPass(FrameBuild& build, const EffectCache* cache,
+                 std::vector<graph::ImageRef> outputs) {
+    if (!cache) return;
+    using graph::FrameGraph;
+    using graph::Use;
+    const uint32_t histories[] = {cache->valueHistory, cache->countHistory};
+    std::vector<graph::ImageUse> uses;
+    for (uint32_t history : histories) {
+        uses.push_back({FrameGraph::previous(history), Use::TransferSrc});
+        uses.push_back({FrameGraph::current(history), Use::TransferDst});
+    }
+    for (const graph::ImageRef& output : outputs)
+        uses.push_back({output, Use::TransferDst});
+    build.graph.addPass(
+        cache->name() + ".keep", graph::PassKind::Transfer, uses,
+        [histories = std::vector<uint32_t>(std::begin(histories), std::end(histories)),
+         outputs](const graph::PassContext& pc) {
+            for (uint32_t history : histories) {
+                const vk::Image& from = pc.image(FrameGraph::previous(history));
+                const vk::Image& to = pc.image(FrameGraph::current(history));
+                VkImageCopy region{};
+                region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+                region.dstSubresource = region.srcSubresource;
+                region.extent = {from.extent.width, from.extent.height, 1};
+                vkCmdCopyImage(pc.cmd, from.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, to.image,
+                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+            }
+            const VkClearColorValue zero{};
+            const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+            for (const graph::ImageRef& output : outputs)
+                vkCmdClearColorImage(pc.cmd, pc.image(output).image,
+                                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &range);
+        },
+        [](const FrameState& frame) { return frame.settled; });
+}
+
+graph::ImageRef addTemporalPass(FrameBuild& build, const EffectCache* cache, graph::ImageRef raw,
+                                const GBuffer& gbuffer) {
+    if (!cache) return raw;
+    using graph::FrameGraph;
+    using graph::Use;
+    const graph::ImageRef value = FrameGraph::current(cache->valueHistory);
+    ComputePassDesc pass{cache->name() + ".temporal", "temporal.comp"};
+    pass.images = {{"gbufferViewDepth", gbuffer.viewDepth, Use::Sampled},
+                   {"gbufferNormal", gbuffer.normal, Use::Sampled},
+                   {"current", raw, Use::Sampled},
+                   {"historyValue", FrameGraph::previous(cache->valueHistory), Use::Sampled}};
+    for (ShaderImage& history : cacheBindings(build, cache, gbuffer.viewDepth))
+        pass.images.push_back(std::move(history));
+    pass.images.push_back({"newValue", value, Use::StorageWrite});
+    pass.images.push_back(
+        {"newCount", FrameGraph::current(cache->countHistory), Use::StorageWrite});
+    pass.pushSize = sizeof(shader::TemporalConstants);
+    pass.spec = {{{"SCALAR_HISTORY", cache->effect.scalar ? 1 : 0}}};
+    addComputePass(build, std::move(pass), [&build, cache](const ComputeRecorder& r) {
+        const shader::TemporalConstants constants{cacheConstants(build.settings, cache, r.frame())};
+        const VkExtent2D area = cacheDispatch(cache, r.frame(), build.size);
+        r.dispatch(area.width, area.height, constants);
+    });
+    return value;
+}
+
+graph::ImageRef addCachedComputePass(FrameBuild& build, const GBuffer& gbuffer,
+                                     CachedComputePass desc, CachedRecordFn record) {
+    const std::string& name = desc.effect.name;
+    const EffectCache* cache =
+        createCache(build.graph, build.caches, build.settings, build.size, desc.effect);
+    const graph::ImageRef raw = build.graph.createImage(
+        name, VK_FORMAT_R16G16B16A16_SFLOAT, build.size,
+        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    addKeepPass(build, cache, {raw});
+    ComputePassDesc pass{name, desc.shader, std::move(desc.inputs)};
+    for (ShaderImage& history : cacheBindings(build, cache, gbuffer.viewDepth))
+        pass.images.push_back(std::move(history));
+    pass.images.push_back({name + "Image", raw, graph::Use::StorageWrite});
+    pass.pushSize = desc.pushSize;
+    pass.spec = std::move(desc.spec);
+    addComputePass(build, std::move(pass),
+                   [&build, cache, record = std::move(record)](const ComputeRecorder& r) {
+                       record(CachedRecorder(build, cache, r));
+                   });
+    return addTemporalPass(build, cache, raw, gbuffer);
+}
+
+} // namespace ssgi

@@ -1,0 +1,73 @@
+// The passes of a cached effect (thesis 3.1) around the effect's own: <effect>.keep carries a
+// settled frame's history over before the effect runs over its refresh tile alone, and
+// <effect>.temporal blends this frame's value into the history. An effect of one compute pass
+// is declared whole by addCachedComputePass; an effect of several passes (the indirect light)
+// uses the pieces below it. docs/frame.md, "Adding a cached effect".
+#pragma once
+
+#include "cache/cache.h"
+#include "passes/compute_pass.h"
+#include "passes/frame_build.h"
+#include "passes/scene_pass.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace ssgi {
+
+// What a cached effect's record function gets: this frame's state and its cache's part of it.
+class CachedRecorder {
+public:
+    CachedRecorder(const FrameBuild& build, const EffectCache* cache, const ComputeRecorder& r)
+        : build_(build), cache_(cache), recorder_(r) {}
+    const FrameState& frame() const { return recorder_.frame(); }
+    // The sampling pattern's radial place: this frame's when cached, else -1 (a fixed pattern).
+    float radialOffset() const { return ssgi::radialOffset(cache_, frame()); }
+    // Sets `constants.cache` and dispatches the pixels the cache leaves to compute this frame.
+    template <typename T> void dispatch(T constants) const {
+        constants.cache = cacheConstants(build_.settings, cache_, frame());
+        const VkExtent2D area = cacheDispatch(cache_, frame(), build_.size);
+        recorder_.dispatch(area.width, area.height, constants);
+    }
+
+private:
+    const FrameBuild& build_;
+    const EffectCache* cache_;
+    const ComputeRecorder& recorder_;
+};
+
+// A cached effect computed by one compute shader at full resolution. Its shader binds, in this
+// order: `inputs`, then "historyViewDepth" and "historyCount" (last frame's G-buffer view
+// depths and the effect's rotation counts, to skip converged pixels; temporal.glsl), then
+// "<name>Image", the RGBA16F image it writes (named <name> in the graph).
+struct CachedComputePass {
+    CachedEffect effect;
+    std::string shader;
+    std::vector<ShaderImage> inputs;
+    uint32_t pushSize = 0;
+    vk::Specialization spec;
+};
+using CachedRecordFn = std::function<void(const CachedRecorder&)>;
+
+// The effect's cache (when the settings cache it), its keep pass, its compute pass and its
+// temporal pass; returns what the effect's consumers read (the blended history, or the raw
+// value without a cache).
+graph::ImageRef addCachedComputePass(FrameBuild& build, const GBuffer& gbuffer,
+                                     CachedComputePass pass, CachedRecordFn record);
+
+// The pieces, for an effect of several passes.
+// Its "historyViewDepth" and "historyCount" bindings: last frame's G-buffer view depths and the
+// cache's rotation counts, or `fallback` (any image the pass reads anyway) without a cache.
+std::vector<ShaderImage> cacheBindings(const FrameBuild& build, const EffectCache* cache,
+                                       graph::ImageRef fallback);
+// <effect>.keep, run only on settled frames before the effect: last frame's history carried
+// over whole to this frame's side (the temporal pass then rewrites the refresh tile), and the
+// effect's own images cleared, so that what the tile-only passes do not write reads "skipped".
+void addKeepPass(FrameBuild& build, const EffectCache* cache, std::vector<graph::ImageRef> outputs);
+// <effect>.temporal: blends an effect's value of this frame into its history; returns what
+// the effect's consumers read (the raw value when there is no cache).
+graph::ImageRef addTemporalPass(FrameBuild& build, const EffectCache* cache, graph::ImageRef raw,
+                                const GBuffer& gbuffer);
+
+} // namespace ssgi

@@ -1,0 +1,69 @@
+// What every pass is built from: the device, the graph to add itself to, the scene and its copy
+// on the device, the frame's uniforms and samplers, the frame's sizes, the pipelines and buffers
+// the passes made (owned here, destroyed with it), and the cached effects' histories. Made once
+// by the Renderer with the frame's passes and left as it is from then on: what changes from frame
+// to frame is the FrameState the graph hands to every pass (frame_state.h). Owned by the
+// Renderer, so the passes' callbacks may keep a reference to it.
+#pragma once
+
+#include "cache/cache.h"
+#include "graph/frame_graph.h"
+#include "passes/compute_pass.h"
+#include "scene/scene.h"
+#include "scene_gpu.h"
+#include "vk/pipeline.h"
+#include "vk/resources.h"
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace ssgi {
+
+class FrameBuild {
+public:
+    // The frame's uniforms and both samplers are made here; the passes are added by
+    // addFramePasses (passes.h).
+    FrameBuild(vk::Context& ctx, graph::FrameGraph& graph, const SceneGpu& sceneGpu,
+               const Scene& scene, VkExtent2D size, uint32_t guardBand, VkExtent2D rsmSize,
+               const glm::dvec3& gpuOrigin);
+    ~FrameBuild(); // the device must be idle
+    FrameBuild(const FrameBuild&) = delete;
+    FrameBuild& operator=(const FrameBuild&) = delete;
+
+    vk::Context& ctx;
+    graph::FrameGraph& graph;
+    const SceneGpu& sceneGpu;
+    const Scene& scene;         // its settings, light, sky and bounds
+    const Settings& settings;   // scene.settings
+    const VkExtent2D size;      // every screen image: the output and the guard band
+    const uint32_t guardBand;   // pixels beyond each edge of the output (guard_band)
+    const VkExtent2D rsmSize;   // the reflective shadow map
+    const glm::dvec3 gpuOrigin; // the world point at the GPU's origin (renderer.cpp)
+    vk::Buffer frameUniforms;   // shader::FrameUniforms, written by the Renderer each frame
+    VkSampler nearestSampler = VK_NULL_HANDLE;
+    VkSampler linearSampler = VK_NULL_HANDLE;
+    CacheSet caches; // empty when caching is off
+
+    // Where the output ("hdr", "ldr") lies in the screen images: the guard band in from each edge.
+    VkRect2D output() const {
+        return {{int32_t(guardBand), int32_t(guardBand)},
+                {size.width - 2 * guardBand, size.height - 2 * guardBand}};
+    }
+    // A compute pipeline for `desc` (compute_pass.cpp), made once and shared by every pass that
+    // asks for the same shader, layout and specialization (the interleaved filter's two axes).
+    const vk::Pipeline& computePipeline(const ComputePassDesc& desc,
+                                        const std::vector<vk::LayoutBinding>& layout);
+    // A graphics pipeline, destroyed with the build.
+    vk::Pipeline graphicsPipeline(const vk::GraphicsPipelineDesc& desc);
+    // A host-visible uniform buffer holding `bytes`, destroyed with the build.
+    const vk::Buffer& uniformBuffer(const void* data, VkDeviceSize bytes);
+
+private:
+    void release();                      // what the destructor gives back; idempotent
+    std::deque<vk::Pipeline> pipelines_; // a deque: computePipeline hands out references
+    std::map<std::string, size_t> computePipelines_; // computePipeline()'s, by what makes them
+    std::deque<vk::Buffer> buffers_;
+};
+
+} // namespace ssgi

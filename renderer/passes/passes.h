@@ -1,0 +1,90 @@
+// The frame's passes, each added to the graph by one function in its own file (ao_pass.cpp,
+// shadow_pass.cpp, ...), and the whole frame in order (frame.cpp). Every pass reads what it is
+// handed and the FrameBuild (frame_build.h); what changes from frame to frame reaches it as the
+// FrameState the graph hands its callbacks (frame_state.h).
+#pragma once
+
+#include "cache/cache.h"
+#include "graph/frame_graph.h"
+#include "passes/cached_effect_pass.h"
+#include "passes/frame_build.h"
+#include "passes/scene_pass.h"
+#include "shared.h"
+
+#include <optional>
+
+namespace ssgi {
+
+// The cached effects of one pass (cached_effect_pass.h) return what their consumers read: the
+// blended history, or the raw value without a cache.
+// shadow: fraction of the spot light's disk each pixel sees (PCF/PCSS, or a hard test).
+graph::ImageRef addShadowPass(FrameBuild& build, const GBufferAndRsm& inputs);
+// contact: the shadow term with screen-space contact shadows added; with depth peeling's second
+// layer (valid or not), an occluder is a sample between the two layers.
+graph::ImageRef addContactPass(FrameBuild& build, const GBufferAndRsm& inputs,
+                               graph::ImageRef shadow, graph::ImageRef secondLayer);
+// peel: the second depth layer (world position of the next surface behind the G-buffer's).
+graph::ImageRef addPeelPass(FrameBuild& build, const GBufferAndRsm& inputs);
+// direct: spot-light radiance times the shadow term.
+graph::ImageRef addDirectPass(FrameBuild& build, const GBufferAndRsm& inputs,
+                              graph::ImageRef shadow);
+
+// ao: visibility of the hemisphere within the AO radius (1 = open).
+graph::ImageRef addAoPass(FrameBuild& build, const GBufferAndRsm& inputs);
+
+// The push constants of the indirect light's passes this frame (every method's gather, the
+// upsampling, the filter's axes; the filter's axis left 0): the pattern's turn, scale and
+// radial place, the sampling radius and the visibility march's start, the cache's state;
+// `gather` is the size of the image the gather writes.
+shader::IndirectConstants indirectConstants(const FrameBuild& build, const EffectCache* cache,
+                                            const FrameState& frame, VkExtent2D gather);
+
+// indirect (half resolution) + upsample, indirect_method 0: one-bounce irradiance / pi from
+// the RSM's VPLs.
+graph::ImageRef addIndirectPasses(FrameBuild& build, const GBufferAndRsm& inputs,
+                                  const EffectCache* cache);
+
+// indirect.flux + indirect.vpls, indirect_method 2: the RSM clustered into a coarser map of
+// VPLs, and the list of VPLs drawn this frame in proportion to their flux.
+struct FluxVpls {
+    graph::ImageRef position, normal, flux, list;
+};
+FluxVpls addFluxVplPasses(FrameBuild& build, const GBufferAndRsm& inputs, const EffectCache* cache);
+
+// indirect (interleaved VPL subsets) + indirect.filter_x + indirect.filter_y: the same light,
+// indirect_method 1; with `fluxVpls` (method 2) the flux's VPLs beside the pattern's.
+graph::ImageRef addInterleavedIndirectPasses(FrameBuild& build, const GBufferAndRsm& inputs,
+                                             const EffectCache* cache,
+                                             const FluxVpls* fluxVpls = nullptr);
+
+// The one-bounce indirect light, cached, by the method the settings choose (indirect_light.cpp).
+graph::ImageRef addIndirectLight(FrameBuild& build, const GBufferAndRsm& inputs);
+
+// ssdo: directionally occluded sky light plus one bounce, as radiance.
+// `secondLayer` (valid with depth peeling) makes its occlusion test two-layered.
+graph::ImageRef addSsdoPass(FrameBuild& build, const GBufferAndRsm& inputs, graph::ImageRef direct,
+                            graph::ImageRef secondLayer);
+
+// The screen-space terms the composite adds up; an invalid ref is an effect turned off.
+struct LightingTerms {
+    graph::ImageRef direct, shadow, ao, indirect, ssdo;
+    graph::ImageRef skyVisibility; // the sky's visibility beyond the screen
+    graph::ImageRef secondLayer;   // depth peeling's, for its debug view
+};
+
+// sky.maps + sky_visibility: the fraction of the sky's light reaching each pixel past the
+// occluders beyond the AO's radius, from depth maps of the scene over the sky's directions.
+graph::ImageRef addSkyVisibilityPasses(FrameBuild& build, const GBufferAndRsm& inputs);
+
+struct CompositeOutputs {
+    graph::ImageRef hdr, ldr;
+};
+// composite: HDR radiance, tonemapped sRGB image, or the debug view FrameState::view names, at
+// the output's size (the screen images less their guard band).
+CompositeOutputs addCompositePass(FrameBuild& build, const GBufferAndRsm& inputs,
+                                  const LightingTerms& terms);
+
+// The whole frame, every pass above in order, as the scene's settings ask (frame.cpp).
+void addFramePasses(FrameBuild& build);
+
+} // namespace ssgi

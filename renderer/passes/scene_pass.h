@@ -1,0 +1,51 @@
+// The passes that rasterise the whole scene: the G-buffer (camera view) and the reflective
+// shadow map (light view). Both are colour targets and a depth target, the scene drawn once.
+// Neither keeps world positions: the G-buffer's follow from its view depth (R32F;
+// gbuffer_position.glsl), the RSM's from the distance along the light's axis in its VPL texels
+// (rsm_vpl.glsl).
+#pragma once
+
+#include "graph/frame_graph.h"
+#include "passes/frame_build.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace ssgi {
+
+struct SceneTarget {
+    const char* suffix; // the image is the pass's name + suffix
+    VkFormat format;
+};
+struct SceneTargets {
+    std::vector<graph::ImageRef> colors; // in the fragment shader's order
+    graph::ImageRef depth;
+};
+// `enabled` (optional) is asked each frame whether to draw; the targets of a pass that may be
+// skipped persist from frame to frame. With `firstTargetHistory`, the first colour target is a
+// history pair (colors[0] is its current side), whose id is written there.
+SceneTargets addScenePass(FrameBuild& build, const std::string& name, const std::string& shader,
+                          VkExtent2D extent, const std::vector<SceneTarget>& targets,
+                          graph::EnabledFn enabled = {},
+                          std::optional<uint32_t>* firstTargetHistory = nullptr);
+
+// gbuffer: view depth (0 where nothing was drawn), normal, albedo, depth.
+struct GBuffer {
+    graph::ImageRef viewDepth, normal, albedo, depth;
+};
+GBuffer addGBufferPass(FrameBuild& build);
+// rsm: one VPL a texel (RGBA32UI: albedo, the light's share, normal, distance along the light's
+// axis; rsm_vpl.glsl) and the depth target (the shadow map). Drawn on the frames whose
+// FrameState::drawRsm says the light changed since it was last drawn.
+struct Rsm {
+    graph::ImageRef vpls, depth;
+};
+Rsm addRsmPass(FrameBuild& build);
+
+struct GBufferAndRsm {
+    GBuffer gbuffer;
+    Rsm rsm;
+};
+
+} // namespace ssgi
