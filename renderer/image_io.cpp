@@ -1,7 +1,9 @@
 #include "image_io.h"
 
+#include "atomic_file.h"
 #include "scene/scene.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
@@ -33,14 +35,8 @@ std::vector<float> storedValues(const ImageFile& image, bool exr) {
     return values;
 }
 
-fs::path besideTarget(const std::string& path, const char* prefix) {
-    const fs::path target(path);
-    return target.parent_path() /
-           (prefix + std::to_string(getpid()) + "-" + target.filename().string());
-}
-
-// Writes one image to its temporary name; throws (leaving nothing there) on failure.
-void writeTemporary(const ImageFile& image, const fs::path& tmp) {
+// One image encoded in memory, as its file will hold it; throws (writing nothing) on failure.
+std::string encode(const ImageFile& image) {
     const std::string& path = image.path;
     const bool exr = fs::path(path).extension() == ".exr";
     const std::vector<float> values = storedValues(image, exr);
@@ -58,81 +54,37 @@ void writeTemporary(const ImageFile& image, const fs::path& tmp) {
                                       [&](float v) { return std::fabs(v) <= kHalfMax; });
     auto out = OIIO::ImageOutput::create(path);
     if (!out) throw InputError(path + ": no writer for this format: " + OIIO::geterror());
+    std::vector<unsigned char> bytes;
+    OIIO::Filesystem::IOVecOutput memory(bytes);
+    if (!out->supports("ioproxy") || !out->set_ioproxy(&memory))
+        throw std::runtime_error(path + ": OpenImageIO cannot write this format to memory");
     const int channels = exr ? 3 : 4;
     OIIO::ImageSpec spec(int(image.width), int(image.height), channels,
                          !exr       ? OIIO::TypeDesc::UINT8
                          : fitsHalf ? OIIO::TypeDesc::HALF
                                     : OIIO::TypeDesc::FLOAT);
     if (exr) spec.attribute("compression", "zip");
-    if (!out->open(tmp.string(), spec)) throw InputError(path + ": " + out->geterror());
-    const bool ok = out->write_image(OIIO::TypeDesc::FLOAT, values.data()) && out->close();
-    if (!ok) {
-        const std::string error = out->geterror();
-        std::error_code ec;
-        fs::remove(tmp, ec);
-        throw InputError(path + ": writing failed: " + error);
-    }
+    // The values as given: OpenImageIO would otherwise divide a PNG's colour by its alpha, which
+    // readImage (the colour as stored) would not undo.
+    spec.attribute("oiio:UnassociatedAlpha", 1);
+    if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::FLOAT, values.data()) ||
+        !out->close())
+        throw InputError(path + ": encoding failed: " + out->geterror());
+    return std::string(bytes.begin(), bytes.end());
 }
 
 } // namespace
 
 void writeImages(const std::vector<ImageFile>& images) {
+    std::vector<FileBytes> files;
     for (const ImageFile& image : images) {
         const std::string ext = fs::path(image.path).extension().string();
         if (ext != ".exr" && ext != ".png")
             throw InputError(image.path + ": output must end in .png or .exr");
     }
-    std::vector<fs::path> temporaries, backups;
-    std::error_code ec;
-    auto removeAll = [&](const std::vector<fs::path>& paths) {
-        for (const fs::path& p : paths)
-            fs::remove(p, ec);
-    };
-    try {
-        for (const ImageFile& image : images) {
-            const fs::path parent = fs::path(image.path).parent_path();
-            if (!parent.empty() && !fs::is_directory(parent, ec)) {
-                fs::create_directories(parent, ec);
-                if (ec)
-                    throw InputError(image.path + ": cannot create folder " + parent.string() +
-                                     ": " + ec.message());
-            }
-            // The temporary keeps the extension so that OpenImageIO picks the same format.
-            temporaries.push_back(besideTarget(image.path, ".tmp-"));
-            writeTemporary(image, temporaries.back());
-        }
-    } catch (...) {
-        removeAll(temporaries);
-        throw;
-    }
-    // Every file is complete; move them into place. A file already at a target is kept under a
-    // second name (a hard link) until all have moved, so a failure puts back what was there.
-    std::vector<bool> hadOld(images.size(), false);
-    for (size_t i = 0; i < images.size(); ++i) {
-        const std::string& path = images[i].path;
-        backups.push_back(besideTarget(path, ".old-"));
-        struct stat status {};
-        hadOld[i] = ::lstat(path.c_str(), &status) == 0 && !S_ISDIR(status.st_mode) &&
-                    ::link(path.c_str(), backups[i].c_str()) == 0;
-        if (::rename(temporaries[i].c_str(), path.c_str()) != 0) {
-            const int error = errno;
-            for (size_t j = 0; j < i; ++j) // undo the ones already moved
-                if (hadOld[j])
-                    ::rename(backups[j].c_str(), images[j].path.c_str());
-                else
-                    ::unlink(images[j].path.c_str());
-            if (hadOld[i]) ::unlink(backups[i].c_str());
-            removeAll(temporaries);
-            std::string others;
-            for (size_t j = 0; j < images.size(); ++j)
-                if (j != i) others += (others.empty() ? "" : ", ") + images[j].path;
-            throw InputError(path +
-                             ": cannot move the finished file into place: " + std::strerror(error) +
-                             (others.empty() ? "" : " (so " + others + " was not written either)"));
-        }
-    }
-    for (size_t i = 0; i < images.size(); ++i)
-        if (hadOld[i]) ::unlink(backups[i].c_str());
+    for (const ImageFile& image : images)
+        files.push_back({image.path, encode(image)});
+    writeFilesAtomically(files);
 }
 
 void writeImage(const std::string& path, uint32_t width, uint32_t height,
@@ -141,18 +93,51 @@ void writeImage(const std::string& path, uint32_t width, uint32_t height,
 }
 
 std::vector<float> readImage(const std::string& path, uint32_t& width, uint32_t& height) {
-    auto in = OIIO::ImageInput::open(path);
+    // Looked at before it is opened: a FIFO would block the reader, a device never end.
+    struct stat status {};
+    if (::stat(path.c_str(), &status) != 0)
+        throw InputError(path + ": cannot read image: " + std::strerror(errno));
+    if (!S_ISREG(status.st_mode)) throw InputError(path + ": not a regular file");
+    // The colour as stored: OpenImageIO would otherwise multiply a PNG's colour by its alpha.
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    auto in = OIIO::ImageInput::open(path, &config);
     if (!in) throw InputError(path + ": cannot read image: " + OIIO::geterror());
     const OIIO::ImageSpec& spec = in->spec();
+    if (spec.width < 1 || spec.height < 1 || spec.depth != 1 || spec.width > kMaxImageSide ||
+        spec.height > kMaxImageSide)
+        throw InputError(path + ": declares " + std::to_string(spec.width) + "x" +
+                         std::to_string(spec.height) + " pixels; images of 1.." +
+                         std::to_string(kMaxImageSide) + " pixels a side are read");
+    const int n = spec.nchannels;
+    const bool rgb = n >= 3 && spec.channelnames.size() >= 3 && spec.channelnames[0] == "R" &&
+                     spec.channelnames[1] == "G" && spec.channelnames[2] == "B";
+    if (n < 1 || (n > 2 && n != 3 && n != 4 && !rgb))
+        throw InputError(path + ": holds " + std::to_string(n) +
+                         " channels; grey, grey and alpha, RGB and RGBA images are read");
+    // Grey (one channel, or two with alpha) stands for the same value in R, G and B.
+    const bool grey = n <= 2;
+    const int alpha = grey ? (n == 2 ? 1 : -1) : (n >= 4 ? 3 : -1);
+    const int read = std::min(n, 4);
     width = uint32_t(spec.width);
     height = uint32_t(spec.height);
-    std::vector<float> pixels(size_t(width) * height * spec.nchannels);
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()))
+    const size_t pixelCount = size_t(width) * height;
+    std::vector<float> pixels, rgba;
+    try {
+        pixels.resize(pixelCount * read);
+        rgba.assign(pixelCount * 4, 1.0f);
+    } catch (const std::bad_alloc&) {
+        throw InputError(path + ": " + std::to_string(width) + "x" + std::to_string(height) +
+                         " pixels do not fit in memory");
+    }
+    if (!in->read_image(0, 0, 0, read, OIIO::TypeDesc::FLOAT, pixels.data()))
         throw InputError(path + ": " + in->geterror());
-    std::vector<float> rgba(size_t(width) * height * 4, 1.0f);
-    for (size_t i = 0; i < size_t(width) * height; ++i)
-        for (int c = 0; c < std::min(spec.nchannels, 4); ++c)
-            rgba[4 * i + c] = pixels[spec.nchannels * i + c];
+    for (size_t i = 0; i < pixelCount; ++i) {
+        const float* p = &pixels[read * i];
+        for (int c = 0; c < 3; ++c)
+            rgba[4 * i + c] = grey ? p[0] : p[c];
+        if (alpha >= 0) rgba[4 * i + 3] = p[alpha];
+    }
     return rgba;
 }
 

@@ -25,7 +25,13 @@ struct ImageFile {
 // stays), as writeImage says for each.
 void writeImages(const std::vector<ImageFile>& images);
 
-// Reads an image as RGBA floats; for tests and comparisons.
+// The largest side of an image that readImage takes: the programs' own largest output.
+constexpr int kMaxImageSide = 16384;
+
+// Reads an image as RGBA floats, the colour as the file stores it (a PNG's colour is not
+// multiplied by its alpha); a grey image gives R = G = B, and alpha is 1 where the file has none.
+// InputError for anything else: a file that is not a regular file, a size beyond kMaxImageSide
+// or beyond memory, channels that are not grey, grey and alpha, RGB or RGBA.
 std::vector<float> readImage(const std::string& path, uint32_t& width, uint32_t& height);
 
 } // namespace ssgi

@@ -10,6 +10,7 @@ packages=(
   libglm-dev libglfw3-dev libtinygltf-dev nlohmann-json3-dev libopenimageio-dev
   libgtest-dev libembree-dev
   libimgui-dev xvfb xauth
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib
 )
 missing=()
 for p in "${packages[@]}"; do

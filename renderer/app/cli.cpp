@@ -1,11 +1,12 @@
 #include "app/cli.h"
 
+#include "atomic_file.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <unistd.h>
 
@@ -144,21 +145,7 @@ double median(std::vector<double> v) {
 }
 
 void writeTextAtomically(const std::string& path, const std::string& text) {
-    const fs::path target(path);
-    std::error_code ec;
-    if (target.has_parent_path()) fs::create_directories(target.parent_path(), ec);
-    const fs::path tmp = target.parent_path() /
-                         (".tmp-" + std::to_string(getpid()) + "-" + target.filename().string());
-    {
-        std::ofstream out(tmp);
-        out << text;
-        if (!out) throw InputError(path + ": cannot write");
-    }
-    fs::rename(tmp, target, ec);
-    if (ec) {
-        fs::remove(tmp, ec);
-        throw InputError(path + ": cannot move the finished file into place");
-    }
+    writeFileAtomically(path, text);
 }
 
 } // namespace ssgi::cli

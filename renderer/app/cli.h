@@ -53,7 +53,7 @@ int guardedMain(int argc, char** argv, int (*run)(int, char**));
 int validationStatus(uint32_t messages);
 
 double median(std::vector<double> values);
-// Writes text to a temporary beside `path`, then renames it into place.
+// Writes text whole or not at all (writeFileAtomically), through a link such as /dev/stdout.
 void writeTextAtomically(const std::string& path, const std::string& text);
 
 } // namespace ssgi::cli

@@ -4,9 +4,8 @@
 // that set the exit status so that CI can fail a render against a stored golden image.
 #include "app/cli.h"
 #include "image_io.h"
+#include "metrics/comparison.h"
 #include "metrics/error_map.h"
-#include "metrics/flip.h"
-#include "metrics/golden.h"
 #include "scene/scene.h"
 
 #include <nlohmann/json.hpp>
@@ -135,81 +134,50 @@ Args parseArgs(int argc, char** argv) {
     return a;
 }
 
+// An image file; a warning on stderr when it has pixels that are not opaque.
 Image load(const std::string& path) {
-    if (!fs::exists(path)) throw InputError(path + ": no such file");
-    Image image;
-    image.rgba = readImage(path, image.width, image.height);
+    Image image = loadImage(path);
+    warnIfNotOpaque(image, path);
     return image;
-}
-
-void requireSize(const Image& image, const std::string& path, const Image& like,
-                 const std::string& likePath) {
-    if (image.width != like.width || image.height != like.height)
-        throw InputError(path + ": " + std::to_string(image.width) + "x" +
-                         std::to_string(image.height) + " differs from " + likePath + " (" +
-                         std::to_string(like.width) + "x" + std::to_string(like.height) + ")");
 }
 
 nlohmann::json number(double v) {
     return std::isfinite(v) ? nlohmann::json(v) : nullptr;
 }
 
-Image display(const Image& image, const std::string& path, double exposure) {
-    return displayImage(image, fs::path(path).extension() == ".exr", exposure);
-}
-
-// Pixels with a NaN or infinite colour channel.
-size_t nonFinitePixels(const Image& image) {
-    size_t count = 0;
-    for (size_t i = 0; i < image.pixels(); ++i)
-        count += !std::isfinite(image.rgba[4 * i] + image.rgba[4 * i + 1] + image.rgba[4 * i + 2]);
-    return count;
-}
-
-// Two images whose figures would mean nothing are bad input: a tonemapped sRGB .png
-// against linear radiance in an .exr gave a relMSE with exit status 0, and a reference holding
-// NaN gave NaN figures without a word.
-void requireComparable(const Args& args, const Image& reference) {
-    const std::string a = fs::path(args.test).extension().string();
-    const std::string b = fs::path(args.reference).extension().string();
-    if (a != b)
-        throw InputError(args.test + " (" + (a == ".png" ? "tonemapped sRGB" : "linear") +
-                         ") and " + args.reference + " (" +
-                         (b == ".png" ? "tonemapped sRGB" : "linear") +
-                         ") hold different quantities: compare a .png with a .png, an .exr with "
-                         "an .exr");
-    if (const size_t bad = nonFinitePixels(reference))
-        throw InputError(args.reference + ": " + std::to_string(bad) +
-                         " pixels are NaN or infinite; a reference must be finite");
+bool isLinear(const std::string& path) {
+    return fs::path(path).extension() == ".exr";
 }
 
 int run(int argc, char** argv) {
     const Args args = parseArgs(argc, argv);
     const Image test = load(args.test), reference = load(args.reference);
     requireSize(reference, args.reference, test, args.test);
-    requireComparable(args, reference);
+    requireComparable(args.test, isLinear(args.test), args.reference, isLinear(args.reference),
+                      reference);
 
-    std::vector<Check> checks;
-    std::vector<std::pair<std::string, Mask>> regions = {{"image", Mask()}};
+    ComparisonOptions options;
+    options.linear = isLinear(args.test);
+    options.exposure = args.exposure;
+    options.ppd = args.ppd;
+    options.maxDiff = args.maxDiff;
     if (args.edgeBand > 0)
-        regions.emplace_back("edge band " + std::to_string(args.edgeBand) + " px",
-                             edgeBandMask(test.width, test.height, args.edgeBand));
+        options.regions.emplace_back("edge band " + std::to_string(args.edgeBand) + " px",
+                                     edgeBandMask(test.width, test.height, args.edgeBand));
     for (const std::string& path : args.masks) {
         const Image mask = load(path);
         requireSize(mask, path, test, args.test);
-        regions.emplace_back("mask " + path, thresholdMask(mask));
+        options.regions.emplace_back("mask " + path, thresholdMask(mask));
     }
+    const Comparison comparison = compareImages(test, reference, options);
 
-    const size_t nonFinite = nonFinitePixels(test);
-
-    const std::vector<double> ssim = ssimMap(test, reference);
+    std::vector<Check> checks;
     nlohmann::json jsonRegions = nlohmann::json::array();
     std::printf("%s against %s (%ux%u)\n", args.test.c_str(), args.reference.c_str(), test.width,
                 test.height);
     std::printf("%-28s %8s %11s %11s %11s %8s\n", "region", "pixels", "relMSE", "RMSE", "MAE",
                 "SSIM");
-    for (const auto& [name, mask] : regions) {
-        const Figures f = errorFigures(test, reference, mask, ssim);
+    for (const auto& [name, f] : comparison.regions) {
         if (name == "image" && args.maxRelMse >= 0.0)
             checks.push_back({"relMSE", f.relMse, args.maxRelMse});
         std::printf("%-28s %8zu %11.4e %11.4e %11.4e %8.4f\n", name.c_str(), f.pixels, f.relMse,
@@ -221,19 +189,16 @@ int run(int argc, char** argv) {
                                {"mae", number(f.mae)},
                                {"ssim", number(f.ssim)}});
     }
+    const size_t nonFinite = comparison.nonFinitePixels;
     if (nonFinite > 0)
         std::printf("%zu pixels of %s are NaN or infinite\n", nonFinite, args.test.c_str());
 
-    // FLIP and the golden-image test judge what a user sees, so both read the display images.
-    const Image testDisplay = display(test, args.test, args.exposure);
-    const Image referenceDisplay = display(reference, args.reference, args.exposure);
-    const flip::Result flipResult = flip::flip(testDisplay, referenceDisplay, args.ppd);
+    const flip::Result& flipResult = comparison.flip;
     std::printf("mean FLIP %.4f (display images, %g pixels per degree)\n", flipResult.mean,
                 args.ppd);
     if (args.maxFlip >= 0.0) checks.push_back({"mean FLIP", flipResult.mean, args.maxFlip});
-    double fraction = std::numeric_limits<double>::quiet_NaN();
+    const double fraction = comparison.diffFraction;
     if (args.maxDiff >= 0.0) {
-        fraction = fractionDiffering(testDisplay, referenceDisplay, args.maxDiff);
         std::printf("%.4g of the pixels differ by more than %g/255 in a channel\n", fraction,
                     args.maxDiff);
         char name[64];

@@ -2,10 +2,10 @@
 // the real-time effects, progressively, and writes it as linear EXR (cached by content).
 #include "app/cli.h"
 #include "image_io.h"
+#include "metrics/golden.h"
 #include "reference/cache.h"
 #include "scene/animation.h"
 #include "scene/camera.h"
-#include "shared.h"
 
 #include <algorithm>
 #include <chrono>
@@ -87,8 +87,8 @@ Args parseArgs(int argc, char** argv) {
             const std::string v = value(i);
             const size_t x = v.find('x');
             if (x == std::string::npos) throw InputError("--size: expected WxH, got '" + v + "'");
-            a.options.width = uint32_t(parseWhole("--size", v.substr(0, x), 1, 16384));
-            a.options.height = uint32_t(parseWhole("--size", v.substr(x + 1), 1, 16384));
+            a.options.width = uint32_t(parseWhole("--size", v.substr(0, x), 1, kMaxImageSide));
+            a.options.height = uint32_t(parseWhole("--size", v.substr(x + 1), 1, kMaxImageSide));
         } else if (arg == "--spp") {
             a.options.spp = uint32_t(parseWhole(arg, value(i), 1, 1u << 24));
         } else if (arg == "--noise") {
@@ -121,9 +121,6 @@ Args parseArgs(int argc, char** argv) {
             throw InputError("more than one scene given: " + a.scene + " and " + arg);
         }
     }
-    if (a.options.jitter && a.options.mode != Mode::Full && a.options.mode != Mode::Multi)
-        throw InputError("--jitter: only for --mode full or multi; the per-effect modes sample "
-                         "pixel centres so that their edges match the real-time image");
     if (a.scene.empty()) a.scene = cli::defaultScene();
     if (a.output.empty())
         a.output = "out/" + fs::path(a.scene).stem().string() + "-" + modeName(a.options.mode) +
@@ -135,31 +132,20 @@ Args parseArgs(int argc, char** argv) {
     return a;
 }
 
-// The composite's display transform (shared.h): exposure, Narkowicz's ACES fit, sRGB.
-float display(float linear, float exposure) {
-    return shader::encodeSrgb(shader::tonemapAces(linear * exposure));
-}
-
 int run(int argc, char** argv) {
     const Args args = parseArgs(argc, argv);
     Scene scene = loadScene(args.scene);
-    if (args.lightRadius >= 0.0f) scene.light.radius = args.lightRadius;
-    Camera camera = scene.camera;
-    if (args.time >= 0.0f) {
-        if (scene.cameraPath.empty() && scene.objectPaths.empty())
-            throw InputError(args.scene +
-                             ": --time given but the scene has no camera_path or object_paths");
-        if (!scene.cameraPath.empty()) camera = cameraAt(scene.cameraPath, args.time);
-        scene = posedAt(scene, args.time);
-    } else {
-        scene = posedAt(scene, std::numeric_limits<float>::lowest()); // the paths' first keys
-    }
-
+    const float exposure = float(scene.settings.exposure); // of the display image (--png)
+    ReferenceRequest request;
+    request.options = args.options;
+    request.time = args.time;
+    request.lightRadius = args.lightRadius;
+    request.useCache = args.useCache;
+    request.cacheDir = args.cacheDir;
     const auto start = std::chrono::steady_clock::now();
     bool fromCache = false;
     const ReferenceImage image =
-        args.useCache ? cachedReference(scene, camera, args.options, args.cacheDir, &fromCache)
-                      : renderReference(scene, camera, args.options);
+        requestedReference(std::move(scene), args.scene, request, &fromCache);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -167,12 +153,11 @@ int run(int argc, char** argv) {
     std::vector<float> shown;
     if (!args.png.empty()) {
         shown = image.rgba;
-        const float exposure = float(scene.settings.exposure);
         for (size_t i = 0; i < shown.size(); ++i) {
             if (i % 4 == 3)
                 shown[i] = 1.0f;
             else if (args.options.mode != Mode::Ao)
-                shown[i] = display(shown[i], exposure);
+                shown[i] = metrics::displayValue(shown[i], exposure);
         }
         files.push_back({args.png, image.width, image.height, &shown});
     }

@@ -3,7 +3,7 @@
 #include "app/cli.h"
 #include "image_io.h"
 #include "renderer.h"
-#include "scene/camera.h"
+#include "scene/animation.h"
 
 #include <nlohmann/json.hpp>
 
@@ -72,11 +72,7 @@ Args parseArgs(int argc, char** argv) {
         } else if (arg == "--view") {
             a.view = cli::optionValue(argc, argv, i);
         } else if (arg == "--time") {
-            std::string v = cli::optionValue(argc, argv, i);
-            char* end = nullptr;
-            a.time = std::strtof(v.c_str(), &end);
-            if (v.empty() || *end != '\0' || !(a.time >= 0.0f))
-                throw InputError("--time: '" + v + "' is not a time >= 0");
+            a.time = float(cli::parseNumber(arg, cli::optionValue(argc, argv, i), 0.0, 1e9));
         } else if (arg == "--profile") {
             a.profile = true;
         } else if (arg == "--profile-json") {
@@ -133,10 +129,7 @@ int run(int argc, char** argv) {
     Renderer renderer(ctx, scene, {common.width, common.height, args.view});
     Camera camera = scene.camera;
     if (args.time >= 0.0f) {
-        if (scene.cameraPath.empty() && scene.objectPaths.empty())
-            throw InputError(common.scene +
-                             ": --time given but the scene has no camera_path or object_paths");
-        if (!scene.cameraPath.empty()) camera = cameraAt(scene.cameraPath, args.time);
+        camera = cameraAtTime(scene, args.time, common.scene);
         renderer.setTime(args.time);
     }
 

@@ -23,6 +23,10 @@ Image displayImage(const Image& image, bool linear, double exposure) {
     return out;
 }
 
+float displayValue(float linear, float exposure) {
+    return shader::encodeSrgb(shader::tonemapAces(linear * exposure));
+}
+
 double fractionDiffering(const Image& test, const Image& reference, double maxDiff) {
     if (test.width != reference.width || test.height != reference.height)
         throw std::invalid_argument("image sizes differ");

@@ -12,6 +12,12 @@ namespace ssgi::metrics {
 // `exposure`, Narkowicz's ACES fit, sRGB encoding. NaN stays NaN (so that it fails every check).
 Image displayImage(const Image& image, bool linear, double exposure);
 
+// One linear channel value through the composite's display transform (shader::tonemapAces and
+// encodeSrgb in shared.h), in float as the shader computes it: times `exposure`, Narkowicz's
+// ACES fit, sRGB encoding. Not quantised (reference --png and the Python module's tonemap()
+// write or return it as it is).
+float displayValue(float linear, float exposure);
+
 // The fraction of pixels where any of R, G, B differs by more than `maxDiff` (0-255 units)
 // between two display images; a pixel that is NaN in either counts as differing. Throws
 // std::invalid_argument when the sizes differ.

@@ -1,13 +1,20 @@
 #include "reference/cache.h"
 
 #include "reference/random.h"
+#include "scene/animation.h"
+
+#include "atomic_file.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
+#include <pwd.h>
+#include <sys/stat.h>
 #include <type_traits>
 #include <unistd.h>
 
@@ -18,7 +25,7 @@ namespace fs = std::filesystem;
 
 // Bump whenever an estimator changes what it computes: every cached image becomes stale.
 constexpr uint64_t kVersion = 1;
-constexpr char kMagic[8] = {'S', 'S', 'G', 'I', 'R', 'E', 'F', '1'};
+constexpr char kMagic[8] = {'S', 'S', 'G', 'I', 'R', 'E', 'F', '2'};
 
 // Two independent 64-bit lanes over the bytes; not cryptographic, which a cache of our own
 // renders does not need, but 128 bits make an accidental collision out of the question.
@@ -95,45 +102,80 @@ void hashScene(Hasher& h, const Scene& scene) {
     h.value(aoRadius(scene)); // the one setting the reference reads
 }
 
-bool readCached(const fs::path& file, ReferenceImage& image) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) return false;
-    char magic[8];
-    in.read(magic, 8);
-    if (!in || std::memcmp(magic, kMagic, 8) != 0) return false;
-    in.read(reinterpret_cast<char*>(&image.width), 4);
-    in.read(reinterpret_cast<char*>(&image.height), 4);
-    in.read(reinterpret_cast<char*>(&image.samples), 4);
-    in.read(reinterpret_cast<char*>(&image.noise), 8);
-    in.read(reinterpret_cast<char*>(&image.nonFiniteSamples), 8);
-    if (!in || image.width == 0 || image.height == 0 || image.width > 65536 || image.height > 65536)
-        return false;
-    image.rgba.resize(size_t(image.width) * image.height * 4);
-    in.read(reinterpret_cast<char*>(image.rgba.data()), std::streamsize(image.rgba.size() * 4));
-    return bool(in) && in.peek() == EOF;
+// An entry: the header, the pixels, then the checksum of both (32 hex digits), so that a
+// damaged entry (bytes overwritten, cut short, values that cannot be) is never served.
+constexpr size_t kHeaderBytes = 8 + 4 + 4 + 4 + 8 + 8, kChecksumBytes = 32;
+
+template <class T> void put(std::string& out, const T& v) {
+    out.append(reinterpret_cast<const char*>(&v), sizeof(T));
+}
+template <class T> T take(const std::string& in, size_t& at) {
+    T v;
+    std::memcpy(&v, in.data() + at, sizeof(T));
+    at += sizeof(T);
+    return v;
 }
 
-void writeCached(const fs::path& file, const ReferenceImage& image) {
-    fs::create_directories(file.parent_path());
-    const fs::path tmp =
-        file.parent_path() / (".tmp-" + std::to_string(getpid()) + "-" + file.filename().string());
-    {
-        std::ofstream out(tmp, std::ios::binary);
-        out.write(kMagic, 8);
-        out.write(reinterpret_cast<const char*>(&image.width), 4);
-        out.write(reinterpret_cast<const char*>(&image.height), 4);
-        out.write(reinterpret_cast<const char*>(&image.samples), 4);
-        out.write(reinterpret_cast<const char*>(&image.noise), 8);
-        out.write(reinterpret_cast<const char*>(&image.nonFiniteSamples), 8);
-        out.write(reinterpret_cast<const char*>(image.rgba.data()),
-                  std::streamsize(image.rgba.size() * 4));
-        if (!out) {
-            std::error_code ec;
-            fs::remove(tmp, ec);
-            throw std::runtime_error(tmp.string() + ": cannot write");
-        }
-    }
-    fs::rename(tmp, file); // atomic: a reader sees the old state or the whole file
+std::string checksum(const char* data, size_t size) {
+    Hasher h;
+    h.bytes(data, size);
+    return h.hex();
+}
+
+std::string encodeEntry(const ReferenceImage& image) {
+    std::string out(kMagic, 8);
+    put(out, image.width);
+    put(out, image.height);
+    put(out, image.samples);
+    put(out, image.noise);
+    put(out, image.nonFiniteSamples);
+    out.append(reinterpret_cast<const char*>(image.rgba.data()), image.rgba.size() * 4);
+    out += checksum(out.data(), out.size());
+    return out;
+}
+
+// What is wrong with the entry at `file`, or "" when `image` holds it. A missing entry is "".
+std::string readCached(const fs::path& file, const ReferenceOptions& options, ReferenceImage& image,
+                       bool& found) {
+    found = false;
+    struct stat status {};
+    if (::lstat(file.c_str(), &status) != 0) return "";
+    found = true;
+    // Looked at before it is opened: a FIFO would block the read.
+    if (!S_ISREG(status.st_mode)) return "not a regular file";
+    const size_t pixels = size_t(options.width) * options.height;
+    const size_t expected = kHeaderBytes + pixels * 16 + kChecksumBytes;
+    if (size_t(status.st_size) != expected)
+        return std::to_string(status.st_size) + " bytes where " + std::to_string(expected) +
+               " were expected";
+    std::ifstream in(file, std::ios::binary);
+    std::string bytes(expected, '\0');
+    if (!in.read(bytes.data(), std::streamsize(expected))) return "cannot be read";
+    const size_t body = expected - kChecksumBytes;
+    if (bytes.compare(body, kChecksumBytes, checksum(bytes.data(), body)) != 0)
+        return "its checksum does not match its contents";
+    if (std::memcmp(bytes.data(), kMagic, 8) != 0) return "not a reference cache entry";
+    size_t at = 8;
+    image.width = take<uint32_t>(bytes, at);
+    image.height = take<uint32_t>(bytes, at);
+    image.samples = take<uint32_t>(bytes, at);
+    image.noise = take<double>(bytes, at);
+    image.nonFiniteSamples = take<uint64_t>(bytes, at);
+    if (image.width != options.width || image.height != options.height)
+        return "its size is not the one asked for";
+    if (image.samples < 1 || image.samples > options.spp)
+        return std::to_string(image.samples) + " samples per pixel, outside 1.." +
+               std::to_string(options.spp);
+    if (!(std::isnan(image.noise) || (image.noise >= 0.0 && std::isfinite(image.noise))))
+        return "its noise estimate is impossible";
+    if (image.nonFiniteSamples > uint64_t(image.samples) * pixels)
+        return "it counts more dropped samples than it took";
+    image.rgba.resize(pixels * 4);
+    std::memcpy(image.rgba.data(), bytes.data() + at, pixels * 16);
+    if (!std::all_of(image.rgba.begin(), image.rgba.end(),
+                     [](float v) { return std::isfinite(v); }))
+        return "it holds values that are NaN or infinite";
+    return "";
 }
 
 } // namespace
@@ -147,9 +189,26 @@ std::string defaultCacheDir() {
     if (fs::is_directory(build, ec)) return SSGI_REFERENCE_CACHE_DIR;
     if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
         return (fs::path(xdg) / "ssgi" / "reference").string();
-    if (const char* home = std::getenv("HOME"); home && *home)
+    const char* home = std::getenv("HOME");
+    if (!home || !*home)
+        if (const passwd* user = ::getpwuid(::getuid())) home = user->pw_dir;
+    if (home && *home && fs::is_directory(home, ec))
         return (fs::path(home) / ".cache" / "ssgi" / "reference").string();
-    return (fs::temp_directory_path() / "ssgi-reference-cache").string();
+    // No home: a folder of this user's own in the temporary folder, never one that every user
+    // of the machine shares (anyone could put a wrong ground truth there).
+    const fs::path own =
+        fs::temp_directory_path(ec) / ("ssgi-reference-cache-" + std::to_string(::getuid()));
+    ::mkdir(own.c_str(), 0700);
+    struct stat status {};
+    if (::lstat(own.c_str(), &status) != 0 || !S_ISDIR(status.st_mode) ||
+        status.st_uid != ::getuid() || (status.st_mode & 077) != 0) {
+        std::fprintf(stderr,
+                     "warning: reference cache %s is not a private folder of this user; "
+                     "nothing is cached (set SSGI_REFERENCE_CACHE or HOME)\n",
+                     own.c_str());
+        return "";
+    }
+    return own.string();
 }
 
 std::string referenceKey(const Scene& scene, const Camera& camera,
@@ -173,24 +232,55 @@ std::string referenceKey(const Scene& scene, const Camera& camera,
 ReferenceImage cachedReference(const Scene& scene, const Camera& camera,
                                const ReferenceOptions& options, const std::string& cacheDir,
                                bool* fromCache) {
+    if (fromCache) *fromCache = false;
+    if (cacheDir.empty()) return renderReference(scene, camera, options);
     const fs::path file = fs::path(cacheDir) / (referenceKey(scene, camera, options) + ".ref");
     ReferenceImage image;
-    if (readCached(file, image) && image.width == options.width && image.height == options.height) {
+    bool found = false;
+    const std::string damage = readCached(file, options, image, found);
+    if (found && damage.empty()) {
         if (fromCache) *fromCache = true;
         return image;
     }
-    if (fromCache) *fromCache = false;
+    if (found)
+        std::fprintf(stderr,
+                     "warning: reference cache entry %s is damaged (%s); rendering it "
+                     "again\n",
+                     file.c_str(), damage.c_str());
     image = renderReference(scene, camera, options);
     try {
-        writeCached(file, image);
+        std::error_code ec;
+        fs::create_directories(cacheDir, ec);
+        writeFilesAtomically({{file.string(), encodeEntry(image), true}});
     } catch (const std::exception& error) {
-        std::fprintf(stderr, "warning: reference cache %s: %s\n", cacheDir.c_str(), error.what());
+        std::fprintf(stderr, "warning: reference cache %s: the image is not stored: %s\n",
+                     cacheDir.c_str(), error.what());
     }
     return image;
 }
 
 ReferenceImage cachedReference(const Scene& scene, const ReferenceOptions& options) {
     return cachedReference(scene, scene.camera, options);
+}
+
+ReferenceImage requestedReference(Scene scene, const std::string& sceneName,
+                                  const ReferenceRequest& request, bool* fromCache) {
+    const Mode mode = request.options.mode;
+    if (request.options.jitter && mode != Mode::Full && mode != Mode::Multi)
+        throw InputError("--jitter: only for --mode full or multi; the per-effect modes sample "
+                         "pixel centres so that their edges match the real-time image");
+    if (request.lightRadius >= 0.0f) scene.light.radius = request.lightRadius;
+    Camera camera = scene.camera;
+    if (request.time >= 0.0f) {
+        camera = cameraAtTime(scene, request.time, sceneName);
+        scene = posedAt(scene, request.time);
+    } else {
+        scene = posedAt(scene, std::numeric_limits<float>::lowest()); // the paths' first keys
+    }
+    if (fromCache) *fromCache = false;
+    return request.useCache
+               ? cachedReference(scene, camera, request.options, request.cacheDir, fromCache)
+               : renderReference(scene, camera, request.options);
 }
 
 } // namespace ssgi::reference

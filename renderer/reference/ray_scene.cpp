@@ -142,7 +142,8 @@ RayScene::RayScene(const Scene& scene) : embree_(std::make_unique<Embree>()) {
                                 ? 1.0f
                                 : glm::length(bounds.size()) +
                                       std::max(glm::length(bounds.min), glm::length(bounds.max));
-    epsilon_ = 2e-5f * std::max(magnitude, 1e-3f);
+    // Relative to the scene alone: a floor in absolute units would be most of a tiny scene.
+    epsilon_ = 2e-5f * std::max(magnitude, std::numeric_limits<float>::min());
 }
 
 RayScene::~RayScene() = default;

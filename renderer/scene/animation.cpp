@@ -1,5 +1,7 @@
 #include "scene/animation.h"
 
+#include "scene/camera.h"
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
@@ -65,6 +67,13 @@ Aabb instanceBounds(const Scene& scene, size_t instance, const glm::mat4& transf
     for (const Vertex& v : scene.meshes[size_t(scene.instances[instance].mesh)].vertices)
         box.extend(glm::vec3(transform * glm::vec4(v.position, 1.0f)));
     return box;
+}
+
+Camera cameraAtTime(const Scene& scene, float time, const std::string& sceneName) {
+    if (scene.cameraPath.empty() && scene.objectPaths.empty())
+        throw InputError(sceneName +
+                         ": --time given but the scene has no camera_path or object_paths");
+    return scene.cameraPath.empty() ? scene.camera : cameraAt(scene.cameraPath, time);
 }
 
 } // namespace ssgi

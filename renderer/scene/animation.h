@@ -20,6 +20,11 @@ std::vector<glm::mat4> instanceTransformsAt(const Scene& scene, float time);
 // A copy of the scene with its instances placed as they are at `time` (for the reference).
 Scene posedAt(const Scene& scene, float time);
 
+// The camera at `time` (>= 0) along the scene's camera path, else the scene's own camera; an
+// InputError naming `sceneName` when the scene has neither a camera path nor object paths, so
+// that a time means nothing to it.
+Camera cameraAtTime(const Scene& scene, float time, const std::string& sceneName);
+
 // An instance's world-space bounding box under `transform`.
 Aabb instanceBounds(const Scene& scene, size_t instance, const glm::mat4& transform);
 

@@ -177,9 +177,21 @@ AccessorView viewAccessor(const tinygltf::Model& model, int index, int type,
     view.normalized = accessor.normalized;
     const size_t elementSize =
         size_t(view.componentSize) * size_t(tinygltf::GetNumComponentsInType(uint32_t(type)));
-    if (accessor.bufferView >= 0)
+    if (accessor.bufferView >= 0) {
         view.data = viewBytes(model, accessor.bufferView, accessor.byteOffset, view.count,
                               elementSize, view.stride, file, what);
+        // The specification requires both; read anyway, the bytes would be other numbers (a
+        // shifted float is a tiny or huge one) and the error would be found far from its cause.
+        const size_t offset =
+            model.bufferViews[size_t(accessor.bufferView)].byteOffset + accessor.byteOffset;
+        if (offset % size_t(view.componentSize) != 0 ||
+            view.stride % size_t(view.componentSize) != 0)
+            fail(file, what + ": accessor " + std::to_string(index) + " starts at byte " +
+                           std::to_string(offset) + " of its buffer with a stride of " +
+                           std::to_string(view.stride) + ", not both multiples of its " +
+                           std::to_string(view.componentSize) +
+                           "-byte components (unaligned; the glTF specification requires them)");
+    }
     if (accessor.sparse.isSparse) {
         view.dense = densify(model, accessor, view, elementSize, file, what);
         view.data = view.dense->data();

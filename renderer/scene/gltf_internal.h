@@ -14,6 +14,17 @@
 
 namespace ssgi {
 
+// The largest albedo (a base colour's R, G and B) a scene file or a glTF may give: a surface
+// reflects at most the light it receives, and the path tracer's estimators assume it.
+constexpr float kMaxAlbedo = 1.0f;
+
+// The narrowest field of view (vertical, in degrees) a camera may have: narrower, the projection's
+// scale outgrows what 32-bit floats resolve and the image is black.
+constexpr float kMinFovDegrees = 0.01f;
+// The most a camera's far plane may be beyond its near plane (far / near): the depth buffer and
+// the path tracer's rays lose their precision past it.
+constexpr float kMaxClipRatio = 1e5f;
+
 // The whole file as bytes; InputError naming it when it is missing or unreadable.
 std::string readInputFile(const std::string& path);
 

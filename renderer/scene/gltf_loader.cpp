@@ -13,12 +13,17 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <sstream>
 #include <sys/stat.h>
 #include <unistd.h>
 
 namespace ssgi {
 
 std::string readInputFile(const std::string& path) {
+    // The system would read the path only up to the NUL: another file than the one named.
+    if (const size_t nul = path.find('\0'); nul != std::string::npos)
+        throw InputError(path.substr(0, nul) + "\\0" + path.substr(nul + 1) +
+                         ": a path with a NUL character in it names no file");
     std::error_code error;
     if (!std::filesystem::exists(path, error)) throw InputError(path + ": file not found");
     if (!std::filesystem::is_regular_file(path, error))
@@ -40,6 +45,28 @@ std::string withoutTrailingSpace(std::string text) {
     while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back())))
         text.pop_back();
     return text;
+}
+
+// The image decoder's own message for an image it will not decode is "Unknown image format",
+// which is wrong for a valid PNG too large for it: such a PNG is named with its size.
+bool loadImageSayingWhy(tinygltf::Image* image, const int index, std::string* error,
+                        std::string* warning, int width, int height, const unsigned char* bytes,
+                        int size, void* user) {
+    if (tinygltf::LoadImageData(image, index, error, warning, width, height, bytes, size, user))
+        return true;
+    constexpr unsigned char kPng[] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    if (size >= 24 && std::memcmp(bytes, kPng, 8) == 0 && std::memcmp(bytes + 12, "IHDR", 4) == 0 &&
+        error) {
+        auto bigEndian = [&](int at) {
+            return uint32_t(bytes[at]) << 24 | uint32_t(bytes[at + 1]) << 16 |
+                   uint32_t(bytes[at + 2]) << 8 | uint32_t(bytes[at + 3]);
+        };
+        *error = "image " + std::to_string(index) + " is a PNG of " +
+                 std::to_string(bigEndian(16)) + "x" + std::to_string(bigEndian(20)) +
+                 " pixels, which the image decoder refuses (it decodes up to 2^24 pixels a side "
+                 "and 2 GB)";
+    }
+    return false;
 }
 
 // The files a glTF's buffers and images name. A URI is a path relative to the glTF's own folder
@@ -73,6 +100,11 @@ struct ExternalFiles {
         auto& files = *static_cast<ExternalFiles*>(self);
         const std::string uri = files.uriOf(joined);
         if (uri.empty()) return false;
+        if (uri.find('\0') != std::string::npos) {
+            files.refuse(uri.substr(0, uri.find('\0')) + "\\0...",
+                         "holds a NUL character; it names no file");
+            return false;
+        }
         if (uri[0] == '/' || uri[0] == '\\') {
             files.refuse(uri, "is an absolute path; glTF URIs are relative to the glTF's folder");
             return false;
@@ -145,6 +177,7 @@ tinygltf::Model readModel(const std::string& path) {
     const std::string baseDir =
         files.folder.size() > 1 ? files.folder.substr(0, files.folder.size() - 1) : files.folder;
     tinygltf::TinyGLTF reader;
+    reader.SetImageLoader(&loadImageSayingWhy, nullptr);
     reader.SetFsCallbacks({&ExternalFiles::exists, &ExternalFiles::expand, &ExternalFiles::read,
                            &ExternalFiles::write, &files});
     tinygltf::Model model;
@@ -337,6 +370,15 @@ void convertMaterials(const tinygltf::Model& model, const std::string& file,
             if (!(material.baseColorFactor[c] >= 0.0f) || std::isinf(material.baseColorFactor[c]))
                 fail(file, "material " + std::to_string(m) +
                                ": baseColorFactor must be finite and not negative");
+        for (int c = 0; c < 3; ++c)
+            if (material.baseColorFactor[c] > kMaxAlbedo) {
+                std::ostringstream what;
+                what << "material " << m << ": baseColorFactor " << pbr.baseColorFactor[c]
+                     << " is above " << kMaxAlbedo
+                     << ": a surface reflects at most the light it receives (scene files refuse "
+                        "such an albedo too)";
+                fail(file, what.str());
+            }
         const int texture = pbr.baseColorTexture.index;
         if (texture >= int(sceneTextureOf.size()))
             fail(file, "material " + std::to_string(m) + " refers to texture " +

@@ -177,6 +177,13 @@ private:
         const auto& p = source.perspective;
         if (!(p.yfov > 0.0 && p.yfov < 3.1) || !(p.znear > 0.0) || !(p.zfar >= 0.0))
             fail(file_, "camera " + std::to_string(index) + " has an invalid yfov/znear/zfar");
+        if (p.yfov < glm::radians(double(kMinFovDegrees)))
+            fail(file_, "camera " + std::to_string(index) + ": yfov " + std::to_string(p.yfov) +
+                            " is narrower than " + std::to_string(kMinFovDegrees) + " degrees");
+        // zfar 0 (absent) is an infinite projection, whose far plane is fitted to the scene.
+        if (p.zfar > 0.0 && p.znear >= p.zfar)
+            fail(file_, "camera " + std::to_string(index) + ": znear " + std::to_string(p.znear) +
+                            " is not less than zfar " + std::to_string(p.zfar));
         Camera camera;
         camera.position = glm::vec3(world[3]);
         camera.orientation = orientationOf(world);

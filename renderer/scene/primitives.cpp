@@ -10,7 +10,12 @@ namespace ssgi {
 glm::vec3 quadNormal(const std::array<glm::vec3, 4>& corners) {
     // The cross product of the diagonals stays meaningful when one of the two triangles is
     // degenerate, unlike the cross product of two edges from one corner.
-    return glm::cross(corners[2] - corners[0], corners[3] - corners[1]);
+    // In double precision and made unit length there: at tiny scene units (1e-12) the float
+    // product's squared length underflows to 0 and a real quad would seem to have no area.
+    const glm::dvec3 normal = glm::cross(glm::dvec3(corners[2] - corners[0]),
+                                         glm::dvec3(corners[3] - corners[1]));
+    const double length = glm::length(normal);
+    return length > 0.0 ? glm::vec3(normal / length) : glm::vec3(0.0f);
 }
 
 Mesh makeQuad(const std::array<glm::vec3, 4>& corners, int material) {

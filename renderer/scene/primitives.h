@@ -12,7 +12,7 @@ namespace ssgi {
 // Two triangles (0,1,2), (0,2,3); the flat normal faces the side from which the corners run
 // counter-clockwise. The caller rejects degenerate quads (quadNormal() of zero length).
 Mesh makeQuad(const std::array<glm::vec3, 4>& corners, int material);
-// Not normalized; zero when the quad has no area.
+// Unit length; zero when the quad has no area.
 glm::vec3 quadNormal(const std::array<glm::vec3, 4>& corners);
 
 // 6 faces of 4 vertices each (flat outward normals), rotated about +Y through its centre.

@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <sstream>
 
 namespace ssgi {
 
@@ -110,6 +111,32 @@ void fillClipPlanes(Camera& camera, const Aabb& bounds) {
     if (camera.znear <= 0.0f)
         camera.znear = std::max(camera.zfar / 1e4f, 1e-4f * glm::length(bounds.size()));
     if (camera.znear >= camera.zfar) camera.znear = camera.zfar * 1e-4f;
+}
+
+// Clip planes the renderer and the path tracer can draw with; a near plane beyond every point
+// of the scene draws nothing.
+void checkClipPlanes(const Camera& camera, const Aabb& bounds, const std::string& file,
+                     const std::string& where) {
+    auto text = [](float x) {
+        std::ostringstream out;
+        out << x;
+        return out.str();
+    };
+    if (camera.zfar > kMaxClipRatio * camera.znear)
+        fail(file, "'" + where + "': near " + text(camera.znear) + " is less than far (" +
+                       text(camera.zfar) + ") / " + text(kMaxClipRatio) +
+                       ", beyond the depth precision of the renderer and the path tracer");
+    float farthest = 0.0f;
+    for (int corner = 0; corner < 8; ++corner)
+        farthest =
+            std::max(farthest, glm::distance(camera.position,
+                                             glm::vec3(corner & 1 ? bounds.max.x : bounds.min.x,
+                                                       corner & 2 ? bounds.max.y : bounds.min.y,
+                                                       corner & 4 ? bounds.max.z : bounds.min.z)));
+    if (camera.znear >= farthest)
+        fail(file, "'" + where + "': near " + text(camera.znear) +
+                       " is beyond the farthest point of the scene (" + text(farthest) +
+                       " from the camera): nothing would be drawn");
 }
 
 Camera applyCameraSpec(const CameraSpec& spec, Camera camera, const std::string& file) {
@@ -243,6 +270,7 @@ Scene buildScene(const std::string& path, const SceneDescription& description, b
     for (const auto& [time, spec] : description.cameraPath) {
         CameraKey key{time, applyCameraSpec(spec, camera, path), spec.cut};
         fillClipPlanes(key.camera, scene.bounds);
+        checkClipPlanes(key.camera, scene.bounds, path, spec.where);
         scene.cameraPath.keys.push_back(key);
     }
 
@@ -252,6 +280,7 @@ Scene buildScene(const std::string& path, const SceneDescription& description, b
     scene.sky = description.sky;
 
     fillClipPlanes(camera, scene.bounds);
+    checkClipPlanes(camera, scene.bounds, path, "camera");
     scene.camera = camera;
     return scene;
 }

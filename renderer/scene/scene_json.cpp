@@ -32,7 +32,12 @@ struct Range {
 constexpr Range kCoordinate{-1e9, 1e9};
 constexpr Range kLength{0.0, 1e9, true};
 constexpr Range kColor{0.0, 1e6};
-constexpr Range kAlbedo{0.0, 1.0};
+constexpr Range kAlbedo{0.0, kMaxAlbedo};
+// Path times: the programs walk a path from time 0 (render --time, walkthrough), so a key before
+// it would never be seen.
+constexpr Range kTime{0.0, 1e9};
+// Levels of arrays and objects a scene file may nest (it needs five).
+constexpr size_t kMaxJsonDepth = 64;
 
 std::string formatNumber(double x) {
     std::ostringstream out;
@@ -145,7 +150,7 @@ CameraSpec readCameraKeys(const JsonObject& in) {
     camera.target = in.optionalVec3("target", kCoordinate);
     camera.direction = in.optionalVec3("direction", kCoordinate);
     camera.up = in.optionalVec3("up", kCoordinate);
-    camera.yfovDegrees = in.optionalNumber("yfov_deg", {0.0, 179.0, true, true});
+    camera.yfovDegrees = in.optionalNumber("yfov_deg", {kMinFovDegrees, 179.0, false, true});
     camera.znear = in.optionalNumber("near", kLength);
     camera.zfar = in.optionalNumber("far", kLength);
     if (camera.target && camera.direction) in.fail("target", "and 'direction' exclude each other");
@@ -235,7 +240,7 @@ ObjectPath readObjectPath(const JsonObject& in) {
         key.allowOnly({"time", "translation"});
         if (!key.has("time")) key.fail("time", "is missing");
         ObjectKey k;
-        k.time = float(key.number("time", {-1e9, 1e9}));
+        k.time = float(key.number("time", kTime));
         if (!path.keys.empty() && k.time <= path.keys.back().time)
             key.fail("time", "is not later than the key before it; keys must be sorted by time");
         k.translation = key.optionalVec3("translation", kCoordinate).value_or(glm::vec3(0.0f));
@@ -280,6 +285,11 @@ SceneDescription readSceneDescription(const std::string& path) {
             switch (event) {
             case Json::parse_event_t::object_start:
             case Json::parse_event_t::array_start:
+                // Scene files nest a few levels; a deeper file is not a scene, and the levels'
+                // names would grow with the square of its depth (each holds its parent's).
+                if (open.size() >= kMaxJsonDepth)
+                    throw InputError(path + ": JSON nested more than " +
+                                     std::to_string(kMaxJsonDepth) + " levels deep");
                 open.push_back({nameOfNext(), event == Json::parse_event_t::object_start, {}});
                 break;
             case Json::parse_event_t::object_end:
@@ -364,7 +374,7 @@ SceneDescription readSceneDescription(const std::string& path) {
             in.allowOnly({"time", "position", "target", "direction", "up", "yfov_deg", "near",
                           "far", "cut"});
             if (!in.has("time")) in.fail("time", "is missing");
-            const float time = float(in.number("time", {-1e9, 1e9}));
+            const float time = float(in.number("time", kTime));
             // Equal times are allowed: they make a camera cut.
             if (!scene.cameraPath.empty() && time < scene.cameraPath.back().first)
                 in.fail("time", "is earlier than the key before it; keys must be sorted by time");

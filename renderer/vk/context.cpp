@@ -3,8 +3,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 namespace ssgi::vk {
 
@@ -126,6 +132,45 @@ static VkPhysicalDevice pickDevice(VkInstance instance, const std::string& wante
     return best;
 }
 
+// What is wrong with the driver manifests the loader reads ($VK_DRIVER_FILES, else
+// $VK_ICD_FILENAMES, else the system's icd.d folders), as "; manifest F: problem" each.
+static std::string driverManifestProblems() {
+    namespace fs = std::filesystem;
+    std::vector<fs::path> files;
+    const char* named = std::getenv("VK_DRIVER_FILES");
+    if (!named || !*named) named = std::getenv("VK_ICD_FILENAMES");
+    if (named && *named) {
+        std::istringstream list(named);
+        for (std::string item; std::getline(list, item, ':');)
+            if (!item.empty()) files.emplace_back(item);
+    } else {
+        std::error_code ec;
+        for (const char* folder :
+             {"/etc/vulkan/icd.d", "/usr/share/vulkan/icd.d", "/usr/local/share/vulkan/icd.d"})
+            for (const auto& entry : fs::directory_iterator(folder, ec))
+                if (entry.path().extension() == ".json") files.push_back(entry.path());
+    }
+    std::string problems;
+    for (const fs::path& file : files) {
+        std::string problem;
+        std::error_code ec;
+        if (!fs::is_regular_file(file, ec)) {
+            problem = fs::exists(file, ec) ? "not a regular file" : "not found";
+        } else {
+            std::ifstream in(file);
+            const nlohmann::json manifest = nlohmann::json::parse(in, nullptr, false);
+            if (manifest.is_discarded())
+                problem = "not valid JSON";
+            else if (!manifest.is_object() || !manifest.contains("ICD") ||
+                     !manifest["ICD"].is_object() || !manifest["ICD"].contains("library_path") ||
+                     !manifest["ICD"]["library_path"].is_string())
+                problem = "no \"ICD\": {\"library_path\": ...} in it";
+        }
+        if (!problem.empty()) problems += "; manifest " + file.string() + ": " + problem;
+    }
+    return problems;
+}
+
 Context::Context(const ContextOptions& options) {
     const char* validationLayer = "VK_LAYER_KHRONOS_validation";
     validationEnabled = options.validation;
@@ -167,10 +212,18 @@ Context::Context(const ContextOptions& options) {
         instanceInfo.pNext = &features;
     }
     VkResult result = vkCreateInstance(&instanceInfo, nullptr, &instance);
-    if (result == VK_ERROR_INCOMPATIBLE_DRIVER || result == VK_ERROR_INITIALIZATION_FAILED)
-        throw VulkanError("no Vulkan driver could be loaded (vkCreateInstance: " +
-                          std::string(resultName(result)) +
-                          "); on a machine without a GPU install mesa-vulkan-drivers");
+    // The loader reports a malformed driver manifest as, among others, running out of memory:
+    // the manifests are read here to say which one is wrong.
+    if (result != VK_SUCCESS) {
+        const std::string manifests = driverManifestProblems();
+        if (result == VK_ERROR_INCOMPATIBLE_DRIVER || result == VK_ERROR_INITIALIZATION_FAILED ||
+            !manifests.empty())
+            throw VulkanError("no Vulkan driver could be loaded (vkCreateInstance: " +
+                              std::string(resultName(result)) + ")" +
+                              (manifests.empty()
+                                   ? "; on a machine without a GPU install mesa-vulkan-drivers"
+                                   : manifests));
+    }
     VK_CHECK(result);
 
     if (validationEnabled) {

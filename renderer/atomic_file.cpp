@@ -1,0 +1,267 @@
+#include "atomic_file.h"
+
+#include "scene/scene.h"
+
+#include <atomic>
+#include <cerrno>
+#include <climits>
+#include <csignal>
+#include <cstdlib>
+#include <cstring>
+#include <fcntl.h>
+#include <filesystem>
+#include <memory>
+#include <mutex>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace ssgi {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Temporaries and backups that exist right now, so that a signal can remove them before the
+// process dies. Fixed slots: the handler may not allocate or lock.
+constexpr int kSlots = 64;
+char gPendingPaths[kSlots][PATH_MAX];
+std::atomic<bool> gPending[kSlots];
+std::mutex gSlotsMutex;
+
+extern "C" void removePendingAndDie(int signal) {
+    for (int i = 0; i < kSlots; ++i)
+        if (gPending[i].load()) ::unlink(gPendingPaths[i]);
+    // SA_RESETHAND restored the default action and SA_NODEFER lets it happen now.
+    ::raise(signal);
+}
+
+// Signals that end a process by default get the clean-up first; a program's own handlers stay.
+void installSignalCleanup() {
+    static std::once_flag once;
+    std::call_once(once, [] {
+        for (int signal : {SIGINT, SIGTERM, SIGHUP, SIGQUIT}) {
+            struct sigaction current {};
+            if (::sigaction(signal, nullptr, &current) != 0 || current.sa_handler != SIG_DFL)
+                continue;
+            struct sigaction cleanup {};
+            cleanup.sa_handler = removePendingAndDie;
+            cleanup.sa_flags = SA_RESETHAND | SA_NODEFER;
+            sigemptyset(&cleanup.sa_mask);
+            ::sigaction(signal, &cleanup, nullptr);
+        }
+    });
+}
+
+// A path a signal removes while it is registered.
+class Pending {
+public:
+    explicit Pending(const std::string& path) {
+        if (path.size() >= PATH_MAX) return;
+        std::lock_guard lock(gSlotsMutex);
+        for (int i = 0; i < kSlots; ++i)
+            if (!gPending[i].load()) {
+                std::memcpy(gPendingPaths[i], path.c_str(), path.size() + 1);
+                gPending[i].store(true);
+                slot_ = i;
+                return;
+            }
+    }
+    ~Pending() {
+        if (slot_ >= 0) gPending[slot_].store(false);
+    }
+    Pending(const Pending&) = delete;
+    Pending& operator=(const Pending&) = delete;
+
+private:
+    int slot_ = -1;
+};
+
+// A write past a file-size limit or into a closed pipe fails with an error instead of a signal
+// while it lasts.
+class QuietWriteSignals {
+public:
+    QuietWriteSignals() {
+        struct sigaction ignore {};
+        ignore.sa_handler = SIG_IGN;
+        sigemptyset(&ignore.sa_mask);
+        ::sigaction(SIGXFSZ, &ignore, &oldXfsz_);
+        ::sigaction(SIGPIPE, &ignore, &oldPipe_);
+    }
+    ~QuietWriteSignals() {
+        ::sigaction(SIGXFSZ, &oldXfsz_, nullptr);
+        ::sigaction(SIGPIPE, &oldPipe_, nullptr);
+    }
+
+private:
+    struct sigaction oldXfsz_ {
+    }, oldPipe_{};
+};
+
+std::string reason(int error) {
+    return std::strerror(error);
+}
+
+// Writes all the bytes to fd; the errno of the failure, or 0.
+int writeAll(int fd, const std::string& bytes) {
+    size_t done = 0;
+    while (done < bytes.size()) {
+        const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) return n < 0 ? errno : ENOSPC;
+        done += size_t(n);
+    }
+    return 0;
+}
+
+// Where the bytes end up: the path itself, or what a chain of symbolic links leads to.
+struct Destination {
+    fs::path path;
+    bool direct = false; // not a regular file (a device, a pipe): written to as it is
+    bool exists = false; // a regular file is there
+    mode_t mode = 0;     // its permissions, kept
+};
+
+Destination resolve(const std::string& path, bool writeThrough) {
+    Destination d{fs::path(path)};
+    if (!writeThrough) return d;
+    struct stat status {};
+    if (::stat(path.c_str(), &status) == 0) {
+        if (S_ISREG(status.st_mode)) {
+            // The file itself, wherever links lead (realpath also reads /proc's fd links).
+            if (char* real = ::realpath(path.c_str(), nullptr)) {
+                d.path = real;
+                std::free(real);
+            }
+            d.exists = true;
+            d.mode = status.st_mode & 07777;
+        } else if (!S_ISDIR(status.st_mode)) {
+            d.direct = true; // a device, a pipe, a terminal, a socket
+        }
+        return d;
+    }
+    // A dangling link: the file it names is created, the link stays.
+    for (int hops = 0; hops < 40; ++hops) {
+        struct stat link {};
+        if (::lstat(d.path.c_str(), &link) != 0 || !S_ISLNK(link.st_mode)) break;
+        std::error_code ec;
+        const fs::path target = fs::read_symlink(d.path, ec);
+        if (ec) break;
+        d.path = target.is_absolute() ? target : d.path.parent_path() / target;
+    }
+    return d;
+}
+
+fs::path uniqueBeside(const fs::path& target, const char* kind) {
+    static std::atomic<unsigned> counter{0};
+    return target.parent_path() / (std::string(".ssgi-") + kind + std::to_string(getpid()) + "-" +
+                                   std::to_string(counter++));
+}
+
+void writeDirect(const std::string& path, const Destination& d, const std::string& bytes) {
+    const int fd = ::open(d.path.c_str(), O_WRONLY | O_CLOEXEC | O_NOCTTY);
+    if (fd < 0) throw InputError(path + ": cannot open for writing: " + reason(errno));
+    const int error = writeAll(fd, bytes);
+    if (::close(fd) != 0 && error == 0 && errno != EINTR)
+        throw InputError(path + ": writing failed: " + reason(errno));
+    if (error != 0) throw InputError(path + ": writing failed: " + reason(error));
+}
+
+} // namespace
+
+void writeFilesAtomically(const std::vector<FileBytes>& files) {
+    installSignalCleanup();
+    const QuietWriteSignals quiet;
+    std::vector<Destination> destinations;
+    for (const FileBytes& file : files)
+        destinations.push_back(resolve(file.path, !file.replace));
+
+    // Every temporary complete and on the disk before anything moves.
+    std::vector<fs::path> temporaries(files.size());
+    std::vector<std::unique_ptr<Pending>> pending;
+    auto removeTemporaries = [&] {
+        for (const fs::path& tmp : temporaries)
+            if (!tmp.empty()) ::unlink(tmp.c_str());
+    };
+    for (size_t i = 0; i < files.size(); ++i) {
+        const Destination& d = destinations[i];
+        const std::string& path = files[i].path;
+        if (d.direct) continue;
+        const fs::path parent = d.path.parent_path();
+        std::error_code ec;
+        if (!parent.empty() && !fs::is_directory(parent, ec)) {
+            fs::create_directories(parent, ec);
+            if (ec) {
+                removeTemporaries();
+                throw InputError(path + ": cannot create folder " + parent.string() + ": " +
+                                 ec.message());
+            }
+        }
+        const fs::path tmp = uniqueBeside(d.path, "");
+        pending.push_back(std::make_unique<Pending>(tmp.string()));
+        const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+        if (fd < 0) {
+            const int error = errno;
+            removeTemporaries();
+            throw InputError(path + ": cannot create a file in " +
+                             (parent.empty() ? std::string(".") : parent.string()) + ": " +
+                             reason(error));
+        }
+        temporaries[i] = tmp;
+        if (d.exists) ::fchmod(fd, d.mode);
+        int error = writeAll(fd, files[i].bytes);
+        if (error == 0 && ::fsync(fd) != 0) error = errno;
+        if (::close(fd) != 0 && error == 0 && errno != EINTR) error = errno;
+        if (error != 0) {
+            removeTemporaries();
+            throw InputError(path + ": writing failed: " + reason(error) + " (nothing written)");
+        }
+    }
+    try {
+        for (size_t i = 0; i < files.size(); ++i)
+            if (destinations[i].direct) writeDirect(files[i].path, destinations[i], files[i].bytes);
+    } catch (...) {
+        removeTemporaries();
+        throw;
+    }
+
+    // Move them into place. A file already at a target is kept under a second name (a hard
+    // link) until all have moved, so a failure puts back what was there.
+    std::vector<fs::path> backups(files.size());
+    for (size_t i = 0; i < files.size(); ++i) {
+        const Destination& d = destinations[i];
+        if (d.direct) continue;
+        if (d.exists) {
+            const fs::path backup = uniqueBeside(d.path, "old-");
+            pending.push_back(std::make_unique<Pending>(backup.string()));
+            if (::link(d.path.c_str(), backup.c_str()) == 0) backups[i] = backup;
+        }
+        if (::rename(temporaries[i].c_str(), d.path.c_str()) != 0) {
+            const int error = errno;
+            for (size_t j = 0; j < i; ++j) // undo the ones already moved
+                if (destinations[j].direct)
+                    continue;
+                else if (!backups[j].empty())
+                    ::rename(backups[j].c_str(), destinations[j].path.c_str());
+                else
+                    ::unlink(destinations[j].path.c_str());
+            if (!backups[i].empty()) ::unlink(backups[i].c_str());
+            removeTemporaries();
+            std::string others;
+            for (size_t j = 0; j < files.size(); ++j)
+                if (j != i && !destinations[j].direct)
+                    others += (others.empty() ? "" : ", ") + files[j].path;
+            throw InputError(files[i].path +
+                             ": cannot move the finished file into place: " + reason(error) +
+                             (others.empty() ? "" : " (so " + others + " was not written either)"));
+        }
+        temporaries[i].clear();
+    }
+    for (const fs::path& backup : backups)
+        if (!backup.empty()) ::unlink(backup.c_str());
+}
+
+void writeFileAtomically(const std::string& path, const std::string& bytes) {
+    writeFilesAtomically({{path, bytes}});
+}
+
+} // namespace ssgi

@@ -1,0 +1,100 @@
+// compare's image readers: the same picture stored as grey, grey with alpha, RGB or RGBA, PNG or
+// one- and three-channel EXR reads the same; a PNG's colour is not multiplied by its alpha;
+// sizes beyond what is read, and what is not a regular file, are refused before any memory is
+// taken.
+#include "bad_input.h"
+#include "image_io.h"
+#include "support.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <filesystem>
+#include <sys/stat.h>
+
+namespace fs = std::filesystem;
+using namespace ssgi;
+using ssgi::test::BadInput;
+
+namespace {
+
+// Writes `values` (channels interleaved) as a file of that many channels.
+void writeChannels(const std::string& path, int channels, const std::vector<float>& values,
+                   OIIO::TypeDesc type) {
+    auto out = OIIO::ImageOutput::create(path);
+    ASSERT_TRUE(out);
+    OIIO::ImageSpec spec(4, 2, channels, type);
+    if (channels == 2) spec.alpha_channel = 1;
+    if (channels == 4) spec.alpha_channel = 3;
+    spec.attribute("oiio:UnassociatedAlpha", 1); // stored as given, not divided by alpha
+    ASSERT_TRUE(out->open(path, spec)) << out->geterror();
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, values.data())) << out->geterror();
+    ASSERT_TRUE(out->close());
+}
+
+TEST_F(BadInput, CompareReadsWhatTheFileHolds) {
+    // Eight grey levels, 0/255 .. 255/255 in steps of 255/7, and alpha 128/255 (exact in 8 bits).
+    const float half = 128.0f / 255.0f;
+    std::vector<float> grey, greyAlpha, rgb, rgba;
+    for (int i = 0; i < 8; ++i) {
+        const float v = float(i * 255 / 7) / 255.0f;
+        grey.push_back(v);
+        greyAlpha.insert(greyAlpha.end(), {v, half});
+        rgb.insert(rgb.end(), {v, v, v});
+        rgba.insert(rgba.end(), {v, v, v, half});
+    }
+    const std::pair<std::string, std::pair<int, const std::vector<float>*>> files[] = {
+        {"grey.png", {1, &grey}}, {"grey-alpha.png", {2, &greyAlpha}},
+        {"rgb.png", {3, &rgb}},   {"rgba.png", {4, &rgba}},
+        {"grey.exr", {1, &grey}}, {"rgb.exr", {3, &rgb}},
+    };
+    for (const auto& [name, content] : files) {
+        SCOPED_TRACE(name);
+        const std::string path = (dir_ / name).string();
+        writeChannels(path, content.first, *content.second,
+                      name.ends_with(".png") ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT);
+        uint32_t w = 0, h = 0;
+        const std::vector<float> read = readImage(path, w, h);
+        ASSERT_EQ(read.size(), 32u);
+        for (int i = 0; i < 8; ++i) {
+            for (int c = 0; c < 3; ++c)
+                EXPECT_NEAR(read[4 * i + c], grey[i], 1e-6f) << "pixel " << i << " channel " << c;
+            const bool alpha = content.first == 2 || content.first == 4;
+            EXPECT_EQ(read[4 * i + 3], alpha ? half : 1.0f);
+        }
+    }
+    // The program agrees: the same picture two ways is the same, and alpha is said.
+    const std::string compare =
+        (fs::read_symlink("/proc/self/exe").parent_path().parent_path() / "compare").string();
+    for (const auto& [a, b] :
+         {std::pair{"grey.png", "rgb.png"}, std::pair{"grey-alpha.png", "rgba.png"},
+          std::pair{"rgba.png", "rgb.png"}, std::pair{"grey.exr", "rgb.exr"}}) {
+        const test::CommandResult run =
+            test::runCommand(compare + " " + (dir_ / a).string() + " " + (dir_ / b).string() +
+                             " --max-relmse 0 --max-diff 0");
+        EXPECT_EQ(run.status, 0) << a << " " << b << "\n" << run.output;
+        if (std::string(a).find("alpha") != std::string::npos) {
+            EXPECT_NE(run.output.find("alpha is not applied"), std::string::npos) << run.output;
+        }
+    }
+
+    // A PNG that declares 100000x100000 pixels (its IHDR, CRCs included, and no pixels):
+    // refused before anything is allocated, as is a FIFO.
+    std::string png = "\x89PNG\r\n\x1a\n";
+    png += std::string("\0\0\0\x0dIHDR\0\x01\x86\xa0\0\x01\x86\xa0\x08\x02\0\0\0", 21);
+    png += "\x27\x30\x9c\x9f";                              // the chunk's CRC-32
+    png += std::string("\0\0\0\0IDAT\x35\xaf\x06\x1e", 12); // an empty IDAT: no pixels
+    png += std::string("\0\0\0\0IEND\xae\x42\x60\x82", 12);
+    const std::string huge = write("huge.png", png);
+    const fs::path fifo = dir_ / "fifo.png";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    for (const auto& [path, message] :
+         {std::pair{huge, std::string("declares 100000x100000 pixels")},
+          std::pair{fifo.string(), std::string("not a regular file")}}) {
+        const test::CommandResult run =
+            test::runCommand(compare + " " + path + " " + (dir_ / "rgb.png").string());
+        EXPECT_EQ(run.status, 2) << run.output;
+        EXPECT_NE(run.output.find(message), std::string::npos) << run.output;
+    }
+}
+
+} // namespace
