@@ -214,7 +214,13 @@ void main() {
     if (spread == 0.0 && blur > REACCUMULATE_BLUR && count >= rotations) count = rotations - 1.0;
     if (blur < 1e-3) blur = 0.0; // below a thirtieth of a pixel: gone
     storeHistory(pixel, value, blur);
-    // A count stays at least 1 (0 is a pixel that holds nothing), but for an exact effect, whose
-    // one rotation would make any count converged: there 0 has it computed again next frame.
-    imageStore(newCount, pixel, vec4(max(min(count, rotations), exact ? 0.0 : 1.0)));
+    // A count stays at least 1 (0 is a pixel that holds nothing). An exact effect's one rotation
+    // would make any count converged: there 0 has the pixel computed again next frame, and
+    // EXACT_BLURRED marks a value that resampling has blurred, reused while the camera moves and
+    // computed again once it holds still (temporal.glsl convergedAround).
+    if (exact)
+        count = count < rotations ? 0.0 : blur > REACCUMULATE_BLUR ? EXACT_BLURRED : 1.0;
+    else
+        count = max(min(count, rotations), 1.0);
+    imageStore(newCount, pixel, vec4(count));
 }

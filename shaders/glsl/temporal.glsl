@@ -160,18 +160,42 @@ ivec2 cachePixelAround(uvec2 thread, CacheConstants cache, int margin) {
     return ivec2(thread) + refreshTileCorner(cache) - margin;
 }
 
+// An exact effect's count (one rotation, CachedEffect::exact) for a value that resampling has
+// blurred: converged while the camera moves, computed again once it holds still.
+const float EXACT_BLURRED = 1.5;
+
 // A converged pixel reuses its cached value instead of computing the effect again; the refresh
 // tile, widened by `margin` pixels on every side, is computed although converged.
 bool convergedAround(ivec2 pixel, Reprojection r, CacheConstants cache, int margin) {
     if (!r.valid || r.count < float(cache.rotations)) return false;
+    if (cache.rotations <= 1 && r.count >= EXACT_BLURRED &&
+        frame.viewProjection == frame.previousViewProjection)
+        return false;
     if (cache.refreshTileCorner < 0) return true;
     ivec2 corner = refreshTileCorner(cache);
     return any(lessThan(pixel, corner - margin)) ||
            any(greaterThanEqual(pixel, corner + cache.tileSize + margin));
 }
 
+// Whether every texel of the bilinear footprint around the reprojected point holds the pixel's
+// surface: away from depth edges, where resampling reads the pixel's own surface all round.
+bool footprintWhole(Reprojection r, vec3 world) {
+    ivec2 size = textureSize(historyCount, 0);
+    ivec2 base = ivec2(floor(r.uv * vec2(size) - 0.5));
+    for (int i = 0; i < 4; ++i) {
+        vec4 meta = historyMeta(clamp(base + ivec2(i & 1, i >> 1), ivec2(0), size - 1));
+        if (meta.w == 0.0 || distance(meta.xyz, world) > r.epsilon) return false;
+    }
+    return true;
+}
+
 bool convergedAround(ivec2 pixel, vec3 world, vec3 normal, CacheConstants cache, int margin) {
-    return convergedAround(pixel, reproject(world, normal, cache), cache, margin);
+    Reprojection r = reproject(world, normal, cache);
+    // An exact effect is reused only where resampling stays on its surface: along a depth edge
+    // the history's value comes from fewer texels and moves with the edge, and one computation
+    // there costs less than the blur it would leave after a stop.
+    if (cache.rotations <= 1 && r.valid && !footprintWhole(r, world)) return false;
+    return convergedAround(pixel, r, cache, margin);
 }
 
 bool converged(ivec2 pixel, vec3 world, vec3 normal, CacheConstants cache) {
