@@ -75,7 +75,7 @@ vec4 historyAt(Reprojection r, vec3 world, out float spread) {
         ivec2 offset = ivec2(i & 1, i >> 1);
         ivec2 q = clamp(base + offset, ivec2(0), last);
         vec4 meta = historyMeta(q);
-        if (meta.w == 0.0 || distance(meta.xyz, world) > r.epsilon) continue;
+        if (!sameSurface(meta, world, r.epsilon)) continue;
         float w = (offset.x == 1 ? f.x : 1.0 - f.x) * (offset.y == 1 ? f.y : 1.0 - f.y);
         vec2 d = (vec2(offset) - f) * toPixels;
         vec4 v = historyTexel(q);
@@ -130,7 +130,7 @@ void main() {
     float count, blur = 0.0;
     // An exact effect (one rotation: no noise to average, CachedEffect::exact) takes a value
     // computed again whole.
-    bool exact = cache.rotations <= 1;
+    bool exact = exactEffect(cache);
     if (wasSkipped(now)) { // converged: its cache is the value
         value = history.rgb;
         count = r.count;

@@ -23,6 +23,17 @@ vec4 historyMeta(ivec2 q) {
     return vec4(world, texelFetch(historyCount, q, 0).r);
 }
 
+// An exact effect (CachedEffect::exact: computed without noise) converges in one rotation.
+bool exactEffect(CacheConstants cache) {
+    return cache.rotations <= 1;
+}
+
+// Whether a history texel (historyMeta) holds the surface at `world`: it holds something, and
+// its world position lies within the reprojection test's tolerance.
+bool sameSurface(vec4 meta, vec3 world, float epsilon) {
+    return !(meta.w == 0.0 || distance(meta.xyz, world) > epsilon);
+}
+
 struct Reprojection {
     bool valid;    // the pixel saw the same surface last frame
     vec2 uv;       // where, in last frame's image
@@ -168,7 +179,7 @@ const float EXACT_BLURRED = 1.5;
 // tile, widened by `margin` pixels on every side, is computed although converged.
 bool convergedAround(ivec2 pixel, Reprojection r, CacheConstants cache, int margin) {
     if (!r.valid || r.count < float(cache.rotations)) return false;
-    if (cache.rotations <= 1 && r.count >= EXACT_BLURRED &&
+    if (exactEffect(cache) && r.count >= EXACT_BLURRED &&
         frame.viewProjection == frame.previousViewProjection)
         return false;
     if (cache.refreshTileCorner < 0) return true;
@@ -184,7 +195,7 @@ bool footprintWhole(Reprojection r, vec3 world) {
     ivec2 base = ivec2(floor(r.uv * vec2(size) - 0.5));
     for (int i = 0; i < 4; ++i) {
         vec4 meta = historyMeta(clamp(base + ivec2(i & 1, i >> 1), ivec2(0), size - 1));
-        if (meta.w == 0.0 || distance(meta.xyz, world) > r.epsilon) return false;
+        if (!sameSurface(meta, world, r.epsilon)) return false;
     }
     return true;
 }
@@ -194,7 +205,7 @@ bool convergedAround(ivec2 pixel, vec3 world, vec3 normal, CacheConstants cache,
     // An exact effect is reused only where resampling stays on its surface: along a depth edge
     // the history's value comes from fewer texels and moves with the edge, and one computation
     // there costs less than the blur it would leave after a stop.
-    if (cache.rotations <= 1 && r.valid && !footprintWhole(r, world)) return false;
+    if (exactEffect(cache) && r.valid && !footprintWhole(r, world)) return false;
     return convergedAround(pixel, r, cache, margin);
 }
 
