@@ -22,7 +22,7 @@ EffectCache* createCache(graph::FrameGraph& graph, CacheSet& caches, const Setti
         size, usage);
     // Counts are whole numbers up to cache_rotations, or a blend's effective number of samples:
     // a half float holds them to 1/1000 of their value.
-    c.countHistory = graph.createHistory(name + ".count", VK_FORMAT_R16_SFLOAT, size, usage);
+    c.countHistory = graph.createHistory(name + ".count", VK_FORMAT_R16G16_SFLOAT, size, usage);
     if (settings.cache_refresh)
         c.refresh = std::make_unique<TileRefresh>(
             size.width, size.height, uint32_t(settingValue(settings, "cache_tile_" + name)),
@@ -62,7 +62,8 @@ shader::CacheConstants cacheConstants(const Settings& settings, const EffectCach
     c.motionReach = cache->effect.motionReach;
     c.blurBudget = cache->blurBudget;
     c.reprojection = (settings.cache_thin_geometry ? REPROJECT_THIN_GEOMETRY : 0) |
-                     (settings.cache_screen_edge ? REPROJECT_SCREEN_EDGE : 0);
+                     (settings.cache_screen_edge ? REPROJECT_SCREEN_EDGE : 0) |
+                     (settings.cache_reuse_moving ? REUSE_WHILE_MOVING : 0);
     return c;
 }
 
@@ -104,11 +105,12 @@ void carryCaches(graph::FrameGraph& from, const CacheSet& fromCaches, VkExtent2D
             // frames (docs/temporal-cache.md, "Resize"). The shadow, which allows no blur, starts
             // over; the others blend the new frames into the resampled image.
             std::vector<uint8_t> count = last(old.countHistory);
-            for (size_t i = 0; i + 2 <= count.size(); i += 2) { // R16F
-                uint16_t n = 0;
-                std::memcpy(&n, &count[i], 2);
-                n = glm::packHalf1x16(std::min(glm::unpackHalf1x16(n), 1.0f));
-                std::memcpy(&count[i], &n, 2);
+            for (size_t i = 0; i + 4 <= count.size(); i += 4) { // RG16F: count, due
+                uint16_t n[2] = {};
+                std::memcpy(n, &count[i], 4);
+                n[0] = glm::packHalf1x16(std::min(glm::unpackHalf1x16(n[0]), 1.0f));
+                n[1] = 0; // the first frame at the new size computes what its cache lacks
+                std::memcpy(&count[i], n, 4);
             }
             to.carryHistory(cache.countHistory, fromSize, count);
             carried = true;

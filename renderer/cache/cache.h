@@ -47,7 +47,7 @@ struct EffectCache {
     CachedEffect effect;
     uint32_t slot = 0;         // its place in CacheSet::effects and FrameState::effects
     uint32_t valueHistory = 0; // value and blur
-    uint32_t countHistory = 0; // rotation count (R16F)
+    uint32_t countHistory = 0; // rotation count, and whether it is due (RG16F; temporal.comp)
     std::unique_ptr<TileRefresh> refresh;
     float blurBudget = 0.0f; // squared pixels (cache_blur_<name>)
     const std::string& name() const { return effect.name; }
@@ -57,6 +57,7 @@ struct EffectCache {
 struct CacheSet {
     std::deque<EffectCache> effects; // a deque: passes keep pointers to its elements
     std::optional<uint32_t> viewDepthHistory;
+    graph::ImageRef reprojection; // this frame's, shared by every effect (reprojection_pass.cpp)
 };
 
 // The temporal cache of `effect` when the settings cache it (cache and cache_<name> on), made

@@ -38,8 +38,9 @@ private:
 };
 
 // A cached effect computed by one compute shader at full resolution. Its shader binds, in this
-// order: `inputs`, then "historyViewDepth" and "historyCount" (last frame's G-buffer view
-// depths and the effect's rotation counts, to skip converged pixels; temporal.glsl), then
+// order: `inputs`, then "historyViewDepth", "reprojection" and "historyCount" (last frame's
+// G-buffer view depths, this frame's reprojection and the effect's rotation counts, to skip
+// converged pixels; temporal.glsl), then
 // "<name>Image", the RGBA16F image it writes (named <name> in the graph); then `uniforms`.
 struct CachedComputePass {
     CachedEffect effect;
@@ -58,8 +59,9 @@ graph::ImageRef addCachedComputePass(FrameBuild& build, const GBuffer& gbuffer,
                                      CachedComputePass pass, CachedRecordFn record);
 
 // The pieces, for an effect of several passes.
-// Its "historyViewDepth" and "historyCount" bindings: last frame's G-buffer view depths and the
-// cache's rotation counts, or `fallback` (any image the pass reads anyway) without a cache.
+// Its "historyViewDepth", "reprojection" and "historyCount" bindings: last frame's G-buffer view
+// depths, this frame's reprojection and the cache's rotation counts, or `fallback` (any image
+// the pass reads anyway) without a cache.
 std::vector<ShaderImage> cacheBindings(const FrameBuild& build, const EffectCache* cache,
                                        graph::ImageRef fallback);
 // <effect>.keep, run only on settled frames before the effect: last frame's history carried

@@ -13,6 +13,7 @@ void addFramePasses(FrameBuild& build) {
     GBufferAndRsm rasterized;
     rasterized.gbuffer = addGBufferPass(build);
     rasterized.rsm = addRsmPass(build);
+    if (settings.cache) addReprojectionPass(build, rasterized.gbuffer);
     // Each cached effect returns its blended history (cached_effect_pass.h), which is what its
     // consumers read.
     LightingTerms terms;

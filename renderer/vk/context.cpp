@@ -122,7 +122,7 @@ static VkPhysicalDevice pickDevice(VkInstance instance, const std::string& wante
         std::string msg = "no usable Vulkan device";
         if (!wanted.empty()) msg += " named '" + wanted + "'";
         msg += " (need Vulkan 1.3, a graphics+compute queue with timestamps, "
-               "VK_KHR_push_descriptor, storage images of half floats (r16f, rg16f) and storage "
+               "VK_KHR_push_descriptor, storage images of half floats (rg16f) and storage "
                "writes without a format";
         msg += surface ? ", VK_KHR_swapchain and presentation to the window)" : ")";
         msg += seen.empty() ? "; no Vulkan device found at all (is mesa-vulkan-drivers installed?)"
@@ -261,7 +261,7 @@ Context::Context(const ContextOptions& options) {
     features13.maintenance4 = VK_TRUE; // required in 1.3; SPIR-V for 1.3 uses LocalSizeId
     VkPhysicalDeviceFeatures2 features2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
     features2.pNext = &features13;
-    // The caches' counts are r16f and the scalar effects' histories rg16f (extended formats); the
+    // The caches' counts and the scalar effects' histories are rg16f (extended formats); the
     // temporal pass writes either kind of history through one binding (no format).
     features2.features.shaderStorageImageExtendedFormats = VK_TRUE;
     features2.features.shaderStorageImageWriteWithoutFormat = VK_TRUE;

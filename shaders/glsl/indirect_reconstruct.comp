@@ -25,11 +25,12 @@ layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; }
 layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
 layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
 layout(set = 0, binding = 3) uniform sampler2D historyViewDepth;
-layout(set = 0, binding = 4) uniform sampler2D historyCount;
-layout(set = 0, binding = 5) uniform sampler2D estimates;
-layout(set = 0, binding = 6) uniform sampler2D directionals;
-layout(set = 0, binding = 7, rgba16f) uniform writeonly image2D filtered;
-layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D filteredDirectional;
+layout(set = 0, binding = 4) uniform sampler2D reprojection;
+layout(set = 0, binding = 5) uniform sampler2D historyCount;
+layout(set = 0, binding = 6) uniform sampler2D estimates;
+layout(set = 0, binding = 7) uniform sampler2D directionals;
+layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D filtered;
+layout(set = 0, binding = 9, rgba16f) uniform writeonly image2D filteredDirectional;
 layout(push_constant) uniform IndirectBlock { IndirectConstants constants; };
 
 #include "gbuffer_position.glsl"
@@ -60,7 +61,7 @@ void main() {
     }
     vec3 p = position.xyz;
     vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
-    Reprojection history = reproject(p, n, constants.cache);
+    Reprojection history = reproject(pixel, p, n, constants.cache);
     if (convergedAround(pixel, history, constants.cache, margin)) {
         imageStore(filtered, pixel, vec4(0.0));
         if (axis.x == 1) imageStore(filteredDirectional, pixel, vec4(0.0));

@@ -96,6 +96,10 @@ SSGI_CHECK_SIZE(DrawConstants, 96);
 // moved the screen's edges across the radius the effect gathers within, start over.
 #define REPROJECT_THIN_GEOMETRY 1
 #define REPROJECT_SCREEN_EDGE 2
+// What is reused beyond the thesis (CacheConstants.reprojection, with the REPROJECT_ flags):
+// while the camera moves, a pixel whose history holds one computation or more is reused until
+// its resampling blur reaches the effect's budget (temporal.glsl convergedAround).
+#define REUSE_WHILE_MOVING 4
 
 // The display transform, per colour channel: Narkowicz's fit of the ACES filmic curve of
 // exposed linear radiance, then the sRGB encoding. The composite applies it on the GPU; the
@@ -136,9 +140,17 @@ struct CacheConstants {
     float motionReach;     // scene units
     float blurBudget;      // the resampling blur (squared pixels) a cached value may carry:
                            // beyond it the history's weight is cut and the pixel recomputed
-    int reprojection;      // REPROJECT_* flags (temporal.glsl reproject)
+    int reprojection;      // REPROJECT_* and REUSE_* flags (temporal.glsl)
 };
 SSGI_CHECK_SIZE(CacheConstants, 48);
+
+// The reprojection pass's settings (reproject.comp), from the cache's (CacheConstants).
+struct ReprojectionConstants {
+    float epsilon;    // the reprojection test, in pixel footprints (cache_epsilon)
+    int thinGeometry; // 1: where the nearest texel fails, try the texels beside it
+    int historyValid; // 0: last frame's view depths hold nothing (every pixel: not found)
+};
+SSGI_CHECK_SIZE(ReprojectionConstants, 12);
 
 // Per-frame values of the screen-space passes (push constants). Structural settings (tap and
 // sample counts, variants) are specialization constants instead. `rotation` turns the

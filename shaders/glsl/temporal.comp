@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_vote : require
 // The temporal cache of one effect (thesis 3.1.2): this frame's value V_t, computed with a
 // turned and scaled sampling pattern, is blended with the reprojected history V_{t-1}.
 // Thesis rule: confidence = 1 - saturate(|V_{t-1} - V_t|) / (1 + bias) (4),
@@ -34,9 +35,10 @@ layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
 layout(set = 0, binding = 3) uniform sampler2D current; // wasSkipped: converged, not computed
 layout(set = 0, binding = 4) uniform sampler2D historyValue;
 layout(set = 0, binding = 5) uniform sampler2D historyViewDepth;
-layout(set = 0, binding = 6) uniform sampler2D historyCount;
-layout(set = 0, binding = 7) uniform writeonly image2D newValue; // rgba16f or rg16f
-layout(set = 0, binding = 8, r16f) uniform writeonly image2D newCount;
+layout(set = 0, binding = 6) uniform sampler2D reprojection;
+layout(set = 0, binding = 7) uniform sampler2D historyCount;
+layout(set = 0, binding = 8) uniform writeonly image2D newValue; // rgba16f or rg16f
+layout(set = 0, binding = 9, rg16f) uniform writeonly image2D newCount; // count, due
 layout(push_constant) uniform TemporalBlock { TemporalConstants constants; };
 
 #include "gbuffer_position.glsl"
@@ -61,7 +63,7 @@ void storeHistory(ivec2 pixel, vec3 value, float blur) {
 // Each frame of motion adds up to half a pixel^2; a still camera samples texel centres and adds
 // nothing. The distances are in this frame's pixels: after a resize the history's texels are of
 // another size (Renderer::continueFrom), and what resampling them blurs counts the same.
-vec4 historyAt(Reprojection r, vec3 world, out float spread) {
+vec4 historyAt(Reprojection r, out float spread) {
     vec2 size = vec2(textureSize(historyValue, 0));
     vec2 toPixels = frame.viewport.xy / size;
     vec2 texel = r.uv * size - 0.5;
@@ -74,8 +76,7 @@ vec4 historyAt(Reprojection r, vec3 world, out float spread) {
     for (int i = 0; i < 4; ++i) {
         ivec2 offset = ivec2(i & 1, i >> 1);
         ivec2 q = clamp(base + offset, ivec2(0), last);
-        vec4 meta = historyMeta(q);
-        if (!sameSurface(meta, world, r.epsilon)) continue;
+        if ((r.footprint & (1 << i)) == 0 || texelFetch(historyCount, q, 0).r == 0.0) continue;
         float w = (offset.x == 1 ? f.x : 1.0 - f.x) * (offset.y == 1 ? f.y : 1.0 - f.y);
         vec2 d = (vec2(offset) - f) * toPixels;
         vec4 v = historyTexel(q);
@@ -112,11 +113,17 @@ void main() {
         imageStore(newCount, pixel, vec4(0.0));
         return;
     }
+    // Reused while the camera moves, a pixel's value is computed again once its blur passes a
+    // limit between half the budget and the budget, drawn per workgroup, so that the pixels that
+    // started together (after a cut) do not all fall due in the same frame.
+    bool reuseWhileMoving = (constants.cache.reprojection & REUSE_WHILE_MOVING) != 0;
+    float limit = constants.cache.blurBudget;
+    if (reuseWhileMoving) limit *= 0.5 + 0.25 * pixelRotation(ivec2(gl_WorkGroupID.xy)) / PI;
     CacheConstants cache = constants.cache;
     vec4 now = texelFetch(current, pixel, 0);
-    Reprojection r = reproject(position.xyz, texelFetch(gbufferNormal, pixel, 0).xyz, cache);
+    Reprojection r = reproject(pixel, position.xyz, texelFetch(gbufferNormal, pixel, 0).xyz, cache);
     float spread = 0.0;
-    vec4 history = r.valid ? historyAt(r, position.xyz, spread) : vec4(0.0);
+    vec4 history = r.valid ? historyAt(r, spread) : vec4(0.0);
     // The first frame after a resize, whose history still has the old size: a colour history
     // (the indirect light, SSDO: smooth) keeps its weight through the one resampling, whatever
     // its budget; a scalar one keeps it within its budget only, and the sharp shadow (budget 0)
@@ -199,8 +206,11 @@ void main() {
         // again before it is reused. Not on a still camera, whose leftover blur the
         // re-convergence above takes away, nor over a colour history's resize (above): with a
         // budget of 0 either would have thrown the history out.
-        if (spread > 0.0 && !resized && (1.0 - fresh) * history.a > budget) {
-            fresh = 1.0 - budget / history.a;
+        // Reused while moving, a value computed again takes the blur down to half its limit, so
+        // that it is reused for a while before it is due again.
+        float target = reuseWhileMoving ? 0.5 * limit : budget;
+        if (spread > 0.0 && !resized && (1.0 - fresh) * history.a > target) {
+            fresh = 1.0 - target / history.a;
             count = min(count, 1.0 / ((1.0 - fresh) * (1.0 - fresh) / max(r.count, 1.0) +
                                       fresh * fresh));
         }
@@ -211,6 +221,11 @@ void main() {
     // its count stays below convergence, so the effect computes it again; so is a converged
     // value motion blurred, once the camera holds still, so that it accumulates again.
     if (blur + spread > budget && count >= rotations) count = rotations - 1.0;
+    // Reused while the camera moves, a value whose blur one more frame of this motion would take
+    // past the budget is due: computed the next frame.
+    // The pixels the device runs together (a subgroup: 8 on lavapipe, 32 on NVIDIA) fall due
+    // together: a subgroup in which one pixel computes costs what all of them computing does.
+    bool due = subgroupAny(reuseWhileMoving && blur + spread > limit);
     if (spread == 0.0 && blur > REACCUMULATE_BLUR && count >= rotations) count = rotations - 1.0;
     if (blur < 1e-3) blur = 0.0; // below a thirtieth of a pixel: gone
     storeHistory(pixel, value, blur);
@@ -222,5 +237,5 @@ void main() {
         count = count < rotations ? 0.0 : blur > REACCUMULATE_BLUR ? EXACT_BLURRED : 1.0;
     else
         count = max(min(count, rotations), 1.0);
-    imageStore(newCount, pixel, vec4(count));
+    imageStore(newCount, pixel, vec4(count, due ? 1.0 : 0.0, 0.0, 0.0));
 }

@@ -1,12 +1,13 @@
 // Reverse reprojection into an effect's history (thesis 3.1.1) and the reuse test (3.1.2),
 // shared by the effect passes (to skip converged pixels) and the temporal passes (to blend).
 // Needs: frame, historyViewDepth (last frame's G-buffer view depths, shared by every cached
-// effect), historyCount (the effect's rotation counts, 0 where it holds nothing), gbufferNormal,
-// screen_space.glsl; loadPixelToWorld() called in main().
+// effect), reprojection (the reprojection pass's image of this frame, reproject.comp),
+// historyCount (the effect's rotation counts, 0 where it holds nothing, and whether a pixel is
+// due), gbufferNormal, screen_space.glsl; loadPixelToWorld() called in main().
 #ifndef SSGI_TEMPORAL_GLSL
 #define SSGI_TEMPORAL_GLSL
 
-#include "pixel_to_world.glsl"
+#include "reprojection.glsl"
 
 // What an effect stores for a pixel it skips (converged: its cache holds the value), where a
 // value computed this frame has alpha 1; the temporal pass and the indirect light's filter tell
@@ -16,30 +17,18 @@ bool wasSkipped(vec4 value) {
     return value.a < 0.5;
 }
 
-// Last frame's world position (xyz) and the effect's rotation count (w) at texel q: the ray
-// through the texel's centre in last frame's view, taken to its view depth (pixel_to_world.glsl).
-vec4 historyMeta(ivec2 q) {
-    vec3 world = worldAt(historyToWorld, q, texelFetch(historyViewDepth, q, 0).r);
-    return vec4(world, texelFetch(historyCount, q, 0).r);
-}
-
 // An exact effect (CachedEffect::exact: computed without noise) converges in one rotation.
 bool exactEffect(CacheConstants cache) {
     return cache.rotations <= 1;
 }
 
-// Whether a history texel (historyMeta) holds the surface at `world`: it holds something, and
-// its world position lies within the reprojection test's tolerance.
-bool sameSurface(vec4 meta, vec3 world, float epsilon) {
-    return !(meta.w == 0.0 || distance(meta.xyz, world) > epsilon);
-}
-
 struct Reprojection {
-    bool valid;    // the pixel saw the same surface last frame
+    bool valid;    // the pixel saw the same surface last frame, and the effect holds it
     vec2 uv;       // where, in last frame's image
     ivec2 texel;   // the history texel that passed the test (the nearest, or one beside it)
     float count;   // rotations accumulated there
-    float epsilon; // the world-space tolerance of the test
+    int footprint; // SurfaceReprojection.footprint: which bilinear texels hold the surface
+    bool due;      // the temporal pass asked for it to be computed (REUSE_WHILE_MOVING)
 };
 
 // Whether an object that moved since the last frame may have changed this pixel's value: the
@@ -101,48 +90,29 @@ bool gatherMeetsEdge(vec3 world, vec4 previousClip, CacheConstants cache) {
     return any(greaterThan(abs(cutNow - cutThen), vec4(EDGE_TOLERANCE)));
 }
 
-// C = P_{t-1} V_{t-1} W_t (1), divided by w and mapped to texture space; valid where the
-// history holds a world position within epsilon of W_t (2-3). Epsilon is a number of pixel
-// footprints at W_t, so one setting serves every scene scale, widened where the surface is seen
-// at a grazing angle, since there neighbouring pixels lie farther apart than one footprint.
-// Beyond the thesis, thin geometry: a feature narrower than a pixel (a chair leg, a needle) falls
-// between texel centres from one frame to the next, so where the nearest texel holds something
-// behind W_t (or nothing), the texels beside it are tried as well, as temporal upscalers dilate
-// their reprojection; where it holds something in front of W_t, W_t was hidden last frame (a
-// disocclusion) and starts over.
-Reprojection reproject(vec3 world, vec3 normal, CacheConstants cache) {
-    Reprojection r = Reprojection(false, vec2(0.0), ivec2(0), 0.0, 0.0);
+// The surface's reprojection into the effect's history: the reprojection pass's (computed once
+// for every effect), except on a settled frame, where the passes run over their refresh tiles
+// alone and the reprojection pass does not run, so each computes its tile's own. Valid where a
+// texel holds the surface (reprojection.glsl) and a value of the effect (its count is not 0),
+// no moved object may have changed it, and the screen's edge cuts off what it cut off before.
+Reprojection reproject(ivec2 pixel, vec3 world, vec3 normal, CacheConstants cache) {
+    Reprojection r = Reprojection(false, vec2(0.0), ivec2(0), 0.0, 0, false);
     if (cache.historyValid == 0 || movedNearby(world, cache)) return r;
-    vec4 clip = frame.previousViewProjection * vec4(world, 1.0);
-    if (clip.w <= 0.0) return r;
-    r.uv = clip.xy / clip.w * 0.5 + 0.5;
-    if (any(lessThan(r.uv, vec2(0.0))) || any(greaterThanEqual(r.uv, vec2(1.0)))) return r;
-    // Positions do not interpolate across edges: the nearest texel's is compared. The history
-    // has the frame's size, except in the first frame after a resize (Renderer::continueFrom).
-    ivec2 size = textureSize(historyCount, 0);
-    r.texel = ivec2(r.uv * vec2(size));
-    vec4 meta = historyMeta(r.texel);
-    float facing = abs(dot(normal, normalize(frame.cameraPosition.xyz - world)));
-    float epsilon = cache.epsilon / (pixelsPerUnit(viewDepth(world)) * max(facing, 0.1));
-    r.epsilon = epsilon;
-    float nearest = meta.w > 0.0 ? distance(meta.xyz, world) : 1e30;
-    if (nearest > epsilon && (cache.reprojection & REPROJECT_THIN_GEOMETRY) != 0 &&
-        (meta.w == 0.0 || (frame.previousViewProjection * vec4(meta.xyz, 1.0)).w > clip.w)) {
-        ivec2 centre = r.texel;
-        for (int y = -1; y <= 1; ++y)
-            for (int x = -1; x <= 1; ++x) {
-                ivec2 q = clamp(centre + ivec2(x, y), ivec2(0), size - 1);
-                vec4 m = historyMeta(q);
-                float d = m.w > 0.0 ? distance(m.xyz, world) : 1e30;
-                if (d < nearest) {
-                    nearest = d;
-                    r.texel = q;
-                    meta = m;
-                }
-            }
-    }
-    r.valid = nearest <= epsilon && !gatherMeetsEdge(world, clip, cache);
-    r.count = r.valid ? meta.w : 0.0;
+    SurfaceReprojection s =
+        cache.settled != 0
+            ? reprojectSurface(world, normal, cache.epsilon,
+                               (cache.reprojection & REPROJECT_THIN_GEOMETRY) != 0)
+            : unpackReprojection(texelFetch(reprojection, pixel, 0));
+    if (!s.found) return r;
+    vec2 count = texelFetch(historyCount, s.texel, 0).rg;
+    if (count.r == 0.0) return r;
+    if (gatherMeetsEdge(world, frame.previousViewProjection * vec4(world, 1.0), cache)) return r;
+    r.valid = true;
+    r.uv = s.uv;
+    r.texel = s.texel;
+    r.count = count.r;
+    r.footprint = s.footprint;
+    r.due = count.g > 0.5;
     return r;
 }
 
@@ -175,13 +145,27 @@ ivec2 cachePixelAround(uvec2 thread, CacheConstants cache, int margin) {
 // blurred: converged while the camera moves, computed again once it holds still.
 const float EXACT_BLURRED = 1.5;
 
+// Whether the camera moved since the last frame.
+bool cameraMoved() {
+    return frame.viewProjection != frame.previousViewProjection;
+}
+
+// Whether a history reused while the camera moves (REUSE_WHILE_MOVING) is reused here: it holds
+// one computation or more, the temporal pass did not find its blur at the budget, and
+// resampling stays on its surface (footprintWhole).
+bool footprintWhole(Reprojection r);
+bool reusedWhileMoving(Reprojection r, CacheConstants cache) {
+    return (cache.reprojection & REUSE_WHILE_MOVING) != 0 && cameraMoved() && !exactEffect(cache) &&
+           r.count >= 1.0 && !r.due && footprintWhole(r);
+}
+
 // A converged pixel reuses its cached value instead of computing the effect again; the refresh
 // tile, widened by `margin` pixels on every side, is computed although converged.
 bool convergedAround(ivec2 pixel, Reprojection r, CacheConstants cache, int margin) {
-    if (!r.valid || r.count < float(cache.rotations)) return false;
-    if (exactEffect(cache) && r.count >= EXACT_BLURRED &&
-        frame.viewProjection == frame.previousViewProjection)
-        return false;
+    if (!r.valid) return false;
+    if (r.count < float(cache.rotations) && !reusedWhileMoving(r, cache)) return false;
+    if (r.due) return false;
+    if (exactEffect(cache) && r.count >= EXACT_BLURRED && !cameraMoved()) return false;
     if (cache.refreshTileCorner < 0) return true;
     ivec2 corner = refreshTileCorner(cache);
     return any(lessThan(pixel, corner - margin)) ||
@@ -190,22 +174,16 @@ bool convergedAround(ivec2 pixel, Reprojection r, CacheConstants cache, int marg
 
 // Whether every texel of the bilinear footprint around the reprojected point holds the pixel's
 // surface: away from depth edges, where resampling reads the pixel's own surface all round.
-bool footprintWhole(Reprojection r, vec3 world) {
-    ivec2 size = textureSize(historyCount, 0);
-    ivec2 base = ivec2(floor(r.uv * vec2(size) - 0.5));
-    for (int i = 0; i < 4; ++i) {
-        vec4 meta = historyMeta(clamp(base + ivec2(i & 1, i >> 1), ivec2(0), size - 1));
-        if (!sameSurface(meta, world, r.epsilon)) return false;
-    }
-    return true;
+bool footprintWhole(Reprojection r) {
+    return r.footprint == 15;
 }
 
 bool convergedAround(ivec2 pixel, vec3 world, vec3 normal, CacheConstants cache, int margin) {
-    Reprojection r = reproject(world, normal, cache);
+    Reprojection r = reproject(pixel, world, normal, cache);
     // An exact effect is reused only where resampling stays on its surface: along a depth edge
     // the history's value comes from fewer texels and moves with the edge, and one computation
     // there costs less than the blur it would leave after a stop.
-    if (exactEffect(cache) && r.valid && !footprintWhole(r, world)) return false;
+    if (exactEffect(cache) && r.valid && !footprintWhole(r)) return false;
     return convergedAround(pixel, r, cache, margin);
 }
 

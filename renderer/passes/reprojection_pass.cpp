@@ -1,0 +1,37 @@
+// reprojection: where each pixel's surface lay in last frame's image, and which history texels
+// hold it, once a frame for every cached effect (reproject.comp; temporal.glsl reads it). Not on
+// a settled frame, whose passes run over their refresh tiles alone and reproject those: the
+// image is persistent and keeps what it held. Before the G-buffer has a history, nothing is
+// found anywhere.
+//   reads:  gbuffer.view_depth, gbuffer.normal, last frame's gbuffer.view_depth
+//   writes: reprojection (RGBA32F: reprojection.glsl packReprojection)
+#include "passes/passes.h"
+
+namespace ssgi {
+
+graph::ImageRef addReprojectionPass(FrameBuild& build, const GBuffer& gbuffer) {
+    const graph::ImageRef image =
+        build.graph.createImage("reprojection", VK_FORMAT_R32G32B32A32_SFLOAT, build.size,
+                                VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+                                /*persistent=*/true);
+    using graph::FrameGraph;
+    using graph::Use;
+    const uint32_t history = *build.caches.viewDepthHistory;
+    ComputePassDesc pass{"reprojection", "reproject.comp"};
+    pass.images = {{"gbufferViewDepth", gbuffer.viewDepth, Use::Sampled},
+                   {"gbufferNormal", gbuffer.normal, Use::Sampled},
+                   {"historyViewDepth", FrameGraph::previous(history), Use::Sampled},
+                   {"reprojectionImage", image, Use::StorageWrite}};
+    pass.pushSize = sizeof(shader::ReprojectionConstants);
+    addComputePass(build, std::move(pass), [&build, history](const ComputeRecorder& r) {
+        const shader::ReprojectionConstants constants{float(build.settings.cache_epsilon),
+                                                      build.settings.cache_thin_geometry ? 1 : 0,
+                                                      build.graph.hasHistory(history) ? 1 : 0};
+        const bool settled = r.frame().settled;
+        r.dispatch(settled ? 0 : build.size.width, settled ? 0 : build.size.height, constants);
+    });
+    build.caches.reprojection = image;
+    return image;
+}
+
+} // namespace ssgi

@@ -1,0 +1,95 @@
+// Reverse reprojection of a surface point into last frame's image (thesis 3.1.1, eq. 1-3), by
+// geometry alone: which history texel saw the same surface, whatever any effect holds there.
+// The reprojection pass (reproject.comp) computes it once a frame for every cached effect;
+// temporal.glsl adds what is each effect's own (its counts, moved objects, the screen's edge).
+// Needs: frame, historyViewDepth (last frame's G-buffer view depths), screen_space.glsl;
+// loadPixelToWorld() called in main().
+#ifndef SSGI_REPROJECTION_GLSL
+#define SSGI_REPROJECTION_GLSL
+
+#include "pixel_to_world.glsl"
+
+// Last frame's world position at history texel q (xyz; the ray through the texel's centre in
+// last frame's view, taken to its view depth), and whether anything was drawn there (w 1, else 0).
+vec4 historyPosition(ivec2 q) {
+    float depth = texelFetch(historyViewDepth, q, 0).r;
+    return vec4(worldAt(historyToWorld, q, depth), depth == 0.0 ? 0.0 : 1.0);
+}
+
+struct SurfaceReprojection {
+    bool found;    // a history texel holds the surface
+    vec2 uv;       // where the point lay in last frame's image
+    ivec2 texel;   // the texel that holds it (the nearest, or one beside it)
+    float epsilon; // the world-space tolerance of the test
+    int footprint; // bit i: texel floor(uv * size - 0.5) + (i & 1, i >> 1) holds it (bilinear)
+};
+
+// C = P_{t-1} V_{t-1} W_t (1), divided by w and mapped to texture space; found where a history
+// texel holds a world position within epsilon of W_t (2-3). Epsilon is `epsilonPixels` pixel
+// footprints at W_t, so one setting serves every scene scale, widened where the surface is seen
+// at a grazing angle, since there neighbouring pixels lie farther apart than one footprint.
+// Beyond the thesis, thin geometry (`thinGeometry`): a feature narrower than a pixel (a chair leg,
+// a needle) falls between texel centres from one frame to the next, so where the nearest texel
+// holds something behind W_t (or nothing), the texels beside it are tried as well, as temporal
+// upscalers dilate their reprojection; where it holds something in front of W_t, W_t was hidden
+// last frame (a disocclusion) and starts over.
+SurfaceReprojection reprojectSurface(vec3 world, vec3 normal, float epsilonPixels,
+                                     bool thinGeometry) {
+    SurfaceReprojection s = SurfaceReprojection(false, vec2(0.0), ivec2(0), 0.0, 0);
+    vec4 clip = frame.previousViewProjection * vec4(world, 1.0);
+    if (clip.w <= 0.0) return s;
+    s.uv = clip.xy / clip.w * 0.5 + 0.5;
+    if (any(lessThan(s.uv, vec2(0.0))) || any(greaterThanEqual(s.uv, vec2(1.0)))) return s;
+    // Positions do not interpolate across edges: the nearest texel's is compared. The history
+    // has the frame's size, except in the first frame after a resize (Renderer::continueFrom).
+    ivec2 size = textureSize(historyViewDepth, 0);
+    s.texel = ivec2(s.uv * vec2(size));
+    vec4 h = historyPosition(s.texel);
+    float facing = abs(dot(normal, normalize(frame.cameraPosition.xyz - world)));
+    s.epsilon = epsilonPixels / (pixelsPerUnit(viewDepth(world)) * max(facing, 0.1));
+    float nearest = h.w > 0.0 ? distance(h.xyz, world) : 1e30;
+    if (nearest > s.epsilon && thinGeometry &&
+        (h.w == 0.0 || (frame.previousViewProjection * vec4(h.xyz, 1.0)).w > clip.w)) {
+        ivec2 centre = s.texel;
+        for (int y = -1; y <= 1; ++y)
+            for (int x = -1; x <= 1; ++x) {
+                ivec2 q = clamp(centre + ivec2(x, y), ivec2(0), size - 1);
+                vec4 m = historyPosition(q);
+                float d = m.w > 0.0 ? distance(m.xyz, world) : 1e30;
+                if (d < nearest) {
+                    nearest = d;
+                    s.texel = q;
+                }
+            }
+    }
+    s.found = nearest <= s.epsilon;
+    if (!s.found) return s;
+    ivec2 base = ivec2(floor(s.uv * vec2(size) - 0.5));
+    for (int i = 0; i < 4; ++i) {
+        vec4 m = historyPosition(clamp(base + ivec2(i & 1, i >> 1), ivec2(0), size - 1));
+        if (m.w > 0.0 && distance(m.xyz, world) <= s.epsilon) s.footprint |= 1 << i;
+    }
+    return s;
+}
+
+// The reprojection pass's image packs a SurfaceReprojection per pixel (RGBA32F): uv in xy,
+// epsilon in z, and in w, as a whole number, found (bit 0), the texel's offset from the nearest
+// one (bits 1-4: (dx + 1) + 3 (dy + 1)) and the footprint (bits 5-8).
+vec4 packReprojection(SurfaceReprojection s) {
+    if (!s.found) return vec4(0.0);
+    ivec2 size = textureSize(historyViewDepth, 0);
+    ivec2 offset = s.texel - ivec2(s.uv * vec2(size)) + 1;
+    int bits = 1 | ((offset.x + 3 * offset.y) << 1) | (s.footprint << 5);
+    return vec4(s.uv, s.epsilon, float(bits));
+}
+SurfaceReprojection unpackReprojection(vec4 packed) {
+    int bits = int(packed.w);
+    SurfaceReprojection s = SurfaceReprojection((bits & 1) != 0, packed.xy, ivec2(0), packed.z,
+                                                bits >> 5);
+    int offset = (bits >> 1) & 15;
+    s.texel = ivec2(packed.xy * vec2(textureSize(historyViewDepth, 0))) +
+              ivec2(offset % 3, offset / 3) - 1;
+    return s;
+}
+
+#endif
