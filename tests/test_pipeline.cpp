@@ -27,13 +27,18 @@ constexpr VkDescriptorType kUniform = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
 constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
 constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
 
-// indirect_reconstruct.comp: the frame's uniforms, six sampler2Ds, two image2Ds.
+// indirect_reconstruct.comp: the frame's uniforms, seven sampler2Ds, two rgba16f image2Ds.
 const std::vector<vk::LayoutBinding> kReconstruct = {
-    {kUniform, "FrameBlock"},         {kSampled, "gbufferViewDepth"},
-    {kSampled, "gbufferNormal"},      {kSampled, "historyViewDepth"},
-    {kSampled, "historyCount"},       {kSampled, "estimates"},
-    {kSampled, "directionals"},       {kStorage, "filtered"},
-    {kStorage, "filteredDirectional"}};
+    {kUniform, "FrameBlock"},
+    {kSampled, "gbufferViewDepth"},
+    {kSampled, "gbufferNormal"},
+    {kSampled, "historyViewDepth"},
+    {kSampled, "reprojection"},
+    {kSampled, "historyCount"},
+    {kSampled, "estimates"},
+    {kSampled, "directionals"},
+    {kStorage, "filtered", false, VK_FORMAT_R16G16B16A16_SFLOAT},
+    {kStorage, "filteredDirectional", false, VK_FORMAT_R16G16B16A16_SFLOAT}};
 
 } // namespace
 
@@ -45,7 +50,15 @@ TEST(ShaderBindings, ReflectTheShadersOwnDeclarations) {
         EXPECT_EQ(bindings.at(b).type, kReconstruct[b].type) << "binding " << b;
         EXPECT_EQ(bindings.at(b).name, kReconstruct[b].name) << "binding " << b;
     }
-    EXPECT_TRUE(bindings.at(7).writable) << "filtered is writeonly, not readonly";
+    EXPECT_TRUE(bindings.at(8).writable) << "filtered is writeonly, not readonly";
+    EXPECT_EQ(bindings.at(8).format, VK_FORMAT_R16G16B16A16_SFLOAT) << "layout(rgba16f)";
+    EXPECT_EQ(bindings.at(6).format, VK_FORMAT_UNDEFINED) << "a sampler2D has no format";
+    // A storage image declared without a format (the temporal pass writes either history).
+    const vk::EmbeddedShader& t = shader("temporal.comp");
+    for (const auto& [b, binding] : vk::shaderBindings(t.code, t.bytes / 4, 0))
+        if (binding.name == "newValue") {
+            EXPECT_EQ(binding.format, VK_FORMAT_UNDEFINED);
+        }
     EXPECT_TRUE(vk::shaderBindings(s.code, s.bytes / 4, 1).empty()) << "nothing in set 1";
     // A graphics shader with a texture in set 1: the G-buffer's fragment shader.
     const vk::EmbeddedShader& g = shader("gbuffer.frag");
@@ -74,29 +87,38 @@ TEST_F(PipelineTest, ALayoutThatDisagreesIsRefusedNamingShaderAndBinding) {
         return std::string("accepted");
     };
     std::vector<vk::LayoutBinding> wrongType = kReconstruct;
-    wrongType[5].type = kStorage; // the shader samples binding 5
+    wrongType[6].type = kStorage; // the shader samples binding 6
     const std::string type = refusal(wrongType);
-    EXPECT_NE(type.find("indirect_reconstruct.comp binding 5"), std::string::npos) << type;
+    EXPECT_NE(type.find("indirect_reconstruct.comp binding 6"), std::string::npos) << type;
     EXPECT_NE(type.find("sampled image"), std::string::npos) << type;
 
     std::vector<vk::LayoutBinding> missing(kReconstruct.begin(), kReconstruct.end() - 1);
     const std::string lacks = refusal(missing);
-    EXPECT_NE(lacks.find("binding 8"), std::string::npos) << lacks;
+    EXPECT_NE(lacks.find("binding 9"), std::string::npos) << lacks;
     EXPECT_NE(lacks.find("lacks"), std::string::npos) << lacks;
 
     // A storage image the pass would take as read only (graph::Use::StorageRead) that the shader
     // may write: the graph would leave its writes out of the barriers.
     std::vector<vk::LayoutBinding> readOnly = kReconstruct;
-    readOnly[7].readOnly = true;
+    readOnly[8].readOnly = true;
     const std::string writable = refusal(readOnly);
-    EXPECT_NE(writable.find("indirect_reconstruct.comp binding 7"), std::string::npos) << writable;
+    EXPECT_NE(writable.find("indirect_reconstruct.comp binding 8"), std::string::npos) << writable;
     EXPECT_NE(writable.find("not declared readonly"), std::string::npos) << writable;
 
     std::vector<vk::LayoutBinding> extra = kReconstruct;
     extra.push_back(kStorage);
     const std::string never = refusal(extra);
-    EXPECT_NE(never.find("binding 9"), std::string::npos) << never;
+    EXPECT_NE(never.find("binding 10"), std::string::npos) << never;
     EXPECT_NE(never.find("never declares"), std::string::npos) << never;
+
+    // A storage image of another format than the shader declares: its texels would be written
+    // as another layout.
+    std::vector<vk::LayoutBinding> format = kReconstruct;
+    format[9].format = VK_FORMAT_R16G16_SFLOAT;
+    const std::string formats = refusal(format);
+    EXPECT_NE(formats.find("indirect_reconstruct.comp binding 9"), std::string::npos) << formats;
+    EXPECT_NE(formats.find("declared as rgba16f"), std::string::npos) << formats;
+    EXPECT_NE(formats.find("an image of rg16f"), std::string::npos) << formats;
 }
 
 // Two images swapped in a pass's list have the same type: only the names tell them apart, and the
@@ -114,7 +136,7 @@ TEST_F(PipelineTest, ABindingTheShaderNamesOtherwiseIsRefusedNamingBoth) {
     }
     EXPECT_NE(message.find("indirect_reconstruct.comp binding 3"), std::string::npos) << message;
     EXPECT_NE(message.find("historyViewDepth"), std::string::npos) << message;
-    EXPECT_NE(message.find("declares historyCount"), std::string::npos) << message;
+    EXPECT_NE(message.find("declares reprojection"), std::string::npos) << message;
 }
 
 // The specialization constants and the workgroup size are read from the SPIR-V, as the bindings

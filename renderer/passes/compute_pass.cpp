@@ -40,9 +40,12 @@ void addComputePass(FrameBuild& build, ComputePassDesc desc, ComputeRecordFn rec
         if (!isSampled(i.use) && !isStorage(i.use))
             throw std::logic_error("pass " + desc.name + " binds " + i.name +
                                    " for a use a compute shader cannot bind");
+        // A storage image's format, which a format the shader declares must match.
+        const VkFormat format =
+            isStorage(i.use) ? build.graph.image(i.image).format : VK_FORMAT_UNDEFINED;
         layout.push_back({isSampled(i.use) ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER
                                            : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-                          i.name, i.use == graph::Use::StorageRead});
+                          i.name, i.use == graph::Use::StorageRead, format});
         uses.push_back({i.image, i.use});
     }
     for (const ShaderBuffer& b : desc.uniforms)

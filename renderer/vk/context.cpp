@@ -98,6 +98,15 @@ static VkPhysicalDevice pickDevice(VkInstance instance, const std::string& wante
         if (!features.shaderStorageImageExtendedFormats ||
             !features.shaderStorageImageWriteWithoutFormat)
             continue;
+        // The temporal passes vote across a subgroup (temporal.comp: its pixels fall due together).
+        VkPhysicalDeviceSubgroupProperties subgroup{
+            VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+        VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+        props2.pNext = &subgroup;
+        vkGetPhysicalDeviceProperties2(device, &props2);
+        if (!(subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) ||
+            !(subgroup.supportedOperations & VK_SUBGROUP_FEATURE_VOTE_BIT))
+            continue;
         uint32_t familyCount = 0;
         vkGetPhysicalDeviceQueueFamilyProperties(device, &familyCount, nullptr);
         std::vector<VkQueueFamilyProperties> families(familyCount);
@@ -122,8 +131,8 @@ static VkPhysicalDevice pickDevice(VkInstance instance, const std::string& wante
         std::string msg = "no usable Vulkan device";
         if (!wanted.empty()) msg += " named '" + wanted + "'";
         msg += " (need Vulkan 1.3, a graphics+compute queue with timestamps, "
-               "VK_KHR_push_descriptor, storage images of half floats (rg16f) and storage "
-               "writes without a format";
+               "VK_KHR_push_descriptor, storage images of half floats (rg16f), storage "
+               "writes without a format and subgroup votes in compute shaders";
         msg += surface ? ", VK_KHR_swapchain and presentation to the window)" : ")";
         msg += seen.empty() ? "; no Vulkan device found at all (is mesa-vulkan-drivers installed?)"
                             : "; devices seen: " + seen;

@@ -33,6 +33,33 @@ enum Decoration : uint32_t {
 enum StorageClass : uint32_t { UniformConstant = 0, Uniform = 2, StorageBuffer = 12 };
 enum ExecutionMode : uint32_t { LocalSize = 17, LocalSizeId = 38 };
 
+// A storage image's Image Format operand (SPIR-V specification, 3.11) as the Vulkan format it
+// names, for the formats this project's images have; UNDEFINED for Unknown and the rest.
+VkFormat vulkanFormat(uint32_t imageFormat) {
+    switch (imageFormat) {
+    case 1:
+        return VK_FORMAT_R32G32B32A32_SFLOAT; // Rgba32f
+    case 2:
+        return VK_FORMAT_R16G16B16A16_SFLOAT; // Rgba16f
+    case 3:
+        return VK_FORMAT_R32_SFLOAT; // R32f
+    case 4:
+        return VK_FORMAT_R8G8B8A8_UNORM; // Rgba8
+    case 6:
+        return VK_FORMAT_R32G32_SFLOAT; // Rg32f
+    case 7:
+        return VK_FORMAT_R16G16_SFLOAT; // Rg16f
+    case 9:
+        return VK_FORMAT_R16_SFLOAT; // R16f
+    case 30:
+        return VK_FORMAT_R32G32B32A32_UINT; // Rgba32ui
+    case 33:
+        return VK_FORMAT_R32_UINT; // R32ui
+    default:
+        return VK_FORMAT_UNDEFINED;
+    }
+}
+
 // Calls visit(op, operands, operand count) for each instruction after the module's header.
 template <typename Visit> void forEachInstruction(const uint32_t* code, size_t words, Visit visit) {
     for (size_t i = 5; i < words;) {
@@ -40,6 +67,32 @@ template <typename Visit> void forEachInstruction(const uint32_t* code, size_t w
         if (count == 0 || i + count > words) break;
         visit(op, code + i + 1, count - 1);
         i += count;
+    }
+}
+
+// How the shaders spell a format (their layout qualifier), for the messages.
+std::string formatName(VkFormat format) {
+    switch (format) {
+    case VK_FORMAT_R32G32B32A32_SFLOAT:
+        return "rgba32f";
+    case VK_FORMAT_R16G16B16A16_SFLOAT:
+        return "rgba16f";
+    case VK_FORMAT_R32_SFLOAT:
+        return "r32f";
+    case VK_FORMAT_R8G8B8A8_UNORM:
+        return "rgba8";
+    case VK_FORMAT_R32G32_SFLOAT:
+        return "rg32f";
+    case VK_FORMAT_R16G16_SFLOAT:
+        return "rg16f";
+    case VK_FORMAT_R16_SFLOAT:
+        return "r16f";
+    case VK_FORMAT_R32G32B32A32_UINT:
+        return "rgba32ui";
+    case VK_FORMAT_R32_UINT:
+        return "r32ui";
+    default:
+        return "VkFormat " + std::to_string(int(format));
     }
 }
 
@@ -60,11 +113,12 @@ static std::string literalString(const uint32_t* words, size_t count) {
 std::map<uint32_t, ShaderBinding> shaderBindings(const uint32_t* code, size_t words, uint32_t set) {
     std::map<uint32_t, uint32_t> bindingOf, setOf;
     std::map<uint32_t, std::string> nameOf;
-    std::set<uint32_t> bufferBlocks;         // structs decorated BufferBlock (old-style SSBOs)
-    std::set<uint32_t> nonWritable;          // variables decorated NonWritable (readonly)
-    std::map<uint32_t, uint32_t> imageUsage; // OpTypeImage id -> Sampled operand (1 or 2)
-    std::set<uint32_t> sampledImages;        // OpTypeSampledImage ids
-    std::map<uint32_t, uint32_t> elementOf;  // array type -> element type
+    std::set<uint32_t> bufferBlocks;          // structs decorated BufferBlock (old-style SSBOs)
+    std::set<uint32_t> nonWritable;           // variables decorated NonWritable (readonly)
+    std::map<uint32_t, uint32_t> imageUsage;  // OpTypeImage id -> Sampled operand (1 or 2)
+    std::map<uint32_t, uint32_t> imageFormat; // OpTypeImage id -> Image Format operand
+    std::set<uint32_t> sampledImages;         // OpTypeSampledImage ids
+    std::map<uint32_t, uint32_t> elementOf;   // array type -> element type
     std::map<uint32_t, std::pair<uint32_t, uint32_t>> pointers; // id -> storage class, pointee
     std::vector<std::pair<uint32_t, uint32_t>> variables;       // id, pointer type
     forEachInstruction(code, words, [&](uint32_t op, const uint32_t* w, uint32_t operands) {
@@ -80,6 +134,7 @@ std::map<uint32_t, ShaderBinding> shaderBindings(const uint32_t* code, size_t wo
             break;
         case OpTypeImage:
             imageUsage[w[0]] = w[6];
+            imageFormat[w[0]] = w[7];
             break;
         case OpTypeSampledImage:
             sampledImages.insert(w[0]);
@@ -121,7 +176,10 @@ std::map<uint32_t, ShaderBinding> shaderBindings(const uint32_t* code, size_t wo
             continue;
         std::string name = nameOf.count(id) ? nameOf[id] : "";
         if (name.empty() && nameOf.count(type)) name = nameOf[type]; // an anonymous block
-        result[bindingOf[id]] = {descriptor, name, !nonWritable.count(id)};
+        const VkFormat format = descriptor == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE
+                                    ? vulkanFormat(imageFormat[type])
+                                    : VK_FORMAT_UNDEFINED;
+        result[bindingOf[id]] = {descriptor, name, !nonWritable.count(id), format};
     }
     return result;
 }
@@ -195,6 +253,11 @@ void checkBindings(const std::string& shader, const std::map<uint32_t, ShaderBin
             throw VulkanError(shader + " binding " + std::to_string(binding) + " is " + what +
                               ", which it may write (not declared readonly), and the pass takes "
                               "it as read only: its writes would go unsynchronized");
+        if (found.format != VK_FORMAT_UNDEFINED && expected.format != VK_FORMAT_UNDEFINED &&
+            found.format != expected.format)
+            throw VulkanError(shader + " binding " + std::to_string(binding) + " is " + what +
+                              " declared as " + formatName(found.format) +
+                              ", and the pass binds an image of " + formatName(expected.format));
     }
     for (uint32_t binding = 0; binding < layout.size(); ++binding)
         if (!declared.count(binding))

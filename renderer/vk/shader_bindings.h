@@ -20,6 +20,9 @@ struct ShaderBinding {
     VkDescriptorType type;
     std::string name;
     bool writable = true; // false where the shader declares it readonly (NonWritable)
+    // A storage image's format as the shader declares it (layout(rgba16f) ...), or UNDEFINED
+    // where it declares none (a write without a format) or the format is none this project uses.
+    VkFormat format = VK_FORMAT_UNDEFINED;
 };
 
 // Binding number -> every resource in descriptor set `set` (uniform buffers, storage buffers,
@@ -39,13 +42,17 @@ WorkgroupSize shaderWorkgroupSize(const uint32_t* code, size_t words);
 
 // One binding of a pipeline's layout: its type and, where the caller names it, the name the
 // shader must give it (empty: only the type is checked); `readOnly`: the caller takes the
-// shader never to write it (a frame graph's StorageRead), which the shader must then declare.
+// shader never to write it (a frame graph's StorageRead), which the shader must then declare;
+// `format`: a storage image's, which a format the shader declares must match (UNDEFINED: not
+// known, not checked).
 struct LayoutBinding {
-    LayoutBinding(VkDescriptorType type, std::string name = {}, bool readOnly = false)
-        : type(type), name(std::move(name)), readOnly(readOnly) {}
+    LayoutBinding(VkDescriptorType type, std::string name = {}, bool readOnly = false,
+                  VkFormat format = VK_FORMAT_UNDEFINED)
+        : type(type), name(std::move(name)), readOnly(readOnly), format(format) {}
     VkDescriptorType type;
     std::string name;
     bool readOnly;
+    VkFormat format;
 };
 
 // Throws VulkanError naming the shader and the binding where `layout` (binding i is layout[i])
@@ -53,7 +60,8 @@ struct LayoutBinding {
 // one the shader reads that the layout lacks, one the layout has that the shader never
 // declares, or a storage image the layout takes as read-only that the shader may write
 // (synchronization validation, and the GPU, count a dispatch's writable storage image as
-// written, whatever the shader does with it).
+// written, whatever the shader does with it), or a storage image whose declared format is not
+// the bound image's (its texels would be read or written as another layout).
 void checkBindings(const std::string& shader, const std::map<uint32_t, ShaderBinding>& declared,
                    const std::vector<LayoutBinding>& layout);
 
