@@ -105,8 +105,9 @@ TEST_F(ReuseWhileMovingTest, AWholePixelShiftKeepsTheConvergedValue) {
         const std::vector<bool> on = covered(renderer);
         for (uint32_t y = 0; y < kSize; ++y)
             for (uint32_t x = kSize - 3; x < kSize; ++x)
-                if (on[y * kSize + x])
+                if (on[y * kSize + x]) {
                     EXPECT_TRUE(fresh[y * kSize + x]) << kEffects[k] << " at " << x << "," << y;
+                }
     }
 }
 
