@@ -1,0 +1,64 @@
+#!/usr/bin/env python3
+"""Which passes run on a moving frame, and how much of each cached effect they compute: along a
+scene's camera path, the share of the covered pixels each cached effect computed (its raw image's
+alpha is 1 there, 0 where it reused its cache) and every pass's GPU milliseconds, as means over
+the frames after the first four. Settings as `--set` takes them.
+
+    PYTHONPATH=build/python python3 bench/computed_pixels.py scenes/bunny.json --frames 48 \\
+        --set cache_reuse_moving=1 --set cache_blur_indirect=4
+
+On lavapipe a pass's time is a CPU time: compare runs of one machine, one after the other."""
+import argparse
+import json
+import statistics
+
+import ssgi
+
+EFFECTS = ["shadow", "ao", "ssdo", "indirect", "sky_visibility"]
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("scene")
+    parser.add_argument("--frames", type=int, default=48)
+    parser.add_argument("--size", default="256x256")
+    parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE")
+    args = parser.parse_args()
+    scene = ssgi.Scene(args.scene)
+    for item in args.set:
+        key, value = item.split("=", 1)
+        kind = type(scene.settings[key])
+        scene.settings[key] = kind(float(value)) if kind is not bool else value not in ("0", "false")
+    with open(args.scene) as f:
+        path = json.load(f).get("camera_path", [])
+    duration = path[-1]["time"] if path else 0.0
+    width, height = (int(v) for v in args.size.split("x"))
+    renderer = ssgi.Renderer(scene, size=(width, height), keep=EFFECTS)
+    computed = {e: [] for e in EFFECTS}
+    passes = {}
+    for f in range(args.frames):
+        renderer.set_time(duration * f / max(args.frames - 1, 1))
+        renderer.render(1)
+        if f < 4:
+            continue
+        covered = renderer.read("gbuffer.position")[..., 3] != 0
+        for e in EFFECTS:
+            try:
+                raw = renderer.read(e)[..., 3]
+            except Exception:  # not in this frame (not cached, or not on)
+                continue
+            computed[e].append(float(((raw > 0.5) & covered).sum()) / max(int(covered.sum()), 1))
+        for name, ms in renderer.profile()["passes"].items():
+            passes.setdefault(name, []).append(ms)
+    print("computed share of the covered pixels (mean over frames 4-%d):" % (args.frames - 1))
+    for e, shares in computed.items():
+        if shares:
+            print("  %-16s %5.1f%%" % (e, 100.0 * statistics.mean(shares)))
+    print("GPU ms per pass (mean):")
+    for name, ms in passes.items():
+        print("  %-24s %7.2f" % (name, statistics.mean(ms)))
+    print("  %-24s %7.2f" % ("sum", sum(statistics.mean(ms) for ms in passes.values())))
+
+
+if __name__ == "__main__":
+    main()
