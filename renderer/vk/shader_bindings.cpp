@@ -33,31 +33,34 @@ enum Decoration : uint32_t {
 enum StorageClass : uint32_t { UniformConstant = 0, Uniform = 2, StorageBuffer = 12 };
 enum ExecutionMode : uint32_t { LocalSize = 17, LocalSizeId = 38 };
 
-// A storage image's Image Format operand (SPIR-V specification, 3.11) as the Vulkan format it
-// names, for the formats this project's images have; UNDEFINED for Unknown and the rest.
+// The storage image formats this project's images have: a format's Image Format operand in
+// SPIR-V (specification, 3.11), its Vulkan format, and how GLSL spells it (for the messages).
+struct StorageFormat {
+    uint32_t spirv;
+    VkFormat vulkan;
+    const char* glsl;
+};
+constexpr StorageFormat kStorageFormats[] = {{1, VK_FORMAT_R32G32B32A32_SFLOAT, "rgba32f"},
+                                             {2, VK_FORMAT_R16G16B16A16_SFLOAT, "rgba16f"},
+                                             {3, VK_FORMAT_R32_SFLOAT, "r32f"},
+                                             {4, VK_FORMAT_R8G8B8A8_UNORM, "rgba8"},
+                                             {6, VK_FORMAT_R32G32_SFLOAT, "rg32f"},
+                                             {7, VK_FORMAT_R16G16_SFLOAT, "rg16f"},
+                                             {9, VK_FORMAT_R16_SFLOAT, "r16f"},
+                                             {30, VK_FORMAT_R32G32B32A32_UINT, "rgba32ui"},
+                                             {33, VK_FORMAT_R32_UINT, "r32ui"}};
+
+// The Vulkan format an Image Format operand names; UNDEFINED for Unknown and the rest.
 VkFormat vulkanFormat(uint32_t imageFormat) {
-    switch (imageFormat) {
-    case 1:
-        return VK_FORMAT_R32G32B32A32_SFLOAT; // Rgba32f
-    case 2:
-        return VK_FORMAT_R16G16B16A16_SFLOAT; // Rgba16f
-    case 3:
-        return VK_FORMAT_R32_SFLOAT; // R32f
-    case 4:
-        return VK_FORMAT_R8G8B8A8_UNORM; // Rgba8
-    case 6:
-        return VK_FORMAT_R32G32_SFLOAT; // Rg32f
-    case 7:
-        return VK_FORMAT_R16G16_SFLOAT; // Rg16f
-    case 9:
-        return VK_FORMAT_R16_SFLOAT; // R16f
-    case 30:
-        return VK_FORMAT_R32G32B32A32_UINT; // Rgba32ui
-    case 33:
-        return VK_FORMAT_R32_UINT; // R32ui
-    default:
-        return VK_FORMAT_UNDEFINED;
-    }
+    for (const StorageFormat& f : kStorageFormats)
+        if (f.spirv == imageFormat) return f.vulkan;
+    return VK_FORMAT_UNDEFINED;
+}
+
+std::string formatName(VkFormat format) {
+    for (const StorageFormat& f : kStorageFormats)
+        if (f.vulkan == format) return f.glsl;
+    return "VkFormat " + std::to_string(int(format));
 }
 
 // Calls visit(op, operands, operand count) for each instruction after the module's header.
@@ -67,32 +70,6 @@ template <typename Visit> void forEachInstruction(const uint32_t* code, size_t w
         if (count == 0 || i + count > words) break;
         visit(op, code + i + 1, count - 1);
         i += count;
-    }
-}
-
-// How the shaders spell a format (their layout qualifier), for the messages.
-std::string formatName(VkFormat format) {
-    switch (format) {
-    case VK_FORMAT_R32G32B32A32_SFLOAT:
-        return "rgba32f";
-    case VK_FORMAT_R16G16B16A16_SFLOAT:
-        return "rgba16f";
-    case VK_FORMAT_R32_SFLOAT:
-        return "r32f";
-    case VK_FORMAT_R8G8B8A8_UNORM:
-        return "rgba8";
-    case VK_FORMAT_R32G32_SFLOAT:
-        return "rg32f";
-    case VK_FORMAT_R16G16_SFLOAT:
-        return "rg16f";
-    case VK_FORMAT_R16_SFLOAT:
-        return "r16f";
-    case VK_FORMAT_R32G32B32A32_UINT:
-        return "rgba32ui";
-    case VK_FORMAT_R32_UINT:
-        return "r32ui";
-    default:
-        return "VkFormat " + std::to_string(int(format));
     }
 }
 
