@@ -28,6 +28,10 @@ constexpr float kMaxClipRatio = 1e5f;
 // The whole file as bytes; InputError naming it when it is missing or unreadable.
 std::string readInputFile(const std::string& path);
 
+// The glTF at `path` (.gltf or .glb) parsed, its buffers and images read from beside it
+// (gltf_files.cpp); InputError naming the file and the problem.
+tinygltf::Model readGltfModel(const std::string& path);
+
 // Says each kind of warning once per file: a model with 500 skinned nodes gets one line.
 class GltfWarnings {
 public:
