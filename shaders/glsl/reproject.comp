@@ -24,7 +24,7 @@ void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
     vec4 position = gbufferPosition(pixel);
-    SurfaceReprojection s = SurfaceReprojection(false, vec2(0.0), ivec2(0), 0.0, 0);
+    SurfaceReprojection s = SurfaceReprojection(false, vec2(0.0), ivec2(0), 0);
     if (position.w != 0.0 && constants.historyValid != 0)
         s = reprojectSurface(position.xyz, texelFetch(gbufferNormal, pixel, 0).xyz,
                              constants.epsilon, constants.thinGeometry != 0);

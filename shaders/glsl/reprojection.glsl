@@ -20,7 +20,6 @@ struct SurfaceReprojection {
     bool found;    // a history texel holds the surface
     vec2 uv;       // where the point lay in last frame's image
     ivec2 texel;   // the texel that holds it (the nearest, or one beside it)
-    float epsilon; // the world-space tolerance of the test
     int footprint; // bit i: texel floor(uv * size - 0.5) + (i & 1, i >> 1) holds it (bilinear)
 };
 
@@ -35,7 +34,7 @@ struct SurfaceReprojection {
 // last frame (a disocclusion) and starts over.
 SurfaceReprojection reprojectSurface(vec3 world, vec3 normal, float epsilonPixels,
                                      bool thinGeometry) {
-    SurfaceReprojection s = SurfaceReprojection(false, vec2(0.0), ivec2(0), 0.0, 0);
+    SurfaceReprojection s = SurfaceReprojection(false, vec2(0.0), ivec2(0), 0);
     vec4 clip = frame.previousViewProjection * vec4(world, 1.0);
     if (clip.w <= 0.0) return s;
     s.uv = clip.xy / clip.w * 0.5 + 0.5;
@@ -46,9 +45,9 @@ SurfaceReprojection reprojectSurface(vec3 world, vec3 normal, float epsilonPixel
     s.texel = ivec2(s.uv * vec2(size));
     vec4 h = historyPosition(s.texel);
     float facing = abs(dot(normal, normalize(frame.cameraPosition.xyz - world)));
-    s.epsilon = epsilonPixels / (pixelsPerUnit(viewDepth(world)) * max(facing, 0.1));
+    float epsilon = epsilonPixels / (pixelsPerUnit(viewDepth(world)) * max(facing, 0.1));
     float nearest = h.w > 0.0 ? distance(h.xyz, world) : 1e30;
-    if (nearest > s.epsilon && thinGeometry &&
+    if (nearest > epsilon && thinGeometry &&
         (h.w == 0.0 || (frame.previousViewProjection * vec4(h.xyz, 1.0)).w > clip.w)) {
         ivec2 centre = s.texel;
         for (int y = -1; y <= 1; ++y)
@@ -62,30 +61,29 @@ SurfaceReprojection reprojectSurface(vec3 world, vec3 normal, float epsilonPixel
                 }
             }
     }
-    s.found = nearest <= s.epsilon;
+    s.found = nearest <= epsilon;
     if (!s.found) return s;
     ivec2 base = ivec2(floor(s.uv * vec2(size) - 0.5));
     for (int i = 0; i < 4; ++i) {
         vec4 m = historyPosition(clamp(base + ivec2(i & 1, i >> 1), ivec2(0), size - 1));
-        if (m.w > 0.0 && distance(m.xyz, world) <= s.epsilon) s.footprint |= 1 << i;
+        if (m.w > 0.0 && distance(m.xyz, world) <= epsilon) s.footprint |= 1 << i;
     }
     return s;
 }
 
-// The reprojection pass's image packs a SurfaceReprojection per pixel (RGBA32F): uv in xy,
-// epsilon in z, and in w, as a whole number, found (bit 0), the texel's offset from the nearest
-// one (bits 1-4: (dx + 1) + 3 (dy + 1)) and the footprint (bits 5-8).
+// The reprojection pass's image packs a SurfaceReprojection per pixel (RGBA32F): uv in xy, and
+// in z, as a whole number, found (bit 0), the texel's offset from the nearest one (bits 1-4:
+// (dx + 1) + 3 (dy + 1)) and the footprint (bits 5-8); w is unused.
 vec4 packReprojection(SurfaceReprojection s) {
     if (!s.found) return vec4(0.0);
     ivec2 size = textureSize(historyViewDepth, 0);
     ivec2 offset = s.texel - ivec2(s.uv * vec2(size)) + 1;
     int bits = 1 | ((offset.x + 3 * offset.y) << 1) | (s.footprint << 5);
-    return vec4(s.uv, s.epsilon, float(bits));
+    return vec4(s.uv, float(bits), 0.0);
 }
 SurfaceReprojection unpackReprojection(vec4 packed) {
-    int bits = int(packed.w);
-    SurfaceReprojection s = SurfaceReprojection((bits & 1) != 0, packed.xy, ivec2(0), packed.z,
-                                                bits >> 5);
+    int bits = int(packed.z);
+    SurfaceReprojection s = SurfaceReprojection((bits & 1) != 0, packed.xy, ivec2(0), bits >> 5);
     int offset = (bits >> 1) & 15;
     s.texel = ivec2(packed.xy * vec2(textureSize(historyViewDepth, 0))) +
               ivec2(offset % 3, offset / 3) - 1;

@@ -113,12 +113,6 @@ void main() {
         imageStore(newCount, pixel, vec4(0.0));
         return;
     }
-    // Reused while the camera moves, a pixel's value is computed again once its blur passes a
-    // limit between half the budget and the budget, drawn per workgroup, so that the pixels that
-    // started together (after a cut) do not all fall due in the same frame.
-    bool reuseWhileMoving = (constants.cache.reprojection & REUSE_WHILE_MOVING) != 0;
-    float limit = constants.cache.blurBudget;
-    if (reuseWhileMoving) limit *= 0.5 + 0.25 * pixelRotation(ivec2(gl_WorkGroupID.xy)) / PI;
     CacheConstants cache = constants.cache;
     vec4 now = texelFetch(current, pixel, 0);
     Reprojection r = reproject(pixel, position.xyz, texelFetch(gbufferNormal, pixel, 0).xyz, cache);
@@ -132,6 +126,12 @@ void main() {
     bool resized = SCALAR_HISTORY == 0 &&
                    any(notEqual(textureSize(historyValue, 0), ivec2(frame.viewport.xy)));
     float budget = cache.blurBudget;
+    // Reused while the camera moves, a pixel's value is computed again once its blur passes a
+    // limit between half the budget and the budget, drawn per workgroup, so that the pixels that
+    // started together (after a cut) do not all fall due in the same frame.
+    bool reuseWhileMoving = (cache.reprojection & REUSE_WHILE_MOVING) != 0;
+    float limit = budget;
+    if (reuseWhileMoving) limit *= 0.5 + 0.25 * pixelRotation(ivec2(gl_WorkGroupID.xy)) / PI;
     float rotations = float(cache.rotations);
     vec3 value;
     float count, blur = 0.0;
@@ -222,9 +222,9 @@ void main() {
     // value motion blurred, once the camera holds still, so that it accumulates again.
     if (blur + spread > budget && count >= rotations) count = rotations - 1.0;
     // Reused while the camera moves, a value whose blur one more frame of this motion would take
-    // past the budget is due: computed the next frame.
-    // The pixels the device runs together (a subgroup: 8 on lavapipe, 32 on NVIDIA) fall due
-    // together: a subgroup in which one pixel computes costs what all of them computing does.
+    // past its limit is due: computed the next frame. The pixels the device runs together (a
+    // subgroup: 8 on lavapipe, 32 on NVIDIA) fall due together: a subgroup in which one pixel
+    // computes costs what all of them computing does.
     bool due = subgroupAny(reuseWhileMoving && blur + spread > limit);
     if (spread == 0.0 && blur > REACCUMULATE_BLUR && count >= rotations) count = rotations - 1.0;
     if (blur < 1e-3) blur = 0.0; // below a thirtieth of a pixel: gone

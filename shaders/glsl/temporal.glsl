@@ -150,10 +150,15 @@ bool cameraMoved() {
     return frame.viewProjection != frame.previousViewProjection;
 }
 
+// Whether every texel of the bilinear footprint around the reprojected point holds the pixel's
+// surface: away from depth edges, where resampling reads the pixel's own surface all round.
+bool footprintWhole(Reprojection r) {
+    return r.footprint == 15;
+}
+
 // Whether a history reused while the camera moves (REUSE_WHILE_MOVING) is reused here: it holds
 // one computation or more, the temporal pass did not find its blur at the budget, and
 // resampling stays on its surface (footprintWhole).
-bool footprintWhole(Reprojection r);
 bool reusedWhileMoving(Reprojection r, CacheConstants cache) {
     return (cache.reprojection & REUSE_WHILE_MOVING) != 0 && cameraMoved() && !exactEffect(cache) &&
            r.count >= 1.0 && !r.due && footprintWhole(r);
@@ -163,6 +168,10 @@ bool reusedWhileMoving(Reprojection r, CacheConstants cache) {
 // tile, widened by `margin` pixels on every side, is computed although converged.
 bool convergedAround(ivec2 pixel, Reprojection r, CacheConstants cache, int margin) {
     if (!r.valid) return false;
+    // An exact effect is reused only where resampling stays on its surface: along a depth edge
+    // the history's value comes from fewer texels and moves with the edge, and one computation
+    // there costs less than the blur it would leave after a stop.
+    if (exactEffect(cache) && !footprintWhole(r)) return false;
     if (r.count < float(cache.rotations) && !reusedWhileMoving(r, cache)) return false;
     if (r.due) return false;
     if (exactEffect(cache) && r.count >= EXACT_BLURRED && !cameraMoved()) return false;
@@ -172,19 +181,8 @@ bool convergedAround(ivec2 pixel, Reprojection r, CacheConstants cache, int marg
            any(greaterThanEqual(pixel, corner + cache.tileSize + margin));
 }
 
-// Whether every texel of the bilinear footprint around the reprojected point holds the pixel's
-// surface: away from depth edges, where resampling reads the pixel's own surface all round.
-bool footprintWhole(Reprojection r) {
-    return r.footprint == 15;
-}
-
 bool convergedAround(ivec2 pixel, vec3 world, vec3 normal, CacheConstants cache, int margin) {
-    Reprojection r = reproject(pixel, world, normal, cache);
-    // An exact effect is reused only where resampling stays on its surface: along a depth edge
-    // the history's value comes from fewer texels and moves with the edge, and one computation
-    // there costs less than the blur it would leave after a stop.
-    if (exactEffect(cache) && r.valid && !footprintWhole(r)) return false;
-    return convergedAround(pixel, r, cache, margin);
+    return convergedAround(pixel, reproject(pixel, world, normal, cache), cache, margin);
 }
 
 bool converged(ivec2 pixel, vec3 world, vec3 normal, CacheConstants cache) {
