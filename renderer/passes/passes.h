@@ -18,8 +18,9 @@ namespace ssgi {
 // The cached effects of one pass (cached_effect_pass.h) return what their consumers read: the
 // blended history, or the raw value without a cache.
 // reprojection: where each pixel's surface lay last frame, for every cached effect; made when
-// caching is on, before the first cached effect (CacheSet::reprojection).
-graph::ImageRef addReprojectionPass(FrameBuild& build, const GBuffer& gbuffer);
+// caching is on, before the first cached effect; its image is CacheSet::reprojection, which
+// cacheBindings hands every cached effect's passes.
+void addReprojectionPass(FrameBuild& build, const GBuffer& gbuffer);
 // shadow: fraction of the spot light's disk each pixel sees (PCF/PCSS, or a hard test).
 graph::ImageRef addShadowPass(FrameBuild& build, const GBufferAndRsm& inputs);
 // contact: the shadow term with screen-space contact shadows added; with depth peeling's second

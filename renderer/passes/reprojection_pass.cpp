@@ -9,7 +9,7 @@
 
 namespace ssgi {
 
-graph::ImageRef addReprojectionPass(FrameBuild& build, const GBuffer& gbuffer) {
+void addReprojectionPass(FrameBuild& build, const GBuffer& gbuffer) {
     const graph::ImageRef image =
         build.graph.createImage("reprojection", VK_FORMAT_R32G32B32A32_SFLOAT, build.size,
                                 VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
@@ -31,7 +31,6 @@ graph::ImageRef addReprojectionPass(FrameBuild& build, const GBuffer& gbuffer) {
         r.dispatch(settled ? 0 : build.size.width, settled ? 0 : build.size.height, constants);
     });
     build.caches.reprojection = image;
-    return image;
 }
 
 } // namespace ssgi
