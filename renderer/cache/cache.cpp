@@ -63,7 +63,8 @@ shader::CacheConstants cacheConstants(const Settings& settings, const EffectCach
     c.blurBudget = cache->blurBudget;
     c.reprojection = (settings.cache_thin_geometry ? REPROJECT_THIN_GEOMETRY : 0) |
                      (settings.cache_screen_edge ? REPROJECT_SCREEN_EDGE : 0) |
-                     (settings.cache_reuse_moving ? REUSE_WHILE_MOVING : 0);
+                     (settings.cache_reuse_moving ? REUSE_WHILE_MOVING : 0) |
+                     (cache->effect.viewIndependent ? REUSE_AGREEING : 0);
     return c;
 }
 

@@ -39,6 +39,12 @@ struct CachedEffect {
     // computation is converged (its rotations are 1), and a value computed again replaces its
     // history rather than being blended into it.
     bool exact = false;
+    // Its value does not depend on the view (the shadow of a still light, the sky's visibility
+    // from world-space maps): where the history's texels around a reprojected point agree,
+    // resampling them blurs nothing, and the value is kept while the camera moves
+    // (temporal.comp historyAt). A screen-space effect's agreeing value was right for the view
+    // that computed it, not necessarily for this one.
+    bool viewIndependent = false;
 };
 
 // The temporal cache of one effect: its declaration, its history as two ping-pong pairs

@@ -9,9 +9,12 @@ namespace ssgi {
 graph::ImageRef addShadowPass(FrameBuild& build, const GBufferAndRsm& in) {
     CachedComputePass pass;
     // A moved light restarts it; a moved object, the pixels whose path to the light passes
-    // near it.
-    pass.effect = {
-        .name = "shadow", .lightDependent = true, .scalar = true, .motionTest = MOTION_LIGHT_PATH};
+    // near it. Computed in the light's space, it is the same from any view.
+    pass.effect = {.name = "shadow",
+                   .lightDependent = true,
+                   .scalar = true,
+                   .motionTest = MOTION_LIGHT_PATH,
+                   .viewIndependent = true};
     pass.shader = "shadow.comp";
     using graph::Use;
     pass.inputs = {{"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},

@@ -169,7 +169,8 @@ graph::ImageRef addSkyVisibilityPasses(FrameBuild& build, const GBufferAndRsm& i
                    .lightDependent = false,
                    .scalar = false,
                    .motionTest = MOTION_RESTART_ALL,
-                   .exact = true};
+                   .exact = true,
+                   .viewIndependent = true};
     pass.shader = "sky_visibility.comp";
     pass.inputs = {{"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
                    {"gbufferNormal", in.gbuffer.normal, Use::Sampled},

@@ -64,7 +64,7 @@ struct FrameUniforms {
     float exposure;      // multiplies the radiance before tone mapping
     float patternFrame;  // where the sampling patterns stand: RenderOptions::patternStart + frame
     float sceneDiagonal; // length of the scene's bounding box's diagonal (world units)
-    float unused0;       // pads the four floats to a vec4's 16 bytes (std140)
+    float cameraMoved;   // 1 where viewProjection differs from previousViewProjection, else 0
     // Objects that moved since the last frame: box i spans movedBoxes[2i].xyz..movedBoxes[2i+1].xyz
     // (world space, old and new place together); motion.x = number of boxes (at most 4).
     vec4 movedBoxes[8];
@@ -100,6 +100,9 @@ SSGI_CHECK_SIZE(DrawConstants, 96);
 // while the camera moves, a pixel whose history holds one computation or more is reused until
 // its resampling blur reaches the effect's budget (temporal.glsl convergedAround).
 #define REUSE_WHILE_MOVING 4
+// A view-independent effect's value (CachedEffect::viewIndependent) whose history texels agree
+// is resampled without blur: kept while the camera moves (temporal.comp historyAt).
+#define REUSE_AGREEING 8
 
 // The display transform, per colour channel: Narkowicz's fit of the ACES filmic curve of
 // exposed linear radiance, then the sRGB encoding. The composite applies it on the GPU; the

@@ -28,6 +28,12 @@ layout(constant_id = 0) const int SCALAR_HISTORY = 0;
 // convergence, so a budget up to 4 px^2 restarts once.
 const float RESTART_BLUR = 0.25;
 const float REACCUMULATE_BLUR = 0.05;
+// Texels that differ by at most this fraction of the largest (or of AGREE_FLOOR, where all are
+// about 0) are one value to resampling (historyAt).
+const float AGREE_TOLERANCE = 1.0 / 2048.0;
+const float AGREE_FLOOR = 1e-4;
+// The most blur one frame of motion adds (a filter's spread, squared pixels).
+const float MOTION_BLUR_STEP = 0.5;
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
 layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
@@ -63,7 +69,11 @@ void storeHistory(ivec2 pixel, vec3 value, float blur) {
 // Each frame of motion adds up to half a pixel^2; a still camera samples texel centres and adds
 // nothing. The distances are in this frame's pixels: after a resize the history's texels are of
 // another size (Renderer::continueFrom), and what resampling them blurs counts the same.
-vec4 historyAt(Reprojection r, out float spread) {
+// `agree`: a view-independent effect's four texels all hold the surface and agree to within
+// AGREE_TOLERANCE of the largest; any filter over them gives the same value, so resampling them
+// adds no blur (a lit or umbral region of the shadow). `spread` is the filter's all the same:
+// whether the camera moved.
+vec4 historyAt(Reprojection r, out float spread, out bool agree) {
     vec2 size = vec2(textureSize(historyValue, 0));
     vec2 toPixels = frame.viewport.xy / size;
     vec2 texel = r.uv * size - 0.5;
@@ -73,6 +83,8 @@ vec4 historyAt(Reprojection r, out float spread) {
     vec4 sum = vec4(0.0);
     float weights = 0.0;
     spread = 0.0;
+    vec3 low = vec3(1e30), high = vec3(-1e30);
+    int texels = 0;
     for (int i = 0; i < 4; ++i) {
         ivec2 offset = ivec2(i & 1, i >> 1);
         ivec2 q = clamp(base + offset, ivec2(0), last);
@@ -83,7 +95,13 @@ vec4 historyAt(Reprojection r, out float spread) {
         sum += w * v;
         spread += w * dot(d, d);
         weights += w;
+        low = min(low, v.rgb);
+        high = max(high, v.rgb);
+        ++texels;
     }
+    float largest = max(max(abs(high.r), abs(high.g)), max(abs(high.b), AGREE_FLOOR));
+    agree = (constants.cache.reprojection & REUSE_AGREEING) != 0 && texels == 4 &&
+            all(lessThanEqual(high - low, vec3(AGREE_TOLERANCE * largest)));
     vec4 v;
     if (weights > 1e-6) {
         v = sum / weights;
@@ -100,7 +118,7 @@ vec4 historyAt(Reprojection r, out float spread) {
         spread = 0.0;
         v = historyTexel(r.texel);
     }
-    return vec4(v.rgb, v.a + spread);
+    return vec4(v.rgb, v.a + (agree ? 0.0 : spread));
 }
 
 void main() {
@@ -117,7 +135,12 @@ void main() {
     vec4 now = texelFetch(current, pixel, 0);
     Reprojection r = reproject(pixel, position.xyz, texelFetch(gbufferNormal, pixel, 0).xyz, cache);
     float spread = 0.0;
-    vec4 history = r.valid ? historyAt(r, spread) : vec4(0.0);
+    bool agree = false;
+    vec4 history = r.valid ? historyAt(r, spread, agree) : vec4(0.0);
+    // The blur this frame's resampling added, and what the next frame's will add if the camera
+    // moves as it did (or, from a still camera, as far as one frame of motion can).
+    float added = agree ? 0.0 : spread;
+    float nextAdded = agree ? 0.0 : spread > 0.0 ? spread : MOTION_BLUR_STEP;
     // The first frame after a resize, whose history still has the old size: a colour history
     // (the indirect light, SSDO: smooth) keeps its weight through the one resampling, whatever
     // its budget; a scalar one keeps it within its budget only, and the sharp shadow (budget 0)
@@ -142,6 +165,9 @@ void main() {
         value = history.rgb;
         count = r.count;
         blur = history.a;
+        // Resampled past its budget (its texels no longer agree), the value counts as one
+        // sample: computed again next frame, it is soon replaced, moving or still.
+        if (blur > budget && !resized) count = min(count, 1.0);
     } else if (!r.valid || exact) {
         value = now.rgb;
         count = 1.0;
@@ -220,12 +246,12 @@ void main() {
     // A value that one more frame of this motion would take past the budget is not reused then:
     // its count stays below convergence, so the effect computes it again; so is a converged
     // value motion blurred, once the camera holds still, so that it accumulates again.
-    if (blur + spread > budget && count >= rotations) count = rotations - 1.0;
+    if (blur + added > budget && count >= rotations) count = rotations - 1.0;
     // Reused while the camera moves, a value whose blur one more frame of this motion would take
     // past its limit is due: computed the next frame. The pixels the device runs together (a
     // subgroup: 8 on lavapipe, 32 on NVIDIA) fall due together: a subgroup in which one pixel
     // computes costs what all of them computing does.
-    bool due = subgroupAny(reuseWhileMoving && blur + spread > limit);
+    bool due = subgroupAny(reuseWhileMoving && blur + nextAdded > limit);
     if (spread == 0.0 && blur > REACCUMULATE_BLUR && count >= rotations) count = rotations - 1.0;
     if (blur < 1e-3) blur = 0.0; // below a thirtieth of a pixel: gone
     storeHistory(pixel, value, blur);

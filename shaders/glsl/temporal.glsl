@@ -76,7 +76,7 @@ bool gatherMeetsEdge(vec3 world, vec4 previousClip, CacheConstants cache) {
     if ((cache.reprojection & REPROJECT_SCREEN_EDGE) == 0 || cache.motionTest != MOTION_NEAR_BOX ||
         cache.motionReach <= 0.0)
         return false;
-    if (frame.viewProjection == frame.previousViewProjection) return false;
+    if (frame.cameraMoved == 0.0) return false;
     vec4 clip = frame.viewProjection * vec4(world, 1.0);
     vec2 size = frame.viewport.xy;
     float pixelsAtUnitDepth = abs(frame.projection[1][1]) * 0.5 * size.y;
@@ -147,7 +147,7 @@ const float EXACT_BLURRED = 1.5;
 
 // Whether the camera moved since the last frame.
 bool cameraMoved() {
-    return frame.viewProjection != frame.previousViewProjection;
+    return frame.cameraMoved != 0.0;
 }
 
 // Whether every texel of the bilinear footprint around the reprojected point holds the pixel's
@@ -173,7 +173,9 @@ bool convergedAround(ivec2 pixel, Reprojection r, CacheConstants cache, int marg
     // there costs less than the blur it would leave after a stop.
     if (exactEffect(cache) && !footprintWhole(r)) return false;
     if (r.count < float(cache.rotations) && !reusedWhileMoving(r, cache)) return false;
-    if (r.due) return false;
+    // Due: the temporal pass found that resampling would take it past its limit if the camera
+    // moves; a still camera adds no blur.
+    if (r.due && cameraMoved()) return false;
     if (exactEffect(cache) && r.count >= EXACT_BLURRED && !cameraMoved()) return false;
     if (cache.refreshTileCorner < 0) return true;
     ivec2 corner = refreshTileCorner(cache);
