@@ -3,6 +3,7 @@
 #include "stability/run.h"
 
 #include "shared.h"
+#include "stability/timeline.h"
 
 namespace ssgi::stability {
 
@@ -76,53 +77,6 @@ double mean(const std::vector<double>& v, size_t from, size_t to) {
     return n ? sum / double(n) : kNaN;
 }
 
-struct Step {
-    const char* phase;
-    Camera camera;
-    SpotLight light;
-    uint32_t width, height;
-    float time; // along the camera and object paths
-};
-
-bool sameLight(const SpotLight& a, const SpotLight& b) {
-    return a.position == b.position && a.direction == b.direction;
-}
-
-bool sameStep(const Step& a, const Step& b, const Scene& scene) {
-    return a.camera.position == b.camera.position && a.camera.orientation == b.camera.orientation &&
-           sameLight(a.light, b.light) && a.width == b.width && a.height == b.height &&
-           instanceTransformsAt(scene, a.time) == instanceTransformsAt(scene, b.time);
-}
-
-std::vector<Step> timeline(const Case& c, const Scene& scene, const RunOptions& o) {
-    const CameraPath& path = scene.cameraPath;
-    const float duration = path.keys.back().time - path.keys.front().time;
-    const float start = path.keys.front().time;
-    std::vector<Step> steps(
-        o.warmup, {"warmup", cameraAt(path, start), scene.light, o.width, o.height, start});
-    SpotLight light = scene.light;
-    uint32_t width = o.width, height = o.height;
-    const glm::vec3 finalDirection = glm::normalize(c.lightAim - c.lightTo);
-    for (uint32_t p = 1; p <= c.pathFrames; ++p) {
-        const float s = float(p) / float(c.pathFrames);
-        if (c.movesLight) {
-            light.position = glm::mix(scene.light.position, c.lightTo, s);
-            light.direction = glm::normalize(glm::mix(scene.light.direction, finalDirection, s));
-        }
-        const float time = start + duration * s;
-        steps.push_back({"path", cameraAt(path, time), light, width, height, time});
-    }
-    // A resize as the camera comes to rest: the hold's first frame is the new size, so the change
-    // the case measures from is the resize alone.
-    if (c.resizeScale > 0.0f) {
-        width = std::max(1u, uint32_t(std::lround(o.width * c.resizeScale)));
-        height = std::max(1u, uint32_t(std::lround(o.height * c.resizeScale)));
-    }
-    for (uint32_t i = 0; i < o.hold; ++i)
-        steps.push_back({"hold", steps.back().camera, light, width, height, steps.back().time});
-    return steps;
-}
-
 // Fraction of geometry pixels whose AO (or SSDO) history continued this frame: rotation count
 // above 1. The light does not reset these, so they show what the camera alone does.
 double aoReused(Renderer& r, const View& v, Mask* kept = nullptr) {
@@ -169,9 +123,7 @@ CaseResult runCase(vk::Context& ctx, const Case& c, const RunOptions& o,
     scene.settings = withOverrides(scene.settings, {o.settings.begin(), o.settings.end()}, c.scene);
     if (scene.cameraPath.empty()) throw InputError(c.scene + ": the case has no camera_path");
     const std::vector<Step> steps = timeline(c, scene, o);
-    size_t lastChange = 0;
-    for (size_t i = 1; i < steps.size(); ++i)
-        if (!sameStep(steps[i], steps[i - 1], scene)) lastChange = i;
+    const size_t lastChange = indexOfLastChange(steps, scene);
     const Step& last = steps.back();
     const bool truthAo = c.truth == Truth::Ao;
 
