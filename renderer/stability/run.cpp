@@ -3,45 +3,11 @@
 #include "stability/run.h"
 
 #include "shared.h"
-#include "stability/timeline.h"
+#include "stability/runs.h"
 
 namespace ssgi::stability {
 
 namespace detail {
-
-// Every image kept whole after the frame (none shares its memory with a later pass's), so
-// that countNonFiniteImages reads them all.
-RenderOptions rendererOptions(uint32_t width, uint32_t height) {
-    return {width, height, "final", {"*"}};
-}
-
-// Every image of the last frame (a history pair's written side), counted for NaN/Inf. The
-// light-view images change only when the light moves, so `withRsm` says whether to read them.
-size_t countNonFiniteImages(Renderer& r, bool withRsm, std::set<std::string>& offenders) {
-    std::set<std::string> names;
-    for (const auto& [name, bytes, pair] : r.frameGraph().imageMemory()) {
-        const std::string& n = pair.empty() ? name : pair; // a pair is read by its name
-        if (withRsm || !n.starts_with("rsm.")) names.insert(n);
-    }
-    size_t total = 0;
-    for (const std::string& name : names) {
-        const size_t bad = countNonFinite(r.readImage(name));
-        if (bad) offenders.insert(name);
-        total += bad;
-    }
-    return total;
-}
-
-View readView(Renderer& r, const Camera& camera) {
-    View v{r.size().width,
-           r.size().height,
-           camera,
-           r.readImage("hdr"),
-           r.readImage("gbuffer.position"),
-           r.readImage("gbuffer.normal"),
-           r.readImage("gbuffer.albedo")};
-    return v;
-}
 
 // `start`: the view at the end of the warm-up; `before`: the view just before the last change.
 Mask regionMask(const Case& c, const View& start, const View& before, const View& end,
@@ -77,26 +43,6 @@ double mean(const std::vector<double>& v, size_t from, size_t to) {
     return n ? sum / double(n) : kNaN;
 }
 
-// Fraction of geometry pixels whose AO (or SSDO) history continued this frame: rotation count
-// above 1. The light does not reset these, so they show what the camera alone does.
-double aoReused(Renderer& r, const View& v, Mask* kept = nullptr) {
-    const char* name = r.frameGraph().find("ao.count A").valid()     ? "ao.meta"
-                       : r.frameGraph().find("ssdo.count A").valid() ? "ssdo.meta"
-                                                                     : nullptr;
-    if (!name) return kNaN;
-    const Pixels meta = r.readImage(name);
-    size_t reused = 0, geometry = 0;
-    if (kept) kept->assign(v.pixels(), 0);
-    for (size_t i = 0; i < v.pixels(); ++i) {
-        if (!v.geometry(i)) continue;
-        ++geometry;
-        const bool continued = meta[4 * i + 3] > 1.5f;
-        reused += continued;
-        if (kept) (*kept)[i] = continued;
-    }
-    return geometry ? double(reused) / double(geometry) : kNaN;
-}
-
 // Linear radiance as the composite pass shows it (shared.h): exposure, ACES fit, sRGB.
 Pixels tonemapped(const Pixels& hdr, float exposure) {
     Pixels out(hdr.size(), 1.0f);
@@ -130,121 +76,21 @@ CaseResult runCase(vk::Context& ctx, const Case& c, const RunOptions& o,
     CaseResult res;
     res.spec = c;
     res.width = last.width, res.height = last.height;
-    res.frames.resize(steps.size());
-    std::unique_ptr<Renderer> a;
-    View previous, start, before;
-    Pixels startAo, endAo, changeLdr;
-    Mask keptAtChange;         // pixels whose AO history continued at the last change
-    std::vector<Pixels> after; // the tested renderer's HDR frames from the last change on
-    for (size_t i = 0; i < steps.size(); ++i) {
-        const Step& s = steps[i];
-        const bool fresh = !a || a->size().width != s.width || a->size().height != s.height;
-        if (fresh) { // the first frame, or a resize: the new size goes on from the old
-            auto next = std::make_unique<Renderer>(ctx, scene, rendererOptions(s.width, s.height));
-            if (a) next->continueFrom(*a);
-            a = std::move(next);
-        }
-        const bool lightMoved = !sameLight(a->light(), s.light);
-        if (lightMoved) a->setLight(s.light);
-        a->setTime(s.time);
-        a->renderFrame(s.camera);
-        FrameRecord& rec = res.frames[i];
-        rec.phase = s.phase;
-        rec.nonFinite = countNonFiniteImages(*a, fresh || lightMoved, res.nonFiniteImages);
-        View v = readView(*a, s.camera);
-        if (i > 0) rec.flicker = flicker(previous, v, {});
-        rec.reused = aoReused(*a, v, i == lastChange ? &keptAtChange : nullptr);
-        if (i + 1 == o.warmup) {
-            start = v;
-            if (truthAo) startAo = a->readImage("ao.history");
-        }
-        if (i >= lastChange) {
-            rec.sinceChange = int(i - lastChange);
-            after.push_back(v.hdr);
-        }
-        if (i == lastChange) {
-            changeLdr = a->readImage("ldr");
-            res.reusedAtChange = rec.reused;
-            before = previous;
-        }
-        if (log && (i + 1) % 20 == 0) log(c.name + ": frame " + std::to_string(i + 1));
-        previous = std::move(v);
-    }
-    if (before.pixels() == 0) before = start;
-    if (truthAo) endAo = a->readImage("ao.history");
-    a.reset();
-
-    // A resize changes every pixel, so no pixel of the same frame is left alone to show what the
-    // motion before it did to the histories (the other cases' "rest"). Its stand-in: the same
-    // timeline rendered at the final size throughout, the same samples in the same frames.
-    std::vector<Pixels> unresized;
-    if (c.resizeScale > 0.0f) {
-        Renderer u(ctx, scene, rendererOptions(last.width, last.height));
-        for (size_t i = 0; i < steps.size(); ++i) {
-            if (!sameLight(u.light(), steps[i].light)) u.setLight(steps[i].light);
-            u.setTime(steps[i].time);
-            u.renderFrame(steps[i].camera);
-            res.nonFinite += countNonFiniteImages(u, i == 0, res.nonFiniteImages);
-            if (i >= lastChange) unresized.push_back(readView(u, steps[i].camera).hdr);
-        }
-    }
-
-    // A fresh renderer with the tested settings at the final camera, light and size: how a
-    // start without history fares, and the flicker of a still camera once converged. Its
-    // sampling patterns start where the tested renderer's stood at the last change, so that
-    // frame k after the change takes the same pattern turns, VPL subsets, flux draws and refresh
-    // tile in both: what differs is the history alone, not which samples each drew (a frame
-    // whose samples happen to miss an occluder shows in both at once, not at different ages).
-    RenderOptions sameSamples = rendererOptions(last.width, last.height);
-    sameSamples.patternStart = uint32_t(lastChange);
-    Renderer f(ctx, scene, sameSamples);
-    f.setLight(last.light);
-    f.setTime(last.time);
-    std::vector<Pixels> freshFrames;
-    std::vector<double> stillFlicker;
-    Pixels referenceAo;
-    for (uint32_t k = 0; k < o.converge + o.stillFrames; ++k) {
-        f.renderFrame(last.camera);
-        res.nonFinite += countNonFiniteImages(f, k == 0, res.nonFiniteImages);
-        View v = readView(f, last.camera);
-        if (k < o.converge) freshFrames.push_back(v.hdr);
-        if (k + 1 == o.converge && truthAo) referenceAo = f.readImage("ao.history");
-        if (k >= o.converge) stillFlicker.push_back(flicker(previous, v, {}));
-        previous = std::move(v);
-    }
-    res.stillFlicker = mean(stillFlicker, 0, stillFlicker.size());
-    // The converged image: a still camera's, accumulated by the running mean (cache_method 1),
-    // which averages every frame, from twice the samples a frame. The thesis's rule would not
-    // do: its confidence is near 1 wherever the values are small, so its "converged" value
-    // keeps much of its first frame's noise. Nor would the tested settings: the same frames
-    // of the same settings are the same images, and a fresh start would be its own reference.
-    Scene meanScene = scene;
-    meanScene.settings.cache_method = 1;
-    Settings& twice = meanScene.settings;
-    twice.ao_directions = std::min(2 * scene.settings.ao_directions, 32);
-    twice.indirect_vpls = std::min(2 * scene.settings.indirect_vpls, 1024);
-    twice.ssdo_samples = std::min(2 * scene.settings.ssdo_samples, 64);
-    twice.shadow_taps = std::min(2 * scene.settings.shadow_taps, 64);
-    // Its sampling patterns start where neither the tested renderer's nor the fresh start's
-    // have been (4099 frames on: not a whole number of the patterns' turns), so that it shares
-    // no sample with either: a reference that took the fresh start's own samples (its pattern
-    // turns, its VPL subsets and flux draws, at twice the count) would put the fresh start
-    // nearer to it than the samples warrant, and every ratio to a fresh start would be inflated.
-    RenderOptions independent = rendererOptions(last.width, last.height);
-    independent.patternStart = 4099;
-    Renderer r(ctx, meanScene, independent);
-    r.setLight(last.light);
-    r.setTime(last.time);
-    View converged;
-    for (uint32_t k = 0; k < o.converge; ++k) {
-        r.renderFrame(last.camera);
-        res.nonFinite += countNonFiniteImages(r, k == 0, res.nonFiniteImages);
-    }
-    converged = readView(r, last.camera);
-    const Pixels referenceLdr = r.readImage("ldr");
+    const TestedRun tested = runTested(ctx, scene, c, steps, lastChange, o, res, log);
+    const std::vector<Pixels> unresized = c.resizeScale > 0.0f
+                                              ? runUnresized(ctx, scene, steps, lastChange, res)
+                                              : std::vector<Pixels>{};
+    const FreshRun fresh = runFresh(ctx, scene, c, last, lastChange, o, tested.end, res);
+    const ConvergedRun reference = runConverged(ctx, scene, last, o, res);
     for (const FrameRecord& rec : res.frames)
         res.nonFinite += rec.nonFinite;
     if (log) log(c.name + ": reference converged");
+    const View &start = tested.start, &before = tested.before, &converged = reference.view;
+    const Pixels &startAo = tested.startAo, &endAo = tested.endAo, &changeLdr = tested.changeLdr;
+    const Pixels &referenceAo = fresh.ao, &referenceLdr = reference.ldr;
+    const Mask& keptAtChange = tested.keptAtChange;
+    const std::vector<Pixels>&after = tested.after, &freshFrames = fresh.frames;
+    res.stillFlicker = mean(fresh.stillFlicker, 0, fresh.stillFlicker.size());
 
     // The figures, in the region taken at the final camera.
     res.region =
