@@ -135,14 +135,14 @@ std::vector<Pixels> runUnresized(vk::Context& ctx, const Scene& scene,
 // not which samples each drew (a frame whose samples happen to miss an occluder shows in both
 // at once, not at different ages).
 FreshRun runFresh(vk::Context& ctx, const Scene& scene, const Case& c, const Step& last,
-                  size_t lastChange, const RunOptions& o, const View& tested, CaseResult& res) {
+                  size_t lastChange, const RunOptions& o, const View& testedEnd, CaseResult& res) {
     RenderOptions sameSamples = rendererOptions(last.width, last.height);
     sameSamples.patternStart = uint32_t(lastChange);
     Renderer f(ctx, scene, sameSamples);
     f.setLight(last.light);
     f.setTime(last.time);
     FreshRun run;
-    View previous = tested;
+    View previous = testedEnd;
     for (uint32_t k = 0; k < o.converge + o.stillFrames; ++k) {
         f.renderFrame(last.camera);
         res.nonFinite += countNonFiniteImages(f, k == 0, res.nonFiniteImages);

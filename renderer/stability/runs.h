@@ -40,13 +40,14 @@ struct FreshRun {
 };
 
 // A fresh renderer with the tested settings at the final camera, light and size, its sampling
-// patterns starting where the tested renderer's stood at the last change. `tested`: the frame
-// its first still frame's flicker is taken against where it converges in no frames.
+// patterns starting where the tested renderer's stood at the last change. `testedEnd`: the
+// tested renderer's last frame, which the first still frame's flicker is taken against where
+// `o.converge` is 0.
 FreshRun runFresh(vk::Context& ctx, const Scene& scene, const Case& c, const Step& last,
-                  size_t lastChange, const RunOptions& o, const View& tested, CaseResult& res);
+                  size_t lastChange, const RunOptions& o, const View& testedEnd, CaseResult& res);
 
 struct ConvergedRun {
-    View view;
+    View view;  // the converged image and its geometry
     Pixels ldr; // its display image
 };
 
