@@ -151,8 +151,9 @@ void main() {
     float budget = cache.blurBudget;
     // Reused while the camera moves, a pixel's value is computed again once its blur passes a
     // limit between half the budget and the budget, drawn per workgroup, so that the pixels that
-    // started together (after a cut) do not all fall due in the same frame.
-    bool reuseWhileMoving = (cache.reprojection & REUSE_WHILE_MOVING) != 0;
+    // started together (after a cut) do not all fall due in the same frame. An exact effect's
+    // one computation is converged already: it is reused by its budget alone.
+    bool reuseWhileMoving = (cache.reprojection & REUSE_WHILE_MOVING) != 0 && !exactEffect(cache);
     float limit = budget;
     if (reuseWhileMoving) limit *= 0.5 + 0.25 * pixelRotation(ivec2(gl_WorkGroupID.xy)) / PI;
     float rotations = float(cache.rotations);
