@@ -7,7 +7,7 @@ import json
 import os
 import statistics
 
-# The passes a converged still frame cannot avoid (issue 5's floor).
+# The passes a converged still frame cannot avoid (the cached frame's floor).
 FLOOR_PASSES = ("gbuffer", "direct", "composite")
 # The passes in the order a frame runs them (tables and charts list them so).
 FRAME_ORDER = ("gbuffer", "rsm", "shadow", "shadow.temporal", "shadow.keep", "direct", "ao",

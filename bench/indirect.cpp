@@ -1,4 +1,4 @@
-// The one-bounce indirect light's methods side by side (issue #18's measures): the cost of the
+// The one-bounce indirect light's methods side by side (docs/bench-indirect.md): the cost of the
 // light relative to the rest of an uncached frame, (frame with it - frame without) / frame
 // without, from frames interleaved renderer by renderer; and at the error size, against the
 // path-traced reference, one uncached frame and the converged cache (still camera), over the

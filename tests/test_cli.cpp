@@ -251,7 +251,7 @@ TEST_F(Cli, BadInputGetsAClearErrorAndNoOutput) {
     expectNoTemporaries();
 }
 
-// Issue 21's classes as a user meets them: a glTF buffer that is a FIFO (it hung), one that is
+// Hostile input as a user meets it: a glTF buffer that is a FIFO (it hung), one that is
 // a folder, a device reached through `..` (std::bad_alloc, exit 1), an absolute path, a scene
 // file saying a key twice (the last won), a size whose images the device cannot hold; each is
 // bad input (exit 2) within seconds, naming the file and the problem, and writes nothing.

@@ -1,7 +1,7 @@
 // The stability measures on the CPU, over images read back from the renderer (RGBA floats, rows
 // top to bottom): error inside a mask, frame-to-frame change (flicker), stale lighting, the
-// NaN/Inf count, and the masks of the places where screen-space methods fail. Header-only, so
-// the `stability` command and its test share it without a library of their own.
+// NaN/Inf count, and the masks of the places where screen-space methods fail (measures.cpp),
+// in the stability library that the `stability` command and its tests share.
 #pragma once
 
 #include "metrics/metrics.h"
