@@ -118,9 +118,9 @@ TEST_F(StabilityTest, ACameraCutRestartsEveryHistory) {
     EXPECT_LE(r.stillFlicker, 1e-4); // measured 1e-5 (2.5e-4 while the refresh blended)
 }
 
-// The suite's targets (docs/stability.md), held for every case of the suite under both cache rules (0, the thesis's;
-// 1, the running mean), against a fresh renderer at the final camera that takes the same
-// samples in the same frames (a resize's "rest" is the same timeline without the resize):
+// The suite's targets (docs/stability.md), held for every case under both cache rules (0, the
+// thesis's; 1, the running mean), against a fresh renderer at the final camera that takes the
+// same samples in the same frames (a resize's "rest" is the same timeline without the resize):
 // - recovered within 8 frames after the last change: from then on the region's error stays
 //   within twice that of the pixels the change left alone or of the fresh start's at that age;
 // - over the first 8 frames, the region's error at most 1.5x the fresh start's;
