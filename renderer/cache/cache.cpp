@@ -55,17 +55,23 @@ shader::CacheConstants cacheConstants(const Settings& settings, const EffectCach
     }
     c.tileSize = cache->refresh ? int(cache->refresh->tileSize()) : 1;
     c.confidenceBias = float(settings.cache_bias);
-    c.epsilon = float(settings.cache_epsilon);
+    const shader::ReprojectionConstants test = reprojectionConstants(settings, now.hasHistory);
+    c.epsilon = test.epsilon;
     c.runningMean = settings.cache_method != 0 ? 1 : 0;
     c.settled = frame.settled ? 1 : 0;
     c.motionTest = cache->effect.motionTest;
     c.motionReach = cache->effect.motionReach;
     c.blurBudget = cache->blurBudget;
-    c.reprojection = (settings.cache_thin_geometry ? REPROJECT_THIN_GEOMETRY : 0) |
+    c.reprojection = (test.thinGeometry != 0 ? REPROJECT_THIN_GEOMETRY : 0) |
                      (settings.cache_screen_edge ? REPROJECT_SCREEN_EDGE : 0) |
                      (settings.cache_reuse_moving ? REUSE_WHILE_MOVING : 0) |
                      (cache->effect.viewIndependent ? REUSE_AGREEING : 0);
     return c;
+}
+
+shader::ReprojectionConstants reprojectionConstants(const Settings& settings, bool historyValid) {
+    return {float(settings.cache_epsilon), settings.cache_thin_geometry ? 1 : 0,
+            historyValid ? 1 : 0};
 }
 
 float radialOffset(const EffectCache* cache, const FrameState& frame) {

@@ -79,6 +79,10 @@ std::vector<CachedEffectFrame> nextCacheFrames(const graph::FrameGraph& graph, C
 // without a cache (no history, nothing converges).
 shader::CacheConstants cacheConstants(const Settings& settings, const EffectCache* cache,
                                       const FrameState& frame);
+// The reprojection test as the settings give it (cache_epsilon, cache_thin_geometry): what the
+// reprojection pass takes, and what cacheConstants hands the passes that reproject their
+// refresh tile on a settled frame.
+shader::ReprojectionConstants reprojectionConstants(const Settings& settings, bool historyValid);
 // The pattern's radial offset for an effect's pass (the constants' pattern.w): this frame's
 // FrameState::patternOffset when the effect is cached, else -1 (a single frame's fixed pattern).
 float radialOffset(const EffectCache* cache, const FrameState& frame);

@@ -24,9 +24,8 @@ void addReprojectionPass(FrameBuild& build, const GBuffer& gbuffer) {
                    {"reprojectionImage", image, Use::StorageWrite}};
     pass.pushSize = sizeof(shader::ReprojectionConstants);
     addComputePass(build, std::move(pass), [&build, history](const ComputeRecorder& r) {
-        const shader::ReprojectionConstants constants{float(build.settings.cache_epsilon),
-                                                      build.settings.cache_thin_geometry ? 1 : 0,
-                                                      build.graph.hasHistory(history) ? 1 : 0};
+        const shader::ReprojectionConstants constants =
+            reprojectionConstants(build.settings, build.graph.hasHistory(history));
         const bool settled = r.frame().settled;
         r.dispatch(settled ? 0 : build.size.width, settled ? 0 : build.size.height, constants);
     });
