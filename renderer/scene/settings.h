@@ -24,7 +24,9 @@ namespace ssgi {
       "pixels rendered beyond each edge of the image, for the screen-space effects to see what "   \
       "lies just off screen (0: none; docs/frame.md)")                                             \
     X(shadow_map_size, int, 1024, 16, 8192, "Shadow", "RSM resolution, texels per side")           \
-    X(shadow_bias, double, 1.5, 0, 100, "Shadow", "normal offset of the shadow lookup, in texels") \
+    X(shadow_bias, double, 1.5, 0, 100, "Shadow",                                                  \
+      "normal offset of the shadow lookup, in texels, times the cosine at which the light "        \
+      "meets the surface")                                                                         \
     X(shadow_taps, int, 49, 1, 64, "Shadow",                                                       \
       "PCF taps (1 = hard shadow; thesis: 49, or 9 + cache)")                                      \
     X(contact_shadows, bool, false, 0, 1, "Shadow",                                                \
