@@ -24,7 +24,7 @@ const int DISK_POINTS = 16;
 // I(w) cos(theta) / d^2. A light of radius r > 0 is the disk the reference renders (a disk at
 // the light's position facing along its axis, docs/ground-truth.md), whose irradiance is that
 // formula averaged over the disk's points: DISK_POINTS of them spread evenly over its area
-// (a Fibonacci spiral, r sqrt((i + 1/2) / N) from the centre at golden-angle turns). Where the
+// (r sqrt((j + 1/2) / (N/4)) from the centre, mirrored into the four quadrants). Where the
 // light is near p's tangent plane, or near p, the point formula is far off: the Cornell box's
 // tall block faces the light edge on, and the point lit its front 40% too dark.
 vec3 spotIrradiance(vec3 p, vec3 n) {
@@ -35,8 +35,15 @@ vec3 spotIrradiance(vec3 p, vec3 n) {
     int points = radius > 0.0 ? DISK_POINTS : 1;
     float sum = 0.0;
     for (int i = 0; i < points; ++i) {
-        float angle = float(i) * 2.39996323; // the golden angle
-        vec2 d = sqrt((float(i) + 0.5) / float(points)) * vec2(cos(angle), sin(angle));
+        // A quarter of the points stratified over a quadrant (area and angle, a Latin
+        // square), mirrored into the other three: a scene symmetric about the light's axis is
+        // lit symmetrically.
+        int quarter = max(points / 4, 1), j = i % quarter, mirror = i / quarter;
+        float angle = 1.57079633 * (float((j * 3) % quarter) + 0.5) / float(quarter);
+        float r = points == 1 ? 0.0 : sqrt((float(j) + 0.5) / float(quarter));
+        vec2 d = r * vec2(cos(angle), sin(angle));
+        if ((mirror & 1) != 0) d.x = -d.x;
+        if ((mirror & 2) != 0) d.y = -d.y;
         vec3 toLight = frame.lightPosition.xyz + radius * (d.x * t + d.y * b) - p;
         float distance2 = dot(toLight, toLight);
         vec3 l = toLight * inversesqrt(distance2);
