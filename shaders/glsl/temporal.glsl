@@ -87,8 +87,8 @@ bool gatherMeetsEdge(vec3 world, vec4 previousClip, CacheConstants cache) {
     float pixelsAtUnitDepth = abs(frame.projection[1][1]) * 0.5 * size.y;
     vec2 now = (clip.xy / clip.w * 0.5 + 0.5) * size;
     vec2 then = (previousClip.xy / previousClip.w * 0.5 + 0.5) * size;
-    float reachNow = cache.motionReach * pixelsAtUnitDepth / max(clip.w, 1e-6);
-    float reachThen = cache.motionReach * pixelsAtUnitDepth / max(previousClip.w, 1e-6);
+    float reachNow = cache.motionReach * pixelsAtUnitDepth / max(clip.w, tinyLength());
+    float reachThen = cache.motionReach * pixelsAtUnitDepth / max(previousClip.w, tinyLength());
     // How far the radius reaches past each edge (left and top, right and bottom), in pixels.
     vec4 cutNow = max(vec4(reachNow - now, now + reachNow - size), 0.0);
     vec4 cutThen = max(vec4(reachThen - then, then + reachThen - size), 0.0);
