@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <memory>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <sys/wait.h>
 
 namespace ssgi::test {
@@ -22,6 +24,16 @@ std::string sourcePath(const std::string& relative) {
 
 std::string sceneModel(const std::string& name) {
     return std::string(SSGI_SOURCE_DIR) + "/scenes/models/" + name;
+}
+
+Scene scaledScene(Scene s, float k) {
+    for (Instance& instance : s.instances)
+        instance.transform = glm::scale(glm::mat4(1.0f), glm::vec3(k)) * instance.transform;
+    s.bounds.min *= k, s.bounds.max *= k;
+    s.light.position *= k, s.light.radius *= k, s.light.intensity *= k * k;
+    s.camera.position *= k, s.camera.znear *= k, s.camera.zfar *= k;
+    s.settings.ao_radius = aoRadius(s) * k;
+    return s;
 }
 
 Frame render(const Scene& scene, uint32_t width, uint32_t height, uint32_t frames) {

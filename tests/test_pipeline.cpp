@@ -27,7 +27,8 @@ constexpr VkDescriptorType kUniform = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
 constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
 constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
 
-// indirect_reconstruct.comp: the frame's uniforms, seven sampler2Ds, two rgba16f image2Ds.
+// indirect_reconstruct.comp: the frame's uniforms, seven sampler2Ds, two rgba16f image2Ds and one
+// more sampler2D.
 const std::vector<vk::LayoutBinding> kReconstruct = {
     {kUniform, "FrameBlock"},
     {kSampled, "gbufferViewDepth"},
@@ -38,7 +39,8 @@ const std::vector<vk::LayoutBinding> kReconstruct = {
     {kSampled, "estimates"},
     {kSampled, "directionals"},
     {kStorage, "filtered", false, VK_FORMAT_R16G16B16A16_SFLOAT},
-    {kStorage, "filteredDirectional", false, VK_FORMAT_R16G16B16A16_SFLOAT}};
+    {kStorage, "filteredDirectional", false, VK_FORMAT_R16G16B16A16_SFLOAT},
+    {kSampled, "historyValue"}};
 
 } // namespace
 
@@ -94,7 +96,7 @@ TEST_F(PipelineTest, ALayoutThatDisagreesIsRefusedNamingShaderAndBinding) {
 
     std::vector<vk::LayoutBinding> missing(kReconstruct.begin(), kReconstruct.end() - 1);
     const std::string lacks = refusal(missing);
-    EXPECT_NE(lacks.find("binding 9"), std::string::npos) << lacks;
+    EXPECT_NE(lacks.find("binding 10"), std::string::npos) << lacks;
     EXPECT_NE(lacks.find("lacks"), std::string::npos) << lacks;
 
     // A storage image the pass would take as read only (graph::Use::StorageRead) that the shader
@@ -108,7 +110,7 @@ TEST_F(PipelineTest, ALayoutThatDisagreesIsRefusedNamingShaderAndBinding) {
     std::vector<vk::LayoutBinding> extra = kReconstruct;
     extra.push_back(kStorage);
     const std::string never = refusal(extra);
-    EXPECT_NE(never.find("binding 10"), std::string::npos) << never;
+    EXPECT_NE(never.find("binding 11"), std::string::npos) << never;
     EXPECT_NE(never.find("never declares"), std::string::npos) << never;
 
     // A storage image of another format than the shader declares: its texels would be written

@@ -250,21 +250,6 @@ TEST_F(RenderTest, AbsurdSizesAreRejectedWithTheLimitNamed) {
 
 } // namespace
 
-namespace {
-
-// The scene made k times larger, its light k^2 times stronger: every radiance stays the same.
-Scene scaledScene(Scene s, float k) {
-    for (Instance& instance : s.instances)
-        instance.transform = glm::scale(glm::mat4(1.0f), glm::vec3(k)) * instance.transform;
-    s.bounds.min *= k, s.bounds.max *= k;
-    s.light.position *= k, s.light.radius *= k, s.light.intensity *= k * k;
-    s.camera.position *= k, s.camera.znear *= k, s.camera.zfar *= k;
-    s.settings.ao_radius = aoRadius(s) * k;
-    return s;
-}
-
-} // namespace
-
 // Scene units do not matter: the bunny in centimetres, metres and hectometres gives
 // the same one-bounce light. With the RSM's flux in 16-bit floats the centimetre scene's bounce
 // was exactly 0 and the metre scene's 6% short of the hectometre one's.
@@ -273,7 +258,7 @@ TEST_F(RenderTest, TheBounceIsTheSameInAnyUnits) {
     std::vector<double> means;
     test::Frame reference;
     for (float k : {1.0f, 0.01f, 100.0f}) {
-        const test::Frame f = test::render(scaledScene(scene, k), 96, 96);
+        const test::Frame f = test::render(test::scaledScene(scene, k), 96, 96);
         double sum = 0.0, difference = 0.0;
         size_t n = 0;
         for (size_t i = 0; i < f.pixels(); ++i) {

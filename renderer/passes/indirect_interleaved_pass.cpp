@@ -5,7 +5,8 @@
 // (Keller and Heidrich 2001; Segovia et al. 2006). No upsampling, so no staircase, and no pixel
 // gathers every VPL.
 //   reads:  gbuffer.view_depth, gbuffer.normal, rsm.vpls, last frame's gbuffer.view_depth and
-//           the cache's indirect.count (to skip converged pixels)
+//           the cache's indirect.count (to skip converged pixels); the filter also last frame's
+//           indirect.history (what a skipped neighbour holds)
 //   writes: indirect + indirect.directional (each pixel's subset: irradiance / pi, and the L1
 //           sums of its VPLs' light), indirect.filtered_x + .filtered_x_directional (after the
 //           x axis), indirect again (after the y axis: the result; the y pass binds
@@ -67,7 +68,10 @@ graph::ImageRef addInterleavedIndirectPasses(FrameBuild& build, const GBufferAnd
         c.axisY = axis.y;
         return c;
     };
-    const std::vector<ShaderImage> history = cacheBindings(build, cache, in.gbuffer.viewDepth);
+    const std::vector<ShaderImage> cacheInputs = cacheBindings(build, cache, in.gbuffer.viewDepth);
+    // The filter reads a skipped neighbour's history (any image the pass reads, without a cache).
+    const graph::ImageRef history =
+        cache ? graph::FrameGraph::previous(cache->valueHistory) : in.gbuffer.viewDepth;
 
     addKeepPass(build, cache, {subsets, subsetsDirectional, across, acrossDirectional});
     using graph::Use;
@@ -84,7 +88,7 @@ graph::ImageRef addInterleavedIndirectPasses(FrameBuild& build, const GBufferAnd
                               {"vplList", fluxVpls->list, Use::Sampled}});
     else
         gather.images.push_back({"rsmVpls", in.rsm.vpls, Use::Sampled});
-    gather.images.insert(gather.images.end(), history.begin(), history.end());
+    gather.images.insert(gather.images.end(), cacheInputs.begin(), cacheInputs.end());
     gather.images.insert(gather.images.end(),
                          {{"interleavedIndirect", subsets, Use::StorageWrite},
                           {"interleavedDirectional", subsetsDirectional, Use::StorageWrite}});
@@ -108,12 +112,13 @@ graph::ImageRef addInterleavedIndirectPasses(FrameBuild& build, const GBufferAnd
         ComputePassDesc filter{a.pass, "indirect_reconstruct.comp"};
         filter.images = {{"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
                          {"gbufferNormal", in.gbuffer.normal, Use::Sampled}};
-        filter.images.insert(filter.images.end(), history.begin(), history.end());
+        filter.images.insert(filter.images.end(), cacheInputs.begin(), cacheInputs.end());
         filter.images.insert(filter.images.end(),
                              {{"estimates", a.source, Use::Sampled},
                               {"directionals", a.sourceDirectional, Use::Sampled},
                               {"filtered", a.target, Use::StorageWrite},
-                              {"filteredDirectional", a.targetDirectional, Use::StorageWrite}});
+                              {"filteredDirectional", a.targetDirectional, Use::StorageWrite},
+                              {"historyValue", history, Use::Sampled}});
         filter.pushSize = sizeof(shader::IndirectConstants);
         filter.spec = filterSpec;
         addComputePass(build, std::move(filter),

@@ -96,7 +96,10 @@ graph::ImageRef addSkyVisibilityPasses(FrameBuild& build, const GBufferAndRsm& i
     // In the GPU's coordinates, as the G-buffer and the draws are.
     const Aabb& drawn = occluders.mappedBounds;
     const glm::vec3 centre = glm::vec3(glm::dvec3(drawn.center()) - build.gpuOrigin);
-    const float radius = std::max(0.5f * glm::length(drawn.size()) * 1.02f, 1e-6f);
+    // Above zero for a scene at one point, with no floor in units (1e-6 was all of a scene of
+    // 1e-9 units).
+    const float radius =
+        std::max(0.5f * glm::length(drawn.size()) * 1.02f, std::numeric_limits<float>::min());
     const shader::SkyMapView view{glm::vec4(centre, radius),
                                   glm::ivec4(0, count, perRow, tileSize)};
 

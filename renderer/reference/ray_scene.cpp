@@ -106,17 +106,37 @@ RayScene::RayScene(const Scene& scene) : embree_(std::make_unique<Embree>()) {
     rtcSetSceneFlags(embree_->scene, RTC_SCENE_FLAG_ROBUST);
     rtcSetSceneBuildQuality(embree_->scene, RTC_BUILD_QUALITY_HIGH);
 
+    std::vector<std::unique_ptr<Geometry>> baked;
     Aabb bounds;
     for (const Instance& instance : scene.instances) {
         auto g = bake(scene, instance);
         if (g->indices.empty()) continue;
         for (const glm::vec3& p : g->positions)
             bounds.extend(p);
+        baked.push_back(std::move(g));
+    }
+    // The offset must dwarf the rounding of a world position (about 1e-7 of its magnitude) yet
+    // stay far below any feature of the scene.
+    const float magnitude = bounds.empty()
+                                ? 1.0f
+                                : glm::length(bounds.size()) +
+                                      std::max(glm::length(bounds.min), glm::length(bounds.max));
+    // Relative to the scene alone: a floor in absolute units would be most of a tiny scene.
+    epsilon_ = 2e-5f * std::max(magnitude, std::numeric_limits<float>::min());
+    // Embree sees the scene scaled by a power of two to a magnitude near 1. Its robust
+    // intersector drops the barycentrics of a hit whose determinant (the triangle's doubled area
+    // seen along the ray) is below 1e-18 in squared units: at 1e-9 units every hit was reported
+    // at a vertex. Scaling by a power of two is exact, so a scene near unit size gets the same
+    // hits, bit for bit, as without it.
+    toEmbree_ = std::exp2(-std::round(std::log2(std::max(magnitude, 1e-30f))));
+
+    for (auto& g : baked) {
         RTCGeometry geometry = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-        auto* vertices = static_cast<float*>(
+        auto* vertices = static_cast<glm::vec3*>(
             rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                     sizeof(glm::vec3), g->positions.size()));
-        std::memcpy(vertices, g->positions.data(), g->positions.size() * sizeof(glm::vec3));
+        for (size_t i = 0; i < g->positions.size(); ++i)
+            vertices[i] = g->positions[i] * toEmbree_;
         auto* indices = static_cast<uint32_t*>(
             rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                     3 * sizeof(uint32_t), g->indices.size() / 3));
@@ -135,15 +155,6 @@ RayScene::RayScene(const Scene& scene) : embree_(std::make_unique<Embree>()) {
     }
     rtcCommitScene(embree_->scene);
     checkDevice(embree_->device, "building the scene");
-
-    // The offset must dwarf the rounding of a world position (about 1e-7 of its magnitude) yet
-    // stay far below any feature of the scene.
-    const float magnitude = bounds.empty()
-                                ? 1.0f
-                                : glm::length(bounds.size()) +
-                                      std::max(glm::length(bounds.min), glm::length(bounds.max));
-    // Relative to the scene alone: a floor in absolute units would be most of a tiny scene.
-    epsilon_ = 2e-5f * std::max(magnitude, std::numeric_limits<float>::min());
 }
 
 RayScene::~RayScene() = default;
@@ -152,10 +163,11 @@ bool RayScene::intersect(glm::vec3 origin, glm::vec3 direction, float tfar, Surf
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit rh{};
-    rh.ray.org_x = origin.x, rh.ray.org_y = origin.y, rh.ray.org_z = origin.z;
+    const glm::vec3 o = origin * toEmbree_;
+    rh.ray.org_x = o.x, rh.ray.org_y = o.y, rh.ray.org_z = o.z;
     rh.ray.dir_x = direction.x, rh.ray.dir_y = direction.y, rh.ray.dir_z = direction.z;
     rh.ray.tnear = 0.0f;
-    rh.ray.tfar = tfar;
+    rh.ray.tfar = tfar * toEmbree_;
     rh.ray.mask = 0xffffffffu;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
@@ -188,10 +200,11 @@ bool RayScene::occluded(glm::vec3 origin, glm::vec3 direction, float tfar) const
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRay ray{};
-    ray.org_x = origin.x, ray.org_y = origin.y, ray.org_z = origin.z;
+    const glm::vec3 o = origin * toEmbree_;
+    ray.org_x = o.x, ray.org_y = o.y, ray.org_z = o.z;
     ray.dir_x = direction.x, ray.dir_y = direction.y, ray.dir_z = direction.z;
     ray.tnear = 0.0f;
-    ray.tfar = tfar;
+    ray.tfar = tfar * toEmbree_;
     ray.mask = 0xffffffffu;
     rtcOccluded1(embree_->scene, &context, &ray);
     return ray.tfar < 0.0f; // Embree marks an occluded ray with tfar = -inf

@@ -52,6 +52,7 @@ private:
     std::unique_ptr<Embree> embree_;
     std::vector<std::unique_ptr<Geometry>> geometries_; // indexed by Embree geometry id
     float epsilon_ = 1e-5f;
+    float toEmbree_ = 1.0f; // a power of two: world units -> the units Embree sees
 };
 
 } // namespace ssgi::reference

@@ -34,7 +34,10 @@ LightFrustum lightFrustum(const SpotLight& light, const Aabb& bounds) {
     LightFrustum f;
     const glm::vec3 up =
         std::abs(light.direction.y) > 0.99f ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
-    f.view = glm::lookAtRH(light.position, light.position + light.direction, up);
+    // Turned at the origin, then moved: position + direction rounds to the position itself once
+    // the position's units dwarf 1 (from about 1e8 units: a NaN view and nothing in the RSM).
+    f.view = glm::lookAtRH(glm::vec3(0.0f), light.direction, up) *
+             glm::translate(glm::mat4(1.0f), -light.position);
     // Far plane: the farthest bounds corner along the axis; near: what depth precision allows.
     float farthest = 0.0f;
     for (int i = 0; i < 8; ++i) {

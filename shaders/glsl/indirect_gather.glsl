@@ -54,7 +54,7 @@ vec3 gatherIndirect(vec3 p, vec3 n, float rotation, float radiusScale, float rad
         float footprint = distance(q, frame.lightPosition.xyz) * 2.0 * frame.lightFrustum.z /
                           size * float(k);
         float d2 = max(distance2, footprint * footprint);
-        vec3 D = toVpl * inversesqrt(max(distance2, 1e-12));
+        vec3 D = toVpl * inversesqrt(max(distance2, tinyLength2()));
         float cosP = max(dot(n, D), 0.0);
         float cosQ = max(dot(rsmTexelNormal(vpl), -D), 0.0);
         vec3 flux = rsmTexelFlux(vpl);

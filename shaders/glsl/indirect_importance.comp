@@ -166,7 +166,7 @@ void main() {
         }
         vec3 toVpl = q - p;
         float distance2 = dot(toVpl, toVpl);
-        vec3 D = toVpl * inversesqrt(max(distance2, 1e-12));
+        vec3 D = toVpl * inversesqrt(max(distance2, tinyLength2()));
         float cosQ = -dot(nq, D);
         if (cosQ <= 0.0) continue; // p lies behind the VPL's surface
         // Both densities at this texel, a texel 1 / size^2 of the map's uv.

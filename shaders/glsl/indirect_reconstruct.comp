@@ -31,6 +31,9 @@ layout(set = 0, binding = 6) uniform sampler2D estimates;
 layout(set = 0, binding = 7) uniform sampler2D directionals;
 layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D filtered;
 layout(set = 0, binding = 9, rgba16f) uniform writeonly image2D filteredDirectional;
+// The effect's history (last frame's blended values; rgb, blur in alpha): what a skipped
+// neighbour holds.
+layout(set = 0, binding = 10) uniform sampler2D historyValue;
 layout(push_constant) uniform IndirectBlock { IndirectConstants constants; };
 
 #include "gbuffer_position.glsl"
@@ -41,6 +44,21 @@ layout(push_constant) uniform IndirectBlock { IndirectConstants constants; };
 // ratio of two stays finite).
 float directionalAt(vec4 sums, vec3 m) {
     return max(0.25 * sums.x + 0.5 * dot(sums.yzw, m), 0.02 * sums.x + 1e-12);
+}
+
+// A skipped neighbour's estimate: its history, the whole VPL set's estimate accumulated over
+// frames, at the texel the reprojection pass found for it (reused while the camera moves, most
+// pixels around a computed one are skipped, and a filter over the computed ones alone would
+// average a few subsets, which differ by block: the error shows the blocks). Not found (on a
+// settled frame the reprojection pass does not run, and there the refresh tile's margin is
+// computed whole): none.
+bool skippedEstimate(ivec2 q, out vec3 estimate) {
+    estimate = vec3(0.0);
+    if (constants.cache.historyValid == 0 || constants.cache.settled != 0) return false;
+    SurfaceReprojection s = unpackReprojection(texelFetch(reprojection, q, 0));
+    if (!s.found || texelFetch(historyCount, s.texel, 0).r == 0.0) return false;
+    estimate = texelFetch(historyValue, s.texel, 0).rgb;
+    return true;
 }
 
 void main() {
@@ -76,25 +94,33 @@ void main() {
     bool halfEnds = (2 * reach) % INTERLEAVE == 0;
     vec3 sum = vec3(0.0);
     vec4 directionalSum = vec4(0.0);
-    float weightSum = 0.0;
+    float weightSum = 0.0, directionalWeight = 0.0;
     for (int d = -reach; d <= reach; ++d) {
         ivec2 q = pixel + d * axis;
         if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
         vec4 estimate = texelFetch(estimates, q, 0);
-        if (wasSkipped(estimate)) continue; // skipped, or background (stored alike)
+        // Skipped, or background (stored alike; its reprojection finds nothing).
+        bool skipped = wasSkipped(estimate);
+        if (skipped && !skippedEstimate(q, estimate.rgb)) continue;
         vec3 delta = gbufferPosition(q).xyz - p;
         if (abs(dot(n, delta)) > 1.5 * footprint * max(1.0, abs(float(d)))) continue;
         vec3 nq = texelFetch(gbufferNormal, q, 0).xyz;
         if (dot(n, nq) < 0.5) continue; // another face
-        vec4 sums = texelFetch(directionals, q, 0);
-        float toPixel = min(directionalAt(sums, n) / directionalAt(sums, nq), 4.0);
         float w =
             (halfEnds && abs(d) == reach ? 0.5 : 1.0) * pow(max(dot(n, nq), 0.0), facingPower);
+        // A skipped neighbour has no directional sums: its value is carried over as it is, and
+        // adds none to the next axis's.
+        vec4 sums = skipped ? vec4(0.0) : texelFetch(directionals, q, 0);
+        float toPixel = skipped ? 1.0 : min(directionalAt(sums, n) / directionalAt(sums, nq), 4.0);
         sum += w * toPixel * estimate.rgb;
-        directionalSum += w * sums;
+        if (!skipped) {
+            directionalSum += w * sums;
+            directionalWeight += w;
+        }
         weightSum += w;
     }
     // The pixel's own estimate is always kept, so weightSum > 0.
     imageStore(filtered, pixel, vec4(sum / max(weightSum, 1e-6), 1.0));
-    if (axis.x == 1) imageStore(filteredDirectional, pixel, directionalSum / max(weightSum, 1e-6));
+    if (axis.x == 1)
+        imageStore(filteredDirectional, pixel, directionalSum / max(directionalWeight, 1e-6));
 }

@@ -9,9 +9,16 @@
 // Distance along the camera's view axis.
 float viewDepth(vec3 world) { return dot(worldToGbuffer.depthRow, vec4(world, 1.0)); }
 
+// The shortest length the shaders tell from zero: SCENE_TINY of the scene's diagonal. A distance
+// or depth a shader divides by is kept at least this long (its square: tinyLength2), never at a
+// length in absolute units, which would be most of a scene in nanometres (1e-9 units) and
+// nothing in one of 1e9.
+float tinyLength() { return SCENE_TINY * frame.sceneDiagonal; }
+float tinyLength2() { return tinyLength() * tinyLength(); }
+
 // Pixels covered by one scene unit at the given view depth.
 float pixelsPerUnit(float depth) {
-    return abs(frame.projection[1][1]) * 0.5 * frame.viewport.y / max(depth, 1e-6);
+    return abs(frame.projection[1][1]) * 0.5 * frame.viewport.y / max(depth, tinyLength());
 }
 
 bool insideViewport(vec2 pixel) {

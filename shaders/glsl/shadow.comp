@@ -120,7 +120,7 @@ void main() {
         return;
     }
     float blocker = blockerSum / float(blockers);
-    float penumbra = lightRadius * max(receiver - blocker, 0.0) / max(blocker, 1e-6);
+    float penumbra = lightRadius * max(receiver - blocker, 0.0) / max(blocker, tinyLength());
     float filterRadius = clamp(penumbra * uvPerUnit, minRadius, maxRadius);
     float lit = 0.0;
     for (int i = 0; i < TAPS; ++i) {

@@ -35,6 +35,11 @@ using std::sinh;
 #define SSGI_OUT(type) out type
 #endif
 
+// Lengths below this fraction of the scene's diagonal (FrameUniforms.sceneDiagonal) count as
+// zero where a shader divides by one (screen_space.glsl tinyLength): a floor relative to the
+// scene, so that its units do not change the image.
+#define SCENE_TINY 1e-6f
+
 // Everything a pass may need about the frame: cameras, the light, the sky. Set 0, binding 0.
 struct FrameUniforms {
     mat4 view;

@@ -84,7 +84,7 @@ void main() {
         }
         vec3 toReceiver = p - sender.xyz;
         float d2 = dot(toReceiver, toReceiver);
-        vec3 dir = toReceiver * inversesqrt(max(d2, 1e-12));
+        vec3 dir = toReceiver * inversesqrt(max(d2, tinyLength2()));
         vec3 senderNormal = texelFetch(gbufferNormal, senderPixel, 0).xyz;
         float cosS = dot(senderNormal, dir);
         float cosR = dot(n, -dir);

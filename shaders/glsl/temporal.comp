@@ -64,15 +64,14 @@ void storeHistory(ivec2 pixel, vec3 value, float blur) {
 // The history at the reprojected point, filtered bilinearly over the four texels around it that
 // hold the same surface (their world positions pass the reprojection test), so that across a
 // depth edge the other side's value does not bleed in; the nearest texel passed already.
-// Alpha: the resampling blur the result carries, in squared pixels: the texels' own (stored in
-// the history's alpha) plus the spread of the filter around the point, sum w_i |x_i - x|^2.
-// Each frame of motion adds up to half a pixel^2; a still camera samples texel centres and adds
-// nothing. The distances are in this frame's pixels: after a resize the history's texels are of
-// another size (Renderer::continueFrom), and what resampling them blurs counts the same.
-// `agree`: a view-independent effect's four texels all hold the surface and agree to within
-// AGREE_TOLERANCE of the largest; any filter over them gives the same value, so resampling them
-// adds no blur (a lit or umbral region of the shadow). `spread` is the filter's all the same:
-// whether the camera moved.
+// Alpha: the texels' resampling blur (stored in the history's alpha), in squared pixels.
+// `spread`: the blur this resampling adds, the spread of the filter around the point,
+// sum w_i |x_i - x|^2. Each frame of motion adds up to half a pixel^2; a still camera samples
+// texel centres and adds nothing. The distances are in this frame's pixels: after a resize the
+// history's texels are of another size (Renderer::continueFrom), and what resampling them blurs
+// counts the same. `agree`: a view-independent effect's four texels all hold the surface and
+// agree to within AGREE_TOLERANCE of the largest; any filter over them gives the same value, so
+// resampling them adds no blur (a lit or umbral region of the shadow), whatever the spread.
 vec4 historyAt(Reprojection r, out float spread, out bool agree) {
     vec2 size = vec2(textureSize(historyValue, 0));
     vec2 toPixels = frame.viewport.xy / size;
@@ -118,7 +117,7 @@ vec4 historyAt(Reprojection r, out float spread, out bool agree) {
         spread = 0.0;
         v = historyTexel(r.texel);
     }
-    return vec4(v.rgb, v.a + (agree ? 0.0 : spread));
+    return v;
 }
 
 void main() {
@@ -137,9 +136,11 @@ void main() {
     float spread = 0.0;
     bool agree = false;
     vec4 history = r.valid ? historyAt(r, spread, agree) : vec4(0.0);
-    // The blur this frame's resampling added, and what the next frame's will add if the camera
-    // moves as it did (or, from a still camera, as far as one frame of motion can).
+    // The blur this frame's resampling added (the history's blur is its texels' plus that), and
+    // what the next frame's will add if the camera moves as it did (or, from a still camera, as
+    // far as one frame of motion can).
     float added = agree ? 0.0 : spread;
+    history.a += added;
     float nextAdded = agree ? 0.0 : spread > 0.0 ? spread : MOTION_BLUR_STEP;
     // The first frame after a resize, whose history still has the old size: a colour history
     // (the indirect light, SSDO: smooth) keeps its weight through the one resampling, whatever

@@ -62,6 +62,11 @@ bool movedNearby(vec3 world, CacheConstants cache) {
     return false;
 }
 
+// Whether the camera moved since the last frame.
+bool cameraMoved() {
+    return frame.cameraMoved != 0.0;
+}
+
 // Beyond the thesis, the screen's edge: an effect that gathers from the screen within a radius
 // (the AO: MOTION_NEAR_BOX, motionReach) sees only the part of that radius on screen. Where the
 // camera moved the image's edges across the radius around W_t (the part cut off by an edge grew
@@ -76,14 +81,14 @@ bool gatherMeetsEdge(vec3 world, vec4 previousClip, CacheConstants cache) {
     if ((cache.reprojection & REPROJECT_SCREEN_EDGE) == 0 || cache.motionTest != MOTION_NEAR_BOX ||
         cache.motionReach <= 0.0)
         return false;
-    if (frame.cameraMoved == 0.0) return false;
+    if (!cameraMoved()) return false;
     vec4 clip = frame.viewProjection * vec4(world, 1.0);
     vec2 size = frame.viewport.xy;
     float pixelsAtUnitDepth = abs(frame.projection[1][1]) * 0.5 * size.y;
     vec2 now = (clip.xy / clip.w * 0.5 + 0.5) * size;
     vec2 then = (previousClip.xy / previousClip.w * 0.5 + 0.5) * size;
-    float reachNow = cache.motionReach * pixelsAtUnitDepth / max(clip.w, 1e-6);
-    float reachThen = cache.motionReach * pixelsAtUnitDepth / max(previousClip.w, 1e-6);
+    float reachNow = cache.motionReach * pixelsAtUnitDepth / max(clip.w, tinyLength());
+    float reachThen = cache.motionReach * pixelsAtUnitDepth / max(previousClip.w, tinyLength());
     // How far the radius reaches past each edge (left and top, right and bottom), in pixels.
     vec4 cutNow = max(vec4(reachNow - now, now + reachNow - size), 0.0);
     vec4 cutThen = max(vec4(reachThen - then, then + reachThen - size), 0.0);
@@ -144,11 +149,6 @@ ivec2 cachePixelAround(uvec2 thread, CacheConstants cache, int margin) {
 // An exact effect's count (one rotation, CachedEffect::exact) for a value that resampling has
 // blurred: converged while the camera moves, computed again once it holds still.
 const float EXACT_BLURRED = 1.5;
-
-// Whether the camera moved since the last frame.
-bool cameraMoved() {
-    return frame.cameraMoved != 0.0;
-}
 
 // Whether every texel of the bilinear footprint around the reprojected point holds the pixel's
 // surface: away from depth edges, where resampling reads the pixel's own surface all round.
