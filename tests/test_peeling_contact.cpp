@@ -130,8 +130,8 @@ TEST_F(SsdoFixesTest, ContactShadowsLowerTheErrorWhereTheBunnyTouchesTheFloor) {
     EXPECT_GT(darkened, 10u);
     EXPECT_EQ(openFloorChanged, 0u);
     EXPECT_GT(near, 200u);
-    // Measured at 320x240 (40 frames, 256-spp reference): without 0.0478, with 0.0432 (two
-    // layers), 0.0438 (one layer).
+    // Measured at 320x240 (40 frames, 256-spp reference): without 0.0588, with 0.0463 (two
+    // layers), 0.0470 (one layer).
     EXPECT_LT(errorWith, 0.95 * errorWithout);
     EXPECT_LT(errorOneLayer, 0.95 * errorWithout);
 }
