@@ -7,11 +7,13 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <memory>
 #include <stdexcept>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -101,8 +103,29 @@ std::vector<float> readImage(const std::string& path, uint32_t& width, uint32_t&
     // The colour as stored: OpenImageIO would otherwise multiply a PNG's colour by its alpha.
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
-    auto in = OIIO::ImageInput::open(path, &config);
-    if (!in) throw InputError(path + ": cannot read image: " + OIIO::geterror());
+    // A .png is read by the PNG reader only and an .exr by the OpenEXR reader only: when the
+    // named reader refuses a file, ImageInput::open hands it to every other format it has
+    // (LibRaw and the rest), so a damaged .png reached every parser and an EXR named .png was
+    // read as linear radiance and compared as a display image. Other names are left to open.
+    std::string extension = fs::path(path).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    const char* format = extension == ".png" ? "png" : extension == ".exr" ? "openexr" : nullptr;
+    std::unique_ptr<OIIO::ImageInput> in;
+    if (format) {
+        in = OIIO::ImageInput::create(format);
+        if (!in) throw InputError(path + ": cannot read image: " + OIIO::geterror());
+        OIIO::ImageSpec opened;
+        if (!in->open(path, opened, config)) {
+            const std::string why = in->geterror();
+            throw InputError(path + ": not a readable " +
+                             (extension == ".png" ? "PNG" : "OpenEXR") + " file" +
+                             (why.empty() ? "" : ": " + why));
+        }
+    } else {
+        in = OIIO::ImageInput::open(path, &config);
+        if (!in) throw InputError(path + ": cannot read image: " + OIIO::geterror());
+    }
     const OIIO::ImageSpec& spec = in->spec();
     if (spec.width < 1 || spec.height < 1 || spec.depth != 1 || spec.width > kMaxImageSide ||
         spec.height > kMaxImageSide)
