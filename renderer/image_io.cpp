@@ -7,11 +7,14 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <memory>
 #include <stdexcept>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -73,6 +76,56 @@ std::string encode(const ImageFile& image) {
     return std::string(bytes.begin(), bytes.end());
 }
 
+// OpenEXR (3.1) allocates each header attribute's declared size before it reads the value: a
+// 53-byte file declaring a 1.8 GB string took that much memory, and an unknown attribute type
+// of a few hundred MB took seconds to refuse (fuzz_image). The header is walked here first
+// (magic, version, then per part `name\0 type\0 int32 size, value`, each part ending in \0),
+// and a size that is negative or runs past the end of the file is refused before OpenEXR
+// sees the file. Throws InputError; returns quietly on what OpenEXR itself should judge.
+void checkExrHeader(const std::string& path, uint64_t fileSize) {
+    std::ifstream in(path, std::ios::binary);
+    const auto fail = [&](const std::string& why) {
+        throw InputError(path + ": not a readable OpenEXR file: " + why);
+    };
+    unsigned char start[8];
+    if (!in.read(reinterpret_cast<char*>(start), 8)) fail("shorter than its 8-byte start");
+    if (start[0] != 0x76 || start[1] != 0x2f || start[2] != 0x31 || start[3] != 0x01)
+        return; // not OpenEXR's magic number: OpenEXR says so
+    const bool multipart = (start[5] & 0x10) != 0;
+    // A name or type name: at most 255 characters and a \0 (31 without the long-names flag;
+    // OpenEXR checks that).
+    const auto readName = [&](std::string& name) {
+        name.clear();
+        for (char c; in.get(c);) {
+            if (c == '\0') return true;
+            if (name.size() == 255) return false;
+            name.push_back(c);
+        }
+        return false;
+    };
+    std::string name, type;
+    for (int part = 0;; ++part) {
+        for (;;) {
+            if (!readName(name)) fail("a header attribute's name runs past 255 bytes or the file");
+            if (name.empty()) break; // the end of this part's header
+            if (!readName(type)) fail("attribute '" + name + "' has no type name");
+            unsigned char bytes[4];
+            if (!in.read(reinterpret_cast<char*>(bytes), 4))
+                fail("attribute '" + name + "' has no size");
+            const int32_t size = int32_t(uint32_t(bytes[0]) | uint32_t(bytes[1]) << 8 |
+                                         uint32_t(bytes[2]) << 16 | uint32_t(bytes[3]) << 24);
+            const uint64_t at = uint64_t(in.tellg());
+            if (size < 0 || uint64_t(size) > fileSize - at)
+                fail("attribute '" + name + "' (" + type + ") declares " + std::to_string(size) +
+                     " bytes, and " + std::to_string(fileSize - at) + " are left in the file");
+            in.seekg(size, std::ios::cur);
+        }
+        // A multi-part file lists its parts' headers one after another, then an empty one.
+        if (!multipart || in.peek() == 0 || in.peek() == std::char_traits<char>::eof()) return;
+        if (part > 100000) fail("more than 100000 parts");
+    }
+}
+
 } // namespace
 
 void writeImages(const std::vector<ImageFile>& images) {
@@ -101,8 +154,30 @@ std::vector<float> readImage(const std::string& path, uint32_t& width, uint32_t&
     // The colour as stored: OpenImageIO would otherwise multiply a PNG's colour by its alpha.
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
-    auto in = OIIO::ImageInput::open(path, &config);
-    if (!in) throw InputError(path + ": cannot read image: " + OIIO::geterror());
+    // A .png is read by the PNG reader only and an .exr by the OpenEXR reader only: when the
+    // named reader refuses a file, ImageInput::open hands it to every other format it has
+    // (LibRaw and the rest), so a damaged .png reached every parser and an EXR named .png was
+    // read as linear radiance and compared as a display image. Other names are left to open.
+    std::string extension = fs::path(path).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    const char* format = extension == ".png" ? "png" : extension == ".exr" ? "openexr" : nullptr;
+    std::unique_ptr<OIIO::ImageInput> in;
+    if (format) {
+        if (extension == ".exr") checkExrHeader(path, uint64_t(status.st_size));
+        in = OIIO::ImageInput::create(format);
+        if (!in) throw InputError(path + ": cannot read image: " + OIIO::geterror());
+        OIIO::ImageSpec opened;
+        if (!in->open(path, opened, config)) {
+            const std::string why = in->geterror();
+            throw InputError(path + ": not a readable " +
+                             (extension == ".png" ? "PNG" : "OpenEXR") + " file" +
+                             (why.empty() ? "" : ": " + why));
+        }
+    } else {
+        in = OIIO::ImageInput::open(path, &config);
+        if (!in) throw InputError(path + ": cannot read image: " + OIIO::geterror());
+    }
     const OIIO::ImageSpec& spec = in->spec();
     if (spec.width < 1 || spec.height < 1 || spec.depth != 1 || spec.width > kMaxImageSide ||
         spec.height > kMaxImageSide)

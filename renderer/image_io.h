@@ -30,8 +30,11 @@ constexpr int kMaxImageSide = 16384;
 
 // Reads an image as RGBA floats, the colour as the file stores it (a PNG's colour is not
 // multiplied by its alpha); a grey image gives R = G = B, and alpha is 1 where the file has none.
-// InputError for anything else: a file that is not a regular file, a size beyond kMaxImageSide
-// or beyond memory, channels that are not grey, grey and alpha, RGB or RGBA.
+// A .png is read as a PNG only and an .exr as an OpenEXR only (an EXR's header is checked
+// first: no attribute may declare more bytes than the file holds); other names as OpenImageIO
+// finds them. InputError for anything else: a file that is not a regular file or not what its
+// name says, a size beyond kMaxImageSide or beyond memory, channels that are not grey, grey and
+// alpha, RGB or RGBA.
 std::vector<float> readImage(const std::string& path, uint32_t& width, uint32_t& height);
 
 } // namespace ssgi

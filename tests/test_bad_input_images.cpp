@@ -1,7 +1,7 @@
 // compare's image readers: the same picture stored as grey, grey with alpha, RGB or RGBA, PNG or
 // one- and three-channel EXR reads the same; a PNG's colour is not multiplied by its alpha;
 // sizes beyond what is read, and what is not a regular file, are refused before any memory is
-// taken.
+// taken; a file is read as what its name says (.png, .exr) or refused.
 #include "bad_input.h"
 #include "image_io.h"
 #include "support.h"
@@ -87,9 +87,24 @@ TEST_F(BadInput, CompareReadsWhatTheFileHolds) {
     const std::string huge = write("huge.png", png);
     const fs::path fifo = dir_ / "fifo.png";
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    // A file named .png is read as a PNG only, one named .exr as an OpenEXR only: an EXR named
+    // .png was read as linear radiance and compared as a display image, and a damaged .png was
+    // handed to every format OpenImageIO has (fuzz_image spent its time in LibRaw).
+    // An EXR header of 53 bytes whose string attribute declares 1.8 GB: OpenEXR allocated that
+    // before reading it (fuzz_image's out-of-memory finding); refused from its header.
+    const std::string hugeAttribute = write(
+        "huge-attribute.exr",
+        std::string("v/1\x01\x02\0\0\0capDate\0string\0\0\0\0lineOrder\0\0\x01\0\0\0\x01\0\0\0"
+                    "\x0dIHDR\0\0c",
+                    53));
+    fs::copy_file(dir_ / "rgb.exr", dir_ / "exr.png");
+    fs::copy_file(dir_ / "rgb.png", dir_ / "png.exr");
     for (const auto& [path, message] :
          {std::pair{huge, std::string("declares 100000x100000 pixels")},
-          std::pair{fifo.string(), std::string("not a regular file")}}) {
+          std::pair{fifo.string(), std::string("not a regular file")},
+          std::pair{(dir_ / "exr.png").string(), std::string("not a readable PNG file")},
+          std::pair{(dir_ / "png.exr").string(), std::string("not a readable OpenEXR file")},
+          std::pair{hugeAttribute, std::string("declares 1811939328 bytes, and 26 are left")}}) {
         const test::CommandResult run =
             test::runCommand(compare + " " + path + " " + (dir_ / "rgb.png").string());
         EXPECT_EQ(run.status, 2) << run.output;

@@ -51,7 +51,8 @@ glm::vec3 corner(const ssgi::Aabb& bounds, int index) {
 
 TEST_F(SceneFiles, BareModelIsFramedAndLitAtEveryScale) {
     float firstIrradiance = 0.0f;
-    for (float scale : {1e-3f, 1.0f, 1e3f}) {
+    glm::vec3 firstDirection(0.0f);
+    for (float scale : {1.0f, 1e-9f, 1e-3f, 1e3f}) { // scale 1 first: the others match it
         SCOPED_TRACE(scale);
         const json node = {{"mesh", 0},
                            {"scale", {scale, scale, scale}},
@@ -83,6 +84,10 @@ TEST_F(SceneFiles, BareModelIsFramedAndLitAtEveryScale) {
         EXPECT_NEAR(irradiance, ssgi::kBareModelIrradiance, 1e-3f);
         if (firstIrradiance == 0.0f) firstIrradiance = irradiance;
         EXPECT_NEAR(irradiance, firstIrradiance, 1e-4f * firstIrradiance);
+        // The same direction too: the light's side is the camera's at every scale (at 1e-9 an
+        // absolute floor of 1e-6 units on the camera's offset sent it to +Z).
+        if (firstDirection == glm::vec3(0.0f)) firstDirection = light.direction;
+        EXPECT_LT(glm::distance(light.direction, firstDirection), 1e-4f);
 
         // The camera is outside the model, looks down at it, has its centre in the middle of
         // the frame and every corner of its bounds within the frame.

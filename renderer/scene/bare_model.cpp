@@ -59,14 +59,18 @@ SpotLight bareModelLight(const Aabb& model, const Camera& camera) {
     const glm::vec3 center = model.center();
     const float radius = boundingRadius(model);
     // The camera's side of the model, seen from above; a camera straight above or below the
-    // centre has none, and then its view direction (or, failing that, +Z) decides.
+    // centre has none, and then its view direction (or, failing that, +Z) decides. Each floor
+    // is relative to its vector's scale: the model's radius for the camera's offset (a model
+    // 1e-9 units wide lies 1e-9 units from its camera), 1 for the unit view direction.
     glm::vec3 side = camera.position - center;
     side.y = 0.0f;
+    float scale = radius;
     if (glm::length(side) <= 1e-6f * radius) {
         side = camera.orientation * glm::vec3(0, 0, 1);
         side.y = 0.0f;
+        scale = 1.0f;
     }
-    side = glm::length(side) > 1e-6f ? glm::normalize(side) : glm::vec3(0, 0, 1);
+    side = glm::length(side) > 1e-6f * scale ? glm::normalize(side) : glm::vec3(0, 0, 1);
     const glm::vec3 toLight = raised(turned(side, 40.0f), 55.0f);
     constexpr float kDistance = 4.0f; // bounding radii
     SpotLight light;
