@@ -47,12 +47,17 @@ vec3 gatherIndirect(vec3 p, vec3 n, float rotation, float radiusScale, float rad
         vec3 q = rsmTexelPosition(texel, vpl);
         vec3 toVpl = q - p;
         float distance2 = dot(toVpl, toVpl);
-        // Clamp the distance to the VPL's own footprint: a texel cannot deliver more than the
-        // disk it covers, which removes the 1/d^2 spike of VPLs right next to p. A VPL of one
-        // subset of k^2 stands for k^2 texels' light (its weight is k^2 times a texel's), so its
-        // footprint is k texels wide.
+        // Clamp the distance to the VPL's own footprint: a sample cannot deliver more than the
+        // area it stands for, which removes the 1/d^2 spike of VPLs right next to p. A sample
+        // stands for weightScale * r texels (its subset's k^2 and the pattern's density at r:
+        // far from the pattern's centre, where samples are sparse, many), and the clamp is the
+        // radius of a disk of a quarter of that area, at least k texels. The quarter is measured
+        // (docs/effects.md): the whole disk's radius removes every spike but darkens the Cornell
+        // boxes' corners; k texels alone let a far sample that lands next to p (a floor VPL at a
+        // wall's foot) light one pixel 20-50 times too bright in one frame out of ten.
+        float texels = sqrt(max(weightScale * r / (4.0 * PI), float(k * k)));
         float footprint = distance(q, frame.lightPosition.xyz) * 2.0 * frame.lightFrustum.z /
-                          size * float(k);
+                          size * texels;
         float d2 = max(distance2, footprint * footprint);
         vec3 D = toVpl * inversesqrt(max(distance2, tinyLength2()));
         float cosP = max(dot(n, D), 0.0);
