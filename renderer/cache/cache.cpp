@@ -106,16 +106,17 @@ void carryCaches(graph::FrameGraph& from, const CacheSet& fromCaches, VkExtent2D
         for (const EffectCache& cache : toCaches.effects) {
             if (cache.name() != old.name()) continue;
             to.carryHistory(cache.valueHistory, fromSize, last(old.valueHistory));
-            // Each pixel's history counts as one sample (rotation count 1): screen-space effects
-            // converge to another value at another size (their samples snap to other pixels),
-            // and a history converged at the old size would hold the new one off for dozens of
-            // frames (docs/temporal-cache.md, "Resize"). The shadow, which allows no blur, starts
-            // over; the others blend the new frames into the resampled image.
+            // Each pixel's history counts as half a sample (rotation count 0.5): screen-space
+            // effects converge to another value at another size (their samples snap to other
+            // pixels), and a history converged at the old size would hold the new one off for
+            // dozens of frames (docs/temporal-cache.md, "Resize"). The shadow, which allows no
+            // blur, starts over; the others blend the new frames into the resampled image, the
+            // first with two thirds of the weight.
             std::vector<uint8_t> count = last(old.countHistory);
             for (size_t i = 0; i + 4 <= count.size(); i += 4) { // RG16F: count, due
                 uint16_t n[2] = {};
                 std::memcpy(n, &count[i], 4);
-                n[0] = glm::packHalf1x16(std::min(glm::unpackHalf1x16(n[0]), 1.0f));
+                n[0] = glm::packHalf1x16(std::min(glm::unpackHalf1x16(n[0]), 0.5f));
                 n[1] = 0; // the first frame at the new size computes what its cache lacks
                 std::memcpy(&count[i], n, 4);
             }
