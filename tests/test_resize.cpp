@@ -1,6 +1,6 @@
 // A resize: a new renderer of another size goes on from the old one
 // (Renderer::continueFrom). Its first frame reprojects every cached history at the old size, as
-// it would reproject any last frame, and the resampled image counts as one sample, so the new
+// it would reproject any last frame, and the resampled image counts as half a sample, so the new
 // size neither starts from noise nor stays held to what the old size converged to.
 #include "metrics/metrics.h"
 #include "renderer.h"

@@ -137,7 +137,8 @@ TEST_F(Viewer, ScriptedPathWithResizeShowsSceneAndPanel) {
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_EQ(r.output.find("validation"), std::string::npos) << r.output;
 
-    // The report: every frame rendered, the resize seen, every history carried over as one sample.
+    // The report: every frame rendered, the resize seen, every history carried over as half a
+    // sample.
     nlohmann::json report = nlohmann::json::parse(std::ifstream(path("report.json")));
     EXPECT_EQ(report["validation"], true);
     EXPECT_EQ(report["validation_messages"], 0);
@@ -160,8 +161,9 @@ TEST_F(Viewer, ScriptedPathWithResizeShowsSceneAndPanel) {
         EXPECT_EQ(frame["render"][1], after ? 440 : 400) << "frame " << f;
         EXPECT_EQ(frame["renderer_rebuilt"], f == 0 || f == resizedAt) << "frame " << f;
         // A history counts the frames it has accumulated: from 1 on the first frame; at the new
-        // size its resampled history counts as one sample (Renderer::continueFrom), so from 2.
-        const float expected = float(after ? f - resizedAt + 2 : f + 1);
+        // size its resampled history counts as half a sample (Renderer::continueFrom), so from
+        // 1.5.
+        const float expected = after ? float(f - resizedAt) + 1.5f : float(f + 1);
         for (const char* effect : {"shadow", "ao", "indirect"})
             EXPECT_EQ(frame["history_max_count"][effect].get<float>(), expected)
                 << effect << ", frame " << f;
