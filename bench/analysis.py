@@ -202,9 +202,8 @@ def value_taps(axis, settings):
         if method == 2:  # importance: the flux's VPLs beside them, a few of all tested
             vpls += max(1, settings.get("indirect_flux_vpls", 64) // (k * k))
             marched = min(vpls, settings.get("indirect_visibility_tests", 6))
-        # Each of the RSM's VPLs one 16-byte texel (rsm_vpl.glsl, since 6e1faec; three before:
-        # depth, normal, flux); method 2's VPL map its position, normal and flux in three
-        # images. The visibility march in the G-buffer.
+        # Each of the RSM's VPLs one 16-byte texel (rsm_vpl.glsl); method 2's VPL map its
+        # position, normal and flux in three images. The visibility march in the G-buffer.
         scattered = 3 * vpls if method == 2 else vpls
         return VISIBILITY_STEPS * marched * settings["indirect_visibility"], scattered
     return None

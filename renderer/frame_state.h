@@ -28,7 +28,7 @@ struct FrameState {
     // Camera, light and objects unchanged for as many frames as a pixel needs rotations: every
     // pixel is converged, and the cached effects run over their refresh tiles alone.
     bool settled = false;
-    // What the composite shows (a VIEW_* value of shared.h).
+    // What the composite shows: the view's place in kViews (passes/views.h).
     int view = 0;
     std::vector<CachedEffectFrame> effects;
 };

@@ -3,6 +3,7 @@
 #include "frame_uniforms.h"
 
 #include "passes/passes.h"
+#include "passes/views.h"
 
 #include "scene/animation.h"
 #include "scene/camera.h"
@@ -21,47 +22,17 @@ namespace ssgi {
 // A quarter of half-float range: radiance up to this is kept in its own units.
 constexpr float kLargestUnscaledRadiance = 16384.0f;
 
-namespace {
-// Each debug view's name beside its VIEW_* value (shared.h, which the composite reads), the
-// value its place in the list.
-struct NamedView {
-    int view;
-    const char* name;
-};
-constexpr NamedView kViews[] = {{VIEW_FINAL, "final"},
-                                {VIEW_ALBEDO, "albedo"},
-                                {VIEW_NORMAL, "normal"},
-                                {VIEW_DEPTH, "depth"},
-                                {VIEW_DIRECT, "direct"},
-                                {VIEW_RSM_FLUX, "rsm-flux"},
-                                {VIEW_RSM_NORMAL, "rsm-normal"},
-                                {VIEW_SHADOW, "shadow"},
-                                {VIEW_AO, "ao"},
-                                {VIEW_INDIRECT, "indirect"},
-                                {VIEW_SSDO, "ssdo"},
-                                {VIEW_CONTACT, "contact"},
-                                {VIEW_PEEL, "peel"},
-                                {VIEW_SKY_VISIBILITY, "sky-visibility"}};
-constexpr bool viewsInOrder() {
-    int place = 0;
-    for (const NamedView& v : kViews)
-        if (v.view != place++) return false;
-    return place == VIEW_COUNT;
-}
-static_assert(viewsInOrder(), "kViews lists every VIEW_* of shared.h at its value's place");
-} // namespace
-
 const std::vector<std::string>& viewNames() {
     static const std::vector<std::string> names = [] {
         std::vector<std::string> list;
-        for (const NamedView& v : kViews)
+        for (const ViewDef& v : kViews)
             list.push_back(v.name);
         return list;
     }();
     return names;
 }
 
-// The VIEW_* value of a view's name; InputError listing the views otherwise.
+// A view's place in kViews (views.h); InputError listing the views otherwise.
 static int viewIndex(const std::string& name) {
     const auto& views = viewNames();
     auto view = std::find(views.begin(), views.end(), name);
@@ -126,6 +97,7 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
         origin_ = gpuOrigin(scene.bounds);
         uploadTransforms();
         graph_ = std::make_unique<graph::FrameGraph>(ctx);
+        graph_->setRecordingLog(options.logRecording);
         build_ = std::make_unique<FrameBuild>(ctx, *graph_, *sceneGpu_, scene, rendered, band,
                                               VkExtent2D{rsmSize, rsmSize}, origin_);
         view_ = view;

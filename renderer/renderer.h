@@ -29,6 +29,9 @@ struct RenderOptions {
     // VPL subsets' turn, the flux draw) starts. A reference renderer that must not share the
     // samples of renderers started at 0 starts elsewhere (the stability suite's converged image).
     uint32_t patternStart = 0;
+    // The frame graph keeps the last frame's barriers and commands (FrameGraph::lastBarriers),
+    // for tests that inspect them.
+    bool logRecording = false;
 };
 
 class Renderer {
@@ -118,7 +121,7 @@ private:
     uint32_t stillFrames_ = 0;          // frames in a row with this camera and light
     bool rsmStale_ = true;              // the light changed since the RSM was drawn
     bool skyMapsStale_ = true;          // an object moved since the sky maps were drawn
-    int view_ = 0;                      // what the composite shows (VIEW_*)
+    int view_ = 0;                      // what the composite shows (its place in kViews)
     FrameState lastFrame_;              // what the last frame ran
     std::vector<glm::mat4> transforms_; // where the instances stand
     std::vector<Aabb> moved_;           // boxes of the objects moved since the last frame

@@ -39,7 +39,7 @@ Frame render(const Scene& scene, uint32_t width, uint32_t height, uint32_t frame
 
 // The scene made k times larger, its light k^2 times stronger: every radiance stays the same.
 Scene scaledScene(Scene scene, float k);
-// The scales the scene-unit tests render at (issue 37: 1e-9 to 1e9 units).
+// The scales the scene-unit tests render at: 1e-9 to 1e9 units.
 inline constexpr float kSceneScales[] = {1e-9f, 1e-6f, 1e-3f, 1e3f, 1e6f, 1e9f};
 
 // Whether the segment from `origin` to `target` crosses any triangle of the scene (exact, on the

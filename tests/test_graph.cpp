@@ -268,6 +268,7 @@ protected:
     std::vector<RecordedCommand> recordTwoPasses(TimestampMode mode) {
         vk::Context& ctx = test::context();
         FrameGraph graph(ctx, mode);
+        graph.setRecordingLog(true);
         const ImageRef image = graph.createImage("cleared", VK_FORMAT_R32G32B32A32_SFLOAT, {4, 4},
                                                  VK_IMAGE_USAGE_TRANSFER_DST_BIT);
         auto clear = [&](const PassContext& pc) {

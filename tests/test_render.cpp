@@ -183,7 +183,9 @@ TEST_F(RenderTest, FrameReportsEveryPassInOrderWithTimings) {
         EXPECT_EQ(t[t.size() - 3].name, "sky_visibility");
         EXPECT_EQ(t[t.size() - 2].name, "sky_visibility.temporal");
     }
-    Renderer renderer(test::context(), scene, {64, 64, "final"});
+    RenderOptions options{64, 64, "final"};
+    options.logRecording = true; // the second frame's barriers are read below
+    Renderer renderer(test::context(), scene, options);
     renderer.renderFrame(scene.camera);
     renderer.renderFrame(scene.camera);
     std::vector<std::string> names;

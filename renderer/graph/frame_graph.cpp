@@ -109,7 +109,7 @@ void FrameGraph::addPass(const std::string& name, PassKind kind, std::vector<Ima
 // changes no image; a GPU records the stamps alone (docs/profiling.md has the figures).
 void FrameGraph::writeTimestamp(VkCommandBuffer cmd, uint32_t query, const std::string& pass) {
     vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queryPool_, query);
-    lastCommands_.push_back({RecordedCommand::Kind::Timestamp, pass});
+    if (logRecording_) lastCommands_.push_back({RecordedCommand::Kind::Timestamp, pass});
     if (timestampMode_ != TimestampMode::BarrierAfterEach) return;
     VkMemoryBarrier2 all{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
     all.srcStageMask = all.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
@@ -119,7 +119,7 @@ void FrameGraph::writeTimestamp(VkCommandBuffer cmd, uint32_t query, const std::
     dep.memoryBarrierCount = 1;
     dep.pMemoryBarriers = &all;
     vkCmdPipelineBarrier2(cmd, &dep);
-    lastCommands_.push_back({RecordedCommand::Kind::TimestampBarrier, pass});
+    if (logRecording_) lastCommands_.push_back({RecordedCommand::Kind::TimestampBarrier, pass});
 }
 
 void FrameGraph::record(VkCommandBuffer cmd) {
@@ -169,9 +169,10 @@ void FrameGraph::record(VkCommandBuffer cmd, const FrameState& frame) {
             if (auto b = transition(r.state, use.use, pass.kind, discard, r.image.image,
                                     r.image.aspect)) {
                 barriers.push_back(*b);
-                lastBarriers_.push_back({pass.name, r.image.name, b->oldLayout, b->newLayout,
-                                         b->srcStageMask, b->dstStageMask, b->srcAccessMask,
-                                         b->dstAccessMask});
+                if (logRecording_)
+                    lastBarriers_.push_back({pass.name, r.image.name, b->oldLayout, b->newLayout,
+                                             b->srcStageMask, b->dstStageMask, b->srcAccessMask,
+                                             b->dstAccessMask});
             }
         }
         if (!barriers.empty()) {
@@ -179,7 +180,7 @@ void FrameGraph::record(VkCommandBuffer cmd, const FrameState& frame) {
             dep.imageMemoryBarrierCount = uint32_t(barriers.size());
             dep.pImageMemoryBarriers = barriers.data();
             vkCmdPipelineBarrier2(cmd, &dep);
-            lastCommands_.push_back({RecordedCommand::Kind::Barrier, pass.name});
+            if (logRecording_) lastCommands_.push_back({RecordedCommand::Kind::Barrier, pass.name});
         }
         if (ctx_.cmdBeginLabel) {
             VkDebugUtilsLabelEXT label{VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT};
@@ -188,7 +189,7 @@ void FrameGraph::record(VkCommandBuffer cmd, const FrameState& frame) {
         }
         writeTimestamp(cmd, 2 * p, pass.name);
         pass.record(PassContext{cmd, frame, *this, pass.name, pass.uses});
-        lastCommands_.push_back({RecordedCommand::Kind::Pass, pass.name});
+        if (logRecording_) lastCommands_.push_back({RecordedCommand::Kind::Pass, pass.name});
         writeTimestamp(cmd, 2 * p + 1, pass.name);
         if (ctx_.cmdEndLabel) ctx_.cmdEndLabel(cmd);
     }

@@ -128,11 +128,11 @@ public:
     void endFrame();
     // Each pass of the last frame, its times from the frame's first stamp.
     const std::vector<PassTiming>& timings() const { return timings_; }
-    size_t passCount() const { return passes_.size(); }
     TimestampMode timestampMode() const { return timestampMode_; }
-    // The barriers recorded by the last record() call, in order.
+    // With the log on, record() keeps what it recorded for inspection (off unless asked for):
+    // the barriers of the last record() call, in order, and everything it recorded, in order.
+    void setRecordingLog(bool on) { logRecording_ = on; }
     const std::vector<BarrierRecord>& lastBarriers() const { return lastBarriers_; }
-    // Everything the last record() call recorded, in order.
     const std::vector<RecordedCommand>& lastCommands() const { return lastCommands_; }
 
     const vk::Image& image(ImageRef ref) const;
@@ -206,6 +206,7 @@ private:
     std::vector<History> histories_;
     std::vector<Pass> passes_;
     std::vector<PassTiming> timings_;
+    bool logRecording_ = false;
     std::vector<BarrierRecord> lastBarriers_;
     std::vector<RecordedCommand> lastCommands_;
     TimestampMode timestampMode_;

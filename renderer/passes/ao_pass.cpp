@@ -16,6 +16,7 @@ graph::ImageRef addAoPass(FrameBuild& build, const GBufferAndRsm& in) {
                    .motionTest = MOTION_NEAR_BOX,
                    .motionReach =
                        aoRadius(build.scene) * (1.0f + float(settings.cache_scale_jitter))};
+    pass.term = "ao";
     pass.shader = "ao.comp";
     using graph::Use;
     pass.inputs = {{"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},

@@ -102,7 +102,9 @@ graph::ImageRef addCachedComputePass(FrameBuild& build, const GBuffer& gbuffer,
                    [&build, cache, record = std::move(record)](const ComputeRecorder& r) {
                        record(CachedRecorder(build, cache, r));
                    });
-    return addTemporalPass(build, cache, raw, gbuffer);
+    const graph::ImageRef value = addTemporalPass(build, cache, raw, gbuffer);
+    if (!desc.term.empty()) build.addCompositeTerm(desc.term, value);
+    return value;
 }
 
 } // namespace ssgi

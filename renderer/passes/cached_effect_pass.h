@@ -42,8 +42,11 @@ private:
 // G-buffer view depths, this frame's reprojection and the effect's rotation counts, to skip
 // converged pixels; temporal.glsl), then
 // "<name>Image", the RGBA16F image it writes (named <name> in the graph); then `uniforms`.
+// With a `term` (a term's view in views.h), what it returns is also handed to the composite as
+// that lighting term.
 struct CachedComputePass {
     CachedEffect effect;
+    std::string term;
     std::string shader;
     std::vector<ShaderImage> inputs;
     std::vector<ShaderBuffer> uniforms;
@@ -54,7 +57,7 @@ using CachedRecordFn = std::function<void(const CachedRecorder&)>;
 
 // The effect's cache (when the settings cache it), its keep pass, its compute pass and its
 // temporal pass; returns what the effect's consumers read (the blended history, or the raw
-// value without a cache).
+// value without a cache), which is also the composite's term when the pass names one.
 graph::ImageRef addCachedComputePass(FrameBuild& build, const GBuffer& gbuffer,
                                      CachedComputePass pass, CachedRecordFn record);
 

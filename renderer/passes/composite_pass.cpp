@@ -1,44 +1,58 @@
-// composite: the frame's terms added up into HDR radiance, then tonemapped to an sRGB image
-// (or a debug view of any intermediate in its place).
+// composite: the direct light and the lighting terms added up into HDR radiance, then
+// tonemapped to an sRGB image (or a debug view of any intermediate in its place).
+//   reads:  gbuffer.view_depth, .normal, .albedo, direct, the shadow term, rsm.vpls (its views),
+//           peel.position (its view), and each lighting term the passes handed it
+//           (FrameBuild::compositeTerms), in slots term0..term3 with their roles
+//   writes: hdr, ldr
 #include "passes/passes.h"
+#include "passes/views.h"
+
+#include <string>
 
 namespace ssgi {
 
 CompositeOutputs addCompositePass(FrameBuild& build, const GBufferAndRsm& in,
-                                  const LightingTerms& terms) {
+                                  const CompositeImages& images) {
     const VkImageUsageFlags storage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     CompositeOutputs out;
     const VkExtent2D output = build.output().extent;
     out.hdr = build.graph.createImage("hdr", VK_FORMAT_R32G32B32A32_SFLOAT, output, storage);
     out.ldr = build.graph.createImage("ldr", VK_FORMAT_R8G8B8A8_UNORM, output, storage);
-    // Which terms exist is structural: the shader never reads the image bound in place of an
-    // effect that is off (the direct term, so that every binding holds a valid image).
-    auto orDirect = [&](graph::ImageRef ref) { return ref.valid() ? ref : terms.direct; };
     using graph::Use;
     ComputePassDesc pass{"composite", "composite.comp"};
     pass.images = {{"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
                    {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
                    {"gbufferAlbedo", in.gbuffer.albedo, Use::Sampled},
-                   {"directRadiance", terms.direct, Use::Sampled},
-                   {"shadowImage", terms.shadow, Use::Sampled},
-                   {"aoImage", orDirect(terms.ao), Use::Sampled},
-                   {"indirectImage", orDirect(terms.indirect), Use::Sampled},
-                   {"ssdoImage", orDirect(terms.ssdo), Use::Sampled},
+                   {"directRadiance", images.direct, Use::Sampled},
+                   {"shadowImage", images.shadow, Use::Sampled},
                    {"rsmVpls", in.rsm.vpls, Use::Sampled},
-                   {"secondLayer", orDirect(terms.secondLayer), Use::Sampled},
-                   {"skyVisibilityImage", orDirect(terms.skyVisibility), Use::Sampled},
-                   {"hdrImage", out.hdr, Use::StorageWrite},
-                   {"ldrImage", out.ldr, Use::StorageWrite}};
+                   // The shader reads the second layer only for its view, when there is one.
+                   {"secondLayer", images.secondLayer.valid() ? images.secondLayer : images.direct,
+                    Use::Sampled}};
+    pass.spec = {{{"HAS_CONTACT", build.settings.contact_shadows ? 1 : 0}}};
+    // Each slot's role is structural: a slot without a term (TERM_NONE) is never read, and holds
+    // the direct light so that every binding holds a valid image.
+    const std::vector<CompositeTerm>& terms = build.compositeTerms;
+    for (size_t slot = 0; slot < COMPOSITE_TERMS; ++slot) {
+        const bool used = slot < terms.size();
+        const std::string name = "term" + std::to_string(slot);
+        pass.images.push_back({name, used ? terms[slot].image : images.direct, Use::Sampled});
+        pass.spec.constants.push_back(
+            {"TERM" + std::to_string(slot) + "_ROLE", used ? terms[slot].role : TERM_NONE});
+    }
+    pass.images.push_back({"hdrImage", out.hdr, Use::StorageWrite});
+    pass.images.push_back({"ldrImage", out.ldr, Use::StorageWrite});
     pass.pushSize = sizeof(shader::CompositeConstants);
-    pass.spec = {{{"HAS_AO", terms.ao.valid() ? 1 : 0},
-                  {"HAS_INDIRECT", terms.indirect.valid() ? 1 : 0},
-                  {"HAS_SSDO", terms.ssdo.valid() ? 1 : 0},
-                  {"HAS_SKY_VISIBILITY", terms.skyVisibility.valid() ? 1 : 0},
-                  {"HAS_CONTACT", build.settings.contact_shadows ? 1 : 0}}};
     addComputePass(build, std::move(pass), [&build, output](const ComputeRecorder& r) {
+        const ViewDef& view = kViews[r.frame().view];
         shader::CompositeConstants constants{};
-        constants.view = r.frame().view;
+        constants.view = view.view;
         constants.guardBand = int(build.guardBand);
+        constants.termSlot = -1;
+        constants.termRole = view.role;
+        const std::vector<CompositeTerm>& terms = build.compositeTerms;
+        for (size_t slot = 0; slot < terms.size(); ++slot)
+            if (terms[slot].view == view.name) constants.termSlot = int(slot);
         r.dispatch(output.width, output.height, constants);
     });
     return out;

@@ -15,33 +15,37 @@ void addFramePasses(FrameBuild& build) {
     rasterized.rsm = addRsmPass(build);
     if (settings.cache) addReprojectionPass(build, rasterized.gbuffer);
     // Each cached effect returns its blended history (cached_effect_pass.h), which is what its
-    // consumers read.
-    LightingTerms terms;
-    terms.shadow = addShadowPass(build, rasterized);
+    // consumers read; the lighting terms hand theirs to the composite, which adds them up in the
+    // order they come here (FrameBuild::addCompositeTerm).
+    CompositeImages composite;
+    composite.shadow = addShadowPass(build, rasterized);
     // Depth peeling's second layer serves SSDO's occlusion test and the contact shadows'.
     if (settings.depth_peeling && (settings.ssdo || settings.contact_shadows))
-        terms.secondLayer = addPeelPass(build, rasterized);
+        composite.secondLayer = addPeelPass(build, rasterized);
     if (settings.contact_shadows)
-        terms.shadow = addContactPass(build, rasterized, terms.shadow, terms.secondLayer);
+        composite.shadow =
+            addContactPass(build, rasterized, composite.shadow, composite.secondLayer);
     if (settings.ssdo) {
-        terms.direct = addDirectPass(build, rasterized, terms.shadow); // SSDO's bounce reads it
-        terms.ssdo = addSsdoPass(build, rasterized, terms.direct, terms.secondLayer);
+        // SSDO's bounce reads the direct light.
+        composite.direct = addDirectPass(build, rasterized, composite.shadow);
+        addSsdoPass(build, rasterized, composite.direct, composite.secondLayer);
     } else if (settings.ao) {
-        terms.ao = addAoPass(build, rasterized);
+        addAoPass(build, rasterized);
     }
-    if (settings.indirect) terms.indirect = addIndirectLight(build, rasterized);
+    if (settings.indirect) addIndirectLight(build, rasterized);
     // Without SSDO only the composite reads the direct light: made once the indirect light's
     // working images are gone, it shares their memory instead of adding to it (FrameGraph's
     // transient images).
-    if (!terms.direct.valid()) terms.direct = addDirectPass(build, rasterized, terms.shadow);
+    if (!composite.direct.valid())
+        composite.direct = addDirectPass(build, rasterized, composite.shadow);
     // The sky's visibility beyond the screen, for the sky term beside the AO (none to see
     // under a black sky, as in the Cornell boxes).
     const bool blackSky = scene.sky.zenith == glm::vec3(0.0f) &&
                           scene.sky.horizon == glm::vec3(0.0f) &&
                           scene.sky.ground == glm::vec3(0.0f);
     if (settings.sky_visibility && !settings.ssdo && !blackSky)
-        terms.skyVisibility = addSkyVisibilityPasses(build, rasterized);
-    addCompositePass(build, rasterized, terms);
+        addSkyVisibilityPasses(build, rasterized);
+    addCompositePass(build, rasterized, composite);
 }
 
 } // namespace ssgi

@@ -1,8 +1,10 @@
 #include "passes/frame_build.h"
 
+#include "passes/views.h"
 #include "shared.h"
 
 #include <cstring>
+#include <stdexcept>
 
 namespace ssgi {
 
@@ -59,6 +61,19 @@ const vk::Pipeline& FrameBuild::computePipeline(const ComputePassDesc& desc,
 vk::Pipeline FrameBuild::graphicsPipeline(const vk::GraphicsPipelineDesc& desc) {
     pipelines_.push_back(vk::createGraphicsPipeline(ctx, desc));
     return pipelines_.back();
+}
+
+void FrameBuild::addCompositeTerm(const std::string& view, graph::ImageRef image) {
+    const ViewDef* def = findView(view);
+    if (!def || def->view != VIEW_TERM)
+        throw std::logic_error("addCompositeTerm: '" + view + "' is not a term's view (views.h)");
+    for (const CompositeTerm& term : compositeTerms)
+        if (term.view == view) throw std::logic_error("addCompositeTerm: '" + view + "' twice");
+    if (compositeTerms.size() == COMPOSITE_TERMS)
+        throw std::logic_error("addCompositeTerm: composite.comp binds " +
+                               std::to_string(COMPOSITE_TERMS) + " terms, '" + view +
+                               "' is one more");
+    compositeTerms.push_back({view, def->role, image});
 }
 
 const vk::Buffer& FrameBuild::uniformBuffer(const void* data, VkDeviceSize bytes) {

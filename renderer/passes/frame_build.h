@@ -20,6 +20,14 @@
 
 namespace ssgi {
 
+// A lighting term the composite adds up: its image, under its view's name (views.h), and how it
+// enters the sum (TERM_* of shared.h, from the view table).
+struct CompositeTerm {
+    std::string view;
+    int role;
+    graph::ImageRef image;
+};
+
 class FrameBuild {
 public:
     // The frame's uniforms and both samplers are made here; the passes are added by
@@ -44,12 +52,19 @@ public:
     VkSampler nearestSampler = VK_NULL_HANDLE;
     VkSampler linearSampler = VK_NULL_HANDLE;
     CacheSet caches; // empty when caching is off
+    // The lighting terms the passes made, in the order they are added up (addCompositeTerm).
+    std::vector<CompositeTerm> compositeTerms;
 
     // Where the output ("hdr", "ldr") lies in the screen images: the guard band in from each edge.
     VkRect2D output() const {
         return {{int32_t(guardBand), int32_t(guardBand)},
                 {size.width - 2 * guardBand, size.height - 2 * guardBand}};
     }
+    // Hands the composite a lighting term: `image` under `view`, a term's view of the view table
+    // (views.h), which says how it enters the sum; terms are added up in the order given. Throws
+    // std::logic_error for a view that is not a term's, a term given twice, or more terms than
+    // the composite's slots (COMPOSITE_TERMS).
+    void addCompositeTerm(const std::string& view, graph::ImageRef image);
     // A compute pipeline for `desc` (compute_pass.cpp), made once and shared by every pass that
     // asks for the same shader, layout and specialization (the interleaved filter's two axes).
     const vk::Pipeline& computePipeline(const ComputePassDesc& desc,

@@ -45,19 +45,19 @@ graph::ImageRef addInterleavedIndirectPasses(FrameBuild& build, const GBufferAnd
             area = {area.width + 2 * widen, area.height + 2 * widen};
         return area;
     };
-    const Settings& m = build.settings;
+    const Settings& settings = build.settings;
     vk::Specialization gatherSpec{{{"VPLS", vpls},
-                                   {"VISIBILITY", int(m.indirect_visibility)},
-                                   {"VISIBILITY_STEPS", int(m.indirect_visibility_steps)},
+                                   {"VISIBILITY", int(settings.indirect_visibility)},
+                                   {"VISIBILITY_STEPS", int(settings.indirect_visibility_steps)},
                                    {"INTERLEAVE", k},
                                    {"RADIUS", radius}}};
     if (fluxVpls) { // method 2: its flux-drawn VPLs, the tests drawn, the pool, the map's side
-        const int cluster = int(m.indirect_vpl_cluster);
+        const int cluster = int(settings.indirect_vpl_cluster);
         gatherSpec.constants.insert(
             gatherSpec.constants.end(),
-            {{"FLUX_VPLS", int(m.indirect_flux_vpls)},
-             {"TESTS", int(m.indirect_visibility_tests)},
-             {"POOL", int(std::max(m.indirect_flux_pool, m.indirect_flux_vpls))},
+            {{"FLUX_VPLS", int(settings.indirect_flux_vpls)},
+             {"TESTS", int(settings.indirect_visibility_tests)},
+             {"POOL", int(std::max(settings.indirect_flux_pool, settings.indirect_flux_vpls))},
              {"MAP_SIZE", (int(build.rsmSize.width) + cluster - 1) / cluster}});
     }
     const vk::Specialization filterSpec{{{"INTERLEAVE", k}, {"RADIUS", radius}}};

@@ -37,7 +37,9 @@ graph::ImageRef addIndirectLight(FrameBuild& build, const GBufferAndRsm& in) {
         if (method == 2) vpls = addFluxVplPasses(build, in, cache);
         raw = addInterleavedIndirectPasses(build, in, cache, vpls ? &*vpls : nullptr);
     }
-    return addTemporalPass(build, cache, raw, in.gbuffer);
+    const graph::ImageRef value = addTemporalPass(build, cache, raw, in.gbuffer);
+    build.addCompositeTerm("indirect", value);
+    return value;
 }
 
 } // namespace ssgi

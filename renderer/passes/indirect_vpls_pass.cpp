@@ -12,20 +12,20 @@
 namespace ssgi {
 
 FluxVpls addFluxVplPasses(FrameBuild& build, const GBufferAndRsm& in, const EffectCache* cache) {
-    const Settings& m = build.settings;
+    const Settings& settings = build.settings;
     const uint32_t mapSize = build.rsmSize.width;
-    const uint32_t clusterSide = uint32_t(m.indirect_vpl_cluster);
+    const uint32_t clusterSide = uint32_t(settings.indirect_vpl_cluster);
     const uint32_t vplMapSize = (mapSize + clusterSide - 1) / clusterSide;
     uint32_t padded = 8, levels = 3;
     while (padded < vplMapSize) {
         padded *= 2;
         ++levels;
     }
-    const int count = int(std::max(m.indirect_flux_pool, m.indirect_flux_vpls));
+    const int count = int(std::max(settings.indirect_flux_pool, settings.indirect_flux_vpls));
     const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     // With the cache on, the VPL map is made again only when the RSM is drawn again (the light
     // moved), so it and the pyramid's levels over it persist; the list is drawn every frame.
-    const bool persistent = m.cache;
+    const bool persistent = settings.cache;
     auto vplImage = [&](const char* name) {
         return build.graph.createImage(name, VK_FORMAT_R32G32B32A32_SFLOAT,
                                        {vplMapSize, vplMapSize}, usage, persistent);

@@ -16,7 +16,9 @@
 namespace ssgi {
 
 // The cached effects of one pass (cached_effect_pass.h) return what their consumers read: the
-// blended history, or the raw value without a cache.
+// blended history, or the raw value without a cache. A lighting term's pass also hands it to the
+// composite (FrameBuild::addCompositeTerm), under its view's name: "ao", "ssdo", "indirect",
+// "sky-visibility".
 // reprojection: where each pixel's surface lay last frame, for every cached effect; made when
 // caching is on, before the first cached effect; its image is CacheSet::reprojection, which
 // cacheBindings hands every cached effect's passes.
@@ -69,11 +71,11 @@ graph::ImageRef addIndirectLight(FrameBuild& build, const GBufferAndRsm& inputs)
 graph::ImageRef addSsdoPass(FrameBuild& build, const GBufferAndRsm& inputs, graph::ImageRef direct,
                             graph::ImageRef secondLayer);
 
-// The screen-space terms the composite adds up; an invalid ref is an effect turned off.
-struct LightingTerms {
-    graph::ImageRef direct, shadow, ao, indirect, ssdo;
-    graph::ImageRef skyVisibility; // the sky's visibility beyond the screen
-    graph::ImageRef secondLayer;   // depth peeling's, for its debug view
+// What the composite reads beside the lighting terms the passes hand it
+// (FrameBuild::compositeTerms): the direct light, the shadow term for its views, and depth
+// peeling's second layer for its view (invalid without peeling).
+struct CompositeImages {
+    graph::ImageRef direct, shadow, secondLayer;
 };
 
 // sky.maps + sky_visibility: the fraction of the sky's light reaching each pixel past the
@@ -83,10 +85,11 @@ graph::ImageRef addSkyVisibilityPasses(FrameBuild& build, const GBufferAndRsm& i
 struct CompositeOutputs {
     graph::ImageRef hdr, ldr;
 };
-// composite: HDR radiance, tonemapped sRGB image, or the debug view FrameState::view names, at
-// the output's size (the screen images less their guard band).
+// composite: HDR radiance (the direct light plus the lighting terms, each by its role),
+// tonemapped sRGB image, or the debug view FrameState::view names, at the output's size (the
+// screen images less their guard band).
 CompositeOutputs addCompositePass(FrameBuild& build, const GBufferAndRsm& inputs,
-                                  const LightingTerms& terms);
+                                  const CompositeImages& images);
 
 // The whole frame, every pass above in order, as the scene's settings ask (frame.cpp).
 void addFramePasses(FrameBuild& build);

@@ -79,9 +79,9 @@ SkyOccluders splitSkyOccluders(const Scene& scene, const glm::dvec3& gpuOrigin) 
 } // namespace
 
 graph::ImageRef addSkyVisibilityPasses(FrameBuild& build, const GBufferAndRsm& in) {
-    const Scene& m = build.scene;
-    const int count = int(m.settings.sky_visibility_directions);
-    const int tileSize = int(m.settings.sky_visibility_map_size);
+    const Scene& scene = build.scene;
+    const int count = int(scene.settings.sky_visibility_directions);
+    const int tileSize = int(scene.settings.sky_visibility_map_size);
     const int perRow = int(std::ceil(std::sqrt(double(count))));
     const VkExtent2D atlas{uint32_t(perRow * tileSize),
                            uint32_t(((count + perRow - 1) / perRow) * tileSize)};
@@ -92,7 +92,7 @@ graph::ImageRef addSkyVisibilityPasses(FrameBuild& build, const GBufferAndRsm& i
                          std::to_string(atlas.width) + "x" + std::to_string(atlas.height) +
                          " atlas, beyond this device's largest 2D image (" + std::to_string(limit) +
                          ")");
-    const SkyOccluders occluders = splitSkyOccluders(m, build.gpuOrigin);
+    const SkyOccluders occluders = splitSkyOccluders(scene, build.gpuOrigin);
     // In the GPU's coordinates, as the G-buffer and the draws are.
     const Aabb& drawn = occluders.mappedBounds;
     const glm::vec3 centre = glm::vec3(glm::dvec3(drawn.center()) - build.gpuOrigin);
@@ -164,7 +164,7 @@ graph::ImageRef addSkyVisibilityPasses(FrameBuild& build, const GBufferAndRsm& i
     const float texel = 2.0f * radius / float(tileSize);
     shader::SkyVisibilityConstants constants{};
     constants.maps = view;
-    const float nearest = m.settings.ao && !m.settings.ssdo ? aoRadius(m) : 0.0f;
+    const float nearest = scene.settings.ao && !scene.settings.ssdo ? aoRadius(scene) : 0.0f;
     constants.aoReach = std::max(nearest, 3.0f * texel);
     constants.normalOffset = 1.5f * texel;
     CachedComputePass pass;
@@ -174,6 +174,7 @@ graph::ImageRef addSkyVisibilityPasses(FrameBuild& build, const GBufferAndRsm& i
                    .motionTest = MOTION_RESTART_ALL,
                    .exact = true,
                    .viewIndependent = true};
+    pass.term = "sky-visibility";
     pass.shader = "sky_visibility.comp";
     pass.inputs = {{"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
                    {"gbufferNormal", in.gbuffer.normal, Use::Sampled},

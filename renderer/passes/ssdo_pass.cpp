@@ -17,6 +17,7 @@ graph::ImageRef addSsdoPass(FrameBuild& build, const GBufferAndRsm& in, graph::I
     // moved too), restarts it whole.
     pass.effect = {
         .name = "ssdo", .lightDependent = true, .scalar = false, .motionTest = MOTION_RESTART_ALL};
+    pass.term = "ssdo";
     pass.shader = "ssdo.comp";
     using graph::Use;
     // Without peeling the shader never reads its second layer: any valid image will do.

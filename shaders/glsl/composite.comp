@@ -1,17 +1,19 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Composite: direct light + sky light (occluded by AO, or SSDO's directional occlusion and
-// bounce in its place) + one-bounce indirect light, the sky itself where no geometry is; then
-// exposure, tonemap and sRGB encoding. Or any intermediate image instead (debug views).
+// Composite: direct light + sky light + the lighting terms the passes hand it, each by its
+// role (TERM_* of shared.h: the AO and the sky's visibility occlude the sky light, SSDO's
+// radiance replaces it, the bounce's irradiance is added), the sky itself where no geometry is;
+// then exposure, tonemap and sRGB encoding. Or any intermediate image instead (debug views).
 #include "shared.h"
 #include "common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(constant_id = 0) const int HAS_AO = 0;
-layout(constant_id = 1) const int HAS_INDIRECT = 0;
-layout(constant_id = 2) const int HAS_SSDO = 0;
-layout(constant_id = 3) const int HAS_SKY_VISIBILITY = 0;
-layout(constant_id = 4) const int HAS_CONTACT = 0; // shadowImage is the contact pass's (r, g)
+layout(constant_id = 0) const int HAS_CONTACT = 0; // shadowImage is the contact pass's (r, g)
+// The role of each term slot (TERM_*), in the order the terms are added up.
+layout(constant_id = 1) const int TERM0_ROLE = TERM_NONE;
+layout(constant_id = 2) const int TERM1_ROLE = TERM_NONE;
+layout(constant_id = 3) const int TERM2_ROLE = TERM_NONE;
+layout(constant_id = 4) const int TERM3_ROLE = TERM_NONE;
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
 layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
@@ -19,12 +21,12 @@ layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
 layout(set = 0, binding = 3) uniform sampler2D gbufferAlbedo;
 layout(set = 0, binding = 4) uniform sampler2D directRadiance;
 layout(set = 0, binding = 5) uniform sampler2D shadowImage;
-layout(set = 0, binding = 6) uniform sampler2D aoImage;
-layout(set = 0, binding = 7) uniform sampler2D indirectImage; // irradiance / pi
-layout(set = 0, binding = 8) uniform sampler2D ssdoImage;     // radiance
-layout(set = 0, binding = 9) uniform usampler2D rsmVpls; // rsm_vpl.glsl
-layout(set = 0, binding = 10) uniform sampler2D secondLayer; // depth peeling's position
-layout(set = 0, binding = 11) uniform sampler2D skyVisibilityImage; // beyond the AO's radius
+layout(set = 0, binding = 6) uniform usampler2D rsmVpls; // rsm_vpl.glsl
+layout(set = 0, binding = 7) uniform sampler2D secondLayer; // depth peeling's position
+layout(set = 0, binding = 8) uniform sampler2D term0;
+layout(set = 0, binding = 9) uniform sampler2D term1;
+layout(set = 0, binding = 10) uniform sampler2D term2;
+layout(set = 0, binding = 11) uniform sampler2D term3;
 layout(set = 0, binding = 12, rgba32f) uniform writeonly image2D hdrImage;
 layout(set = 0, binding = 13, rgba8) uniform writeonly image2D ldrImage;
 layout(push_constant) uniform CompositeBlock { CompositeConstants constants; };
@@ -46,6 +48,20 @@ vec3 skyLight(vec3 n) {
     return skyIrradianceOverPi(n, frame.skyZenith.rgb, frame.skyHorizon.rgb, frame.skyGround.rgb);
 }
 
+// The role of a term slot, and its term at a pixel (a slot without a term is never read).
+int termRole(int slot) {
+    return slot == 0 ? TERM0_ROLE : slot == 1 ? TERM1_ROLE : slot == 2 ? TERM2_ROLE : TERM3_ROLE;
+}
+vec4 termAt(int slot, ivec2 pixel) {
+    if (slot == 0) return texelFetch(term0, pixel, 0);
+    if (slot == 1) return texelFetch(term1, pixel, 0);
+    if (slot == 2) return texelFetch(term2, pixel, 0);
+    return texelFetch(term3, pixel, 0);
+}
+bool occludesSky(int role) {
+    return role == TERM_SKY_OCCLUSION || role == TERM_SKY_FILTER;
+}
+
 void main() {
     loadPixelToWorld(); // pixel_to_world.glsl
     // `written` in the images written, `pixel` in the screen images read (guard band added).
@@ -57,11 +73,9 @@ void main() {
     vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     vec3 albedo = texelFetch(gbufferAlbedo, pixel, 0).rgb;
     vec3 direct = texelFetch(directRadiance, pixel, 0).rgb;
-    float ao = HAS_AO != 0 ? texelFetch(aoImage, pixel, 0).r : 1.0;
-    vec3 indirect = HAS_INDIRECT != 0 ? albedo * texelFetch(indirectImage, pixel, 0).rgb : vec3(0);
-    vec3 ssdo = HAS_SSDO != 0 ? texelFetch(ssdoImage, pixel, 0).rgb : vec3(0.0);
-    vec3 skyVisibility =
-        HAS_SKY_VISIBILITY != 0 ? texelFetch(skyVisibilityImage, pixel, 0).rgb : vec3(1.0);
+    vec4 terms[COMPOSITE_TERMS];
+    for (int slot = 0; slot < COMPOSITE_TERMS; ++slot)
+        terms[slot] = termRole(slot) == TERM_NONE ? vec4(0.0) : termAt(slot, pixel);
 
     vec3 hdr;
     if (position.w == 0.0) {
@@ -69,8 +83,17 @@ void main() {
         vec3 dir = normalize(far.xyz / far.w - frame.cameraPosition.xyz);
         hdr = skyRadiance(dir, frame.skyZenith.rgb, frame.skyHorizon.rgb, frame.skyGround.rgb);
     } else {
-        vec3 sky = HAS_SSDO != 0 ? ssdo : albedo * skyLight(n) * ao * skyVisibility;
-        hdr = direct + sky + indirect;
+        // The sky light, occluded or replaced by its terms, then the light the others add.
+        vec3 sky = albedo * skyLight(n);
+        for (int slot = 0; slot < COMPOSITE_TERMS; ++slot) {
+            int role = termRole(slot);
+            if (role == TERM_SKY_OCCLUSION) sky *= terms[slot].r;
+            if (role == TERM_SKY_FILTER) sky *= terms[slot].rgb;
+            if (role == TERM_SKY_RADIANCE) sky = terms[slot].rgb;
+        }
+        hdr = direct + sky;
+        for (int slot = 0; slot < COMPOSITE_TERMS; ++slot)
+            if (termRole(slot) == TERM_IRRADIANCE) hdr += albedo * terms[slot].rgb;
     }
     // Every radiance above is in the intermediate images' units (see radianceScale).
     float unit = frame.radianceScale.x;
@@ -95,10 +118,18 @@ void main() {
     }
     vec4 shadow = texelFetch(shadowImage, pixel, 0);
     if (view == VIEW_SHADOW) value = vec3(shadow.r);
-    if (view == VIEW_AO) value = vec3(ao);
-    if (view == VIEW_INDIRECT) value = indirect * unit;
-    if (view == VIEW_SSDO) value = ssdo * unit;
-    if (view == VIEW_SKY_VISIBILITY) value = skyVisibility;
+    // A term's view: what it lets through of the sky, or the radiance it adds (an occluder the
+    // frame does not have lets everything through, a light it does not have adds nothing).
+    int role = constants.termRole;
+    bool termIsData = view == VIEW_TERM && occludesSky(role);
+    if (view == VIEW_TERM) {
+        int slot = constants.termSlot;
+        vec4 term = slot >= 0 ? termAt(slot, pixel) : vec4(occludesSky(role) ? 1.0 : 0.0);
+        if (role == TERM_SKY_OCCLUSION) value = vec3(term.r);
+        if (role == TERM_SKY_FILTER) value = term.rgb;
+        if (role == TERM_SKY_RADIANCE) value = term.rgb * unit;
+        if (role == TERM_IRRADIANCE) value = albedo * term.rgb * unit;
+    }
     // The contact pass keeps the shadow map's term in g: what contact shadows took away (the
     // shadow's own history holds its blur in g: without contact shadows, nothing taken away).
     float mapped = HAS_CONTACT != 0 ? shadow.g : shadow.r;
@@ -114,13 +145,12 @@ void main() {
     if (view == VIEW_DEPTH || view == VIEW_PEEL)
         shown = vec3(value.x == 0.0 ? 0.0 : max(1.0 - value.x / frame.sceneDiagonal, 0.0));
     if (view == VIEW_RSM_FLUX) shown = tonemap(value * exposure * 0.3);
-    if (view == VIEW_SHADOW || view == VIEW_AO || view == VIEW_SKY_VISIBILITY) shown = value;
+    if (view == VIEW_SHADOW || termIsData) shown = value;
     // Lit white, shadowed black, and in red what contact shadows darkened.
     if (view == VIEW_CONTACT) shown = mix(vec3(value.x), vec3(1.0, 0.0, 0.0), value.y);
     // Colours are encoded for display; normals, depth and visibilities are data, shown as is.
     bool isData = view == VIEW_NORMAL || view == VIEW_RSM_NORMAL || view == VIEW_DEPTH ||
-                  view == VIEW_SHADOW || view == VIEW_AO || view == VIEW_PEEL ||
-                  view == VIEW_CONTACT || view == VIEW_SKY_VISIBILITY;
+                  view == VIEW_SHADOW || view == VIEW_PEEL || view == VIEW_CONTACT || termIsData;
     imageStore(hdrImage, written, vec4(view == VIEW_FINAL ? hdr : value, 1.0));
     imageStore(ldrImage, written, vec4(isData ? shown : encodeSrgb(shown), 1.0));
 }

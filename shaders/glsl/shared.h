@@ -355,15 +355,29 @@ struct SkyTriangles {
 };
 SSGI_CHECK_SIZE(SkyTriangles, 16 + 3 * 32 * 16);
 
+// How a lighting term enters the composite's sum (composite.comp). The pass that makes a term
+// registers it by its view's name (FrameBuild::addCompositeTerm); the view table
+// (renderer/passes/views.h) gives each term's view its role.
+#define TERM_NONE 0           // an unused slot
+#define TERM_SKY_OCCLUSION 1  // r: the fraction of the sky's light let through (the AO)
+#define TERM_SKY_FILTER 2     // rgb: the same, per colour (the sky's visibility beyond the AO)
+#define TERM_SKY_RADIANCE 3   // rgb: radiance that replaces the sky light (SSDO)
+#define TERM_IRRADIANCE 4     // rgb: irradiance / pi, times the albedo, added (the bounce)
+#define COMPOSITE_TERMS 4     // the term slots composite.comp binds (term0..term3)
+
 // Composite's choice of output (push constants), and where the output lies in the screen
 // images it reads: `guardBand` pixels in from their top left corner (the guard_band setting).
+// For a term's view (VIEW_TERM): the slot holding it (-1 when the frame has no such term) and
+// its role (TERM_*).
 struct CompositeConstants {
     int view; // VIEW_*
     int guardBand;
-    int unused[2];
+    int termSlot;
+    int termRole;
 };
 SSGI_CHECK_SIZE(CompositeConstants, 16);
 
+// The composite's own views; every lighting term's view is VIEW_TERM.
 #define VIEW_FINAL 0
 #define VIEW_ALBEDO 1
 #define VIEW_NORMAL 2
@@ -372,13 +386,9 @@ SSGI_CHECK_SIZE(CompositeConstants, 16);
 #define VIEW_RSM_FLUX 5
 #define VIEW_RSM_NORMAL 6
 #define VIEW_SHADOW 7
-#define VIEW_AO 8
-#define VIEW_INDIRECT 9
-#define VIEW_SSDO 10
-#define VIEW_CONTACT 11
-#define VIEW_PEEL 12
-#define VIEW_SKY_VISIBILITY 13
-#define VIEW_COUNT 14 // renderer.cpp names them in this order
+#define VIEW_CONTACT 8
+#define VIEW_PEEL 9
+#define VIEW_TERM 10
 
 #ifdef __cplusplus
 } // namespace ssgi::shader
