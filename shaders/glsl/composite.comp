@@ -48,18 +48,17 @@ vec3 skyLight(vec3 n) {
     return skyIrradianceOverPi(n, frame.skyZenith.rgb, frame.skyHorizon.rgb, frame.skyGround.rgb);
 }
 
-// The role of a term slot, and its term at a pixel (a slot without a term is never read).
-int termRole(int slot) {
-    return slot == 0 ? TERM0_ROLE : slot == 1 ? TERM1_ROLE : slot == 2 ? TERM2_ROLE : TERM3_ROLE;
-}
-vec4 termAt(int slot, ivec2 pixel) {
-    if (slot == 0) return texelFetch(term0, pixel, 0);
-    if (slot == 1) return texelFetch(term1, pixel, 0);
-    if (slot == 2) return texelFetch(term2, pixel, 0);
-    return texelFetch(term3, pixel, 0);
-}
 bool occludesSky(int role) {
     return role == TERM_SKY_OCCLUSION || role == TERM_SKY_FILTER;
+}
+// What a term does to the sky light, and to the light added to it.
+void occludeSky(int role, vec4 term, inout vec3 sky) {
+    if (role == TERM_SKY_OCCLUSION) sky *= term.r;
+    if (role == TERM_SKY_FILTER) sky *= term.rgb;
+    if (role == TERM_SKY_RADIANCE) sky = term.rgb;
+}
+void addLight(int role, vec4 term, vec3 albedo, inout vec3 hdr) {
+    if (role == TERM_IRRADIANCE) hdr += albedo * term.rgb;
 }
 
 void main() {
@@ -73,9 +72,11 @@ void main() {
     vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     vec3 albedo = texelFetch(gbufferAlbedo, pixel, 0).rgb;
     vec3 direct = texelFetch(directRadiance, pixel, 0).rgb;
-    vec4 terms[COMPOSITE_TERMS];
-    for (int slot = 0; slot < COMPOSITE_TERMS; ++slot)
-        terms[slot] = termRole(slot) == TERM_NONE ? vec4(0.0) : termAt(slot, pixel);
+    // Each slot's term, read only where the slot has one.
+    vec4 t0 = TERM0_ROLE != TERM_NONE ? texelFetch(term0, pixel, 0) : vec4(0.0);
+    vec4 t1 = TERM1_ROLE != TERM_NONE ? texelFetch(term1, pixel, 0) : vec4(0.0);
+    vec4 t2 = TERM2_ROLE != TERM_NONE ? texelFetch(term2, pixel, 0) : vec4(0.0);
+    vec4 t3 = TERM3_ROLE != TERM_NONE ? texelFetch(term3, pixel, 0) : vec4(0.0);
 
     vec3 hdr;
     if (position.w == 0.0) {
@@ -85,15 +86,15 @@ void main() {
     } else {
         // The sky light, occluded or replaced by its terms, then the light the others add.
         vec3 sky = albedo * skyLight(n);
-        for (int slot = 0; slot < COMPOSITE_TERMS; ++slot) {
-            int role = termRole(slot);
-            if (role == TERM_SKY_OCCLUSION) sky *= terms[slot].r;
-            if (role == TERM_SKY_FILTER) sky *= terms[slot].rgb;
-            if (role == TERM_SKY_RADIANCE) sky = terms[slot].rgb;
-        }
+        occludeSky(TERM0_ROLE, t0, sky);
+        occludeSky(TERM1_ROLE, t1, sky);
+        occludeSky(TERM2_ROLE, t2, sky);
+        occludeSky(TERM3_ROLE, t3, sky);
         hdr = direct + sky;
-        for (int slot = 0; slot < COMPOSITE_TERMS; ++slot)
-            if (termRole(slot) == TERM_IRRADIANCE) hdr += albedo * terms[slot].rgb;
+        addLight(TERM0_ROLE, t0, albedo, hdr);
+        addLight(TERM1_ROLE, t1, albedo, hdr);
+        addLight(TERM2_ROLE, t2, albedo, hdr);
+        addLight(TERM3_ROLE, t3, albedo, hdr);
     }
     // Every radiance above is in the intermediate images' units (see radianceScale).
     float unit = frame.radianceScale.x;
@@ -124,7 +125,8 @@ void main() {
     bool termIsData = view == VIEW_TERM && occludesSky(role);
     if (view == VIEW_TERM) {
         int slot = constants.termSlot;
-        vec4 term = slot >= 0 ? termAt(slot, pixel) : vec4(occludesSky(role) ? 1.0 : 0.0);
+        vec4 term = slot == 0 ? t0 : slot == 1 ? t1 : slot == 2 ? t2 : slot == 3 ? t3
+                  : vec4(occludesSky(role) ? 1.0 : 0.0);
         if (role == TERM_SKY_OCCLUSION) value = vec3(term.r);
         if (role == TERM_SKY_FILTER) value = term.rgb;
         if (role == TERM_SKY_RADIANCE) value = term.rgb * unit;
