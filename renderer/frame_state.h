@@ -23,6 +23,10 @@ struct FrameState {
     // The light changed since the RSM was last drawn (always so without the cache): the RSM and
     // what is made from it alone (the flux's VPL map) are made again.
     bool drawRsm = true;
+    // The G-buffer is drawn unless both sides of its view-depth pair already hold this frame's
+    // view, drawn by this renderer in the last two frames with the camera and every object where
+    // they are now (its other images then hold the view too). Always drawn without the cache.
+    bool drawGBuffer = true;
     // An object moved since the sky maps were drawn (or they never were).
     bool drawSkyMaps = true;
     // Camera, light and objects unchanged for as many frames as a pixel needs rotations: every

@@ -154,9 +154,10 @@ void Renderer::updateUniforms(const Camera& worldCamera) {
     u.cameraMoved = u.viewProjection != u.previousViewProjection ? 1.0f : 0.0f;
     u.pixelToWorld = pixelToWorld(u.view, u.projection, size);
     u.previousPixelToWorld = frameIndex_ == 0 ? u.pixelToWorld : previousPixelToWorld_;
-    stillFrames_ = frameIndex_ > 0 && u.viewProjection == previousViewProjection_ && moved_.empty()
-                       ? stillFrames_ + 1
-                       : 0;
+    const bool still =
+        frameIndex_ > 0 && u.viewProjection == previousViewProjection_ && moved_.empty();
+    stillFrames_ = still ? stillFrames_ + 1 : 0;
+    if (!still) gbufferSidesHeld_ = 0;
     u.lightViewProjection = light.viewProjection;
     u.inverseLightViewProjection = glm::inverse(light.viewProjection);
     u.lightPixelToWorld = pixelToWorld(light.view, light.projection, build_->rsmSize);
@@ -214,6 +215,7 @@ void Renderer::renderFrame(const Camera& camera) {
     if (startsAfresh(camera)) {
         graph_->resetHistory();
         stillFrames_ = 0; // nor is the screen settled: every pixel is computed again
+        gbufferSidesHeld_ = 0;
         ++cuts_;
     }
     cutRequested_ = false;
@@ -223,6 +225,7 @@ void Renderer::renderFrame(const Camera& camera) {
     lastSubmission_ =
         ctx_.submitAndWait([&](VkCommandBuffer cmd) { graph_->record(cmd, lastFrame_); });
     graph_->endFrame();
+    if (lastFrame_.drawGBuffer) gbufferSidesHeld_ = std::min(gbufferSidesHeld_ + 1, 2u);
     rsmStale_ = false;
     skyMapsStale_ = false;
     moved_.clear();
@@ -245,6 +248,7 @@ FrameState Renderer::decideFrame() {
     // Without the cache nothing persists from frame to frame: the RSM is drawn every frame.
     f.drawRsm = rsmStale_ || !settings.cache;
     f.drawSkyMaps = skyMapsStale_;
+    f.drawGBuffer = !settings.cache || gbufferSidesHeld_ < 2;
     f.settled = stillFrames_ >= uint32_t(settings.cache_rotations);
     f.view = view_;
     f.effects = nextCacheFrames(*graph_, build_->caches);

@@ -119,6 +119,7 @@ private:
     uint32_t patternFrame() const { return patternStart_ + frameIndex_; }
     vk::HostSpan lastSubmission_;
     uint32_t stillFrames_ = 0;          // frames in a row with this camera and light
+    uint32_t gbufferSidesHeld_ = 0;     // sides of this renderer's G-buffer pair that hold its view
     bool rsmStale_ = true;              // the light changed since the RSM was drawn
     bool skyMapsStale_ = true;          // an object moved since the sky maps were drawn
     int view_ = 0;                      // what the composite shows (its place in kViews)

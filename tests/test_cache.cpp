@@ -174,4 +174,40 @@ TEST_F(CacheTest, AMovedLightResetsTheShadowButNotTheAo) {
         }
 }
 
+// A still camera keeps its G-buffer: from the third still frame on it is not drawn again (both
+// sides of its view-depth pair hold the view) and holds what drawing it gives; a moved camera
+// draws it again, twice, before it is kept.
+TEST_F(CacheTest, AStillCameraKeepsItsGBuffer) {
+    const auto drew = [](const Renderer& r) {
+        for (const graph::RecordedCommand& c : r.frameGraph().lastCommands())
+            if (c.kind == graph::RecordedCommand::Kind::Pass && c.pass == "gbuffer") return true;
+        return false;
+    };
+    RenderOptions options{64, 64, "final"};
+    options.logRecording = true;
+    Renderer renderer(test::context(), scene, options);
+    const char* images[] = {"gbuffer.position", "gbuffer.normal", "gbuffer.albedo"};
+    std::vector<bool> drawn;
+    std::vector<std::vector<float>> drawnImages;
+    for (int frame = 0; frame < 4; ++frame) {
+        renderer.renderFrame(scene.camera);
+        drawn.push_back(drew(renderer));
+        if (frame == 1)
+            for (const char* name : images)
+                drawnImages.push_back(renderer.readImage(name));
+    }
+    EXPECT_EQ(drawn, (std::vector<bool>{true, true, false, false}));
+    for (size_t i = 0; i < std::size(images); ++i)
+        EXPECT_EQ(renderer.readImage(images[i]), drawnImages[i]) << images[i];
+    Camera moved = scene.camera;
+    moved.position.x += 0.01f;
+    drawn.clear();
+    for (int frame = 0; frame < 3; ++frame) {
+        renderer.renderFrame(moved);
+        drawn.push_back(drew(renderer));
+    }
+    EXPECT_EQ(drawn, (std::vector<bool>{true, true, false}));
+    EXPECT_NE(renderer.readImage("gbuffer.position"), drawnImages[0]);
+}
+
 } // namespace
