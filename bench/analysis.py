@@ -7,8 +7,10 @@ import json
 import os
 import statistics
 
-# The passes a converged still frame cannot avoid (the cached frame's floor).
-FLOOR_PASSES = ("gbuffer", "direct", "composite")
+# The passes a converged still frame cannot avoid (the cached frame's floor): the direct light
+# and the composite. The G-buffer is kept from a still camera's third frame on.
+FLOOR_PASSES = ("direct", "composite")
+FLOOR_LABEL = " + ".join(FLOOR_PASSES)
 # The passes in the order a frame runs them (tables and charts list them so).
 FRAME_ORDER = ("gbuffer", "rsm", "shadow", "shadow.temporal", "shadow.keep", "direct", "ao",
                "ssdo", "ao.temporal", "ao.keep", "ssdo.temporal", "ssdo.keep", "indirect.flux",

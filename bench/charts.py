@@ -167,7 +167,7 @@ def series_charts(sweeps, size, images_dir):
         still = analysis.still_camera(sweep)
         if still:
             time_ax.axhline(still["floor_ms"], color="black", ls=":",
-                            label="gbuffer + direct + composite (timestamps)")
+                            label="%s (timestamps)" % analysis.FLOOR_LABEL)
         err_ax.set_title(scene, fontsize=10)
         err_ax.set_ylabel("relMSE vs reference (%dx%d)" % (sweep["error_width"],
                                                             sweep["error_height"]))
