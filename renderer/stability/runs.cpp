@@ -41,7 +41,8 @@ View readView(Renderer& r, const Camera& camera) {
 }
 
 // Fraction of geometry pixels whose AO (or SSDO) history continued this frame: rotation count
-// above 1. The light does not reset these, so they show what the camera alone does.
+// above a fresh pixel's 1 (a history carried over a resize counts half a sample, so 1.5 after
+// its first frame). The light does not reset these, so they show what the camera alone does.
 double aoReused(Renderer& r, const View& v, Mask* kept = nullptr) {
     const char* name = r.frameGraph().find("ao.count A").valid()     ? "ao.meta"
                        : r.frameGraph().find("ssdo.count A").valid() ? "ssdo.meta"
@@ -53,7 +54,7 @@ double aoReused(Renderer& r, const View& v, Mask* kept = nullptr) {
     for (size_t i = 0; i < v.pixels(); ++i) {
         if (!v.geometry(i)) continue;
         ++geometry;
-        const bool continued = meta[4 * i + 3] > 1.5f;
+        const bool continued = meta[4 * i + 3] > 1.0f;
         reused += continued;
         if (kept) (*kept)[i] = continued;
     }
