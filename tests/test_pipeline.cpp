@@ -146,11 +146,11 @@ TEST_F(PipelineTest, ABindingTheShaderNamesOtherwiseIsRefusedNamingBoth) {
 TEST(ShaderBindings, ReflectSpecializationConstantsAndWorkgroupSize) {
     const vk::EmbeddedShader& s = shader("composite.comp");
     const std::map<std::string, uint32_t> constants = vk::shaderSpecConstants(s.code, s.bytes / 4);
-    const std::map<std::string, uint32_t> expected = {{"HAS_AO", 0},
-                                                      {"HAS_INDIRECT", 1},
-                                                      {"HAS_SSDO", 2},
-                                                      {"HAS_SKY_VISIBILITY", 3},
-                                                      {"HAS_CONTACT", 4}};
+    const std::map<std::string, uint32_t> expected = {{"HAS_CONTACT", 0},
+                                                      {"TERM0_ROLE", 1},
+                                                      {"TERM1_ROLE", 2},
+                                                      {"TERM2_ROLE", 3},
+                                                      {"TERM3_ROLE", 4}};
     EXPECT_EQ(constants, expected);
     const vk::WorkgroupSize group = vk::shaderWorkgroupSize(s.code, s.bytes / 4);
     EXPECT_EQ(group.x, 8u);
