@@ -34,15 +34,14 @@ const std::vector<std::string>& viewNames() {
 
 // A view's place in kViews (views.h); InputError listing the views otherwise.
 static int viewIndex(const std::string& name) {
-    const auto& views = viewNames();
-    auto view = std::find(views.begin(), views.end(), name);
-    if (view == views.end()) {
+    const ViewDef* view = findView(name);
+    if (!view) {
         std::string list;
-        for (const auto& v : views)
-            list += " " + v;
+        for (const ViewDef& v : kViews)
+            list += std::string(" ") + v.name;
         throw InputError("unknown view '" + name + "' (views:" + list + ")");
     }
-    return int(view - views.begin());
+    return int(view - kViews);
 }
 
 // The frame's largest images hold 16 bytes a pixel (world positions, the HDR image); a size

@@ -43,16 +43,17 @@ CompositeOutputs addCompositePass(FrameBuild& build, const GBufferAndRsm& in,
     pass.images.push_back({"hdrImage", out.hdr, Use::StorageWrite});
     pass.images.push_back({"ldrImage", out.ldr, Use::StorageWrite});
     pass.pushSize = sizeof(shader::CompositeConstants);
-    addComputePass(build, std::move(pass), [&build, output](const ComputeRecorder& r) {
-        const ViewDef& view = kViews[r.frame().view];
-        shader::CompositeConstants constants{};
-        constants.view = view.view;
-        constants.guardBand = int(build.guardBand);
-        constants.termSlot = -1;
-        constants.termRole = view.role;
-        const std::vector<CompositeTerm>& terms = build.compositeTerms;
+    // Each view's term slot, -1 for the composite's own views and for terms this frame lacks.
+    std::vector<int> termSlots(std::size(kViews), -1);
+    for (size_t v = 0; v < std::size(kViews); ++v)
         for (size_t slot = 0; slot < terms.size(); ++slot)
-            if (terms[slot].view == view.name) constants.termSlot = int(slot);
+            if (terms[slot].view == kViews[v].name) termSlots[v] = int(slot);
+    addComputePass(build, std::move(pass), [&build, output, termSlots](const ComputeRecorder& r) {
+        shader::CompositeConstants constants{};
+        constants.view = kViews[r.frame().view].view;
+        constants.guardBand = int(build.guardBand);
+        constants.termSlot = termSlots[size_t(r.frame().view)];
+        constants.termRole = kViews[r.frame().view].role;
         r.dispatch(output.width, output.height, constants);
     });
     return out;
