@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The error along a scene's camera path, without timing: each configuration renders the path's
-frames in order, and at four frames evenly spaced (the last among them, as `benchmark
-walkthrough --error-frames 4` picks them) its image is compared with the path-traced reference of
+frames in order, and at `--error-frames` frames evenly spaced (4 by default, the last among
+them, as `benchmark walkthrough --error-frames 4` picks them) its image is compared with the path-traced reference of
 that camera (relMSE, `ssgi.compare`); prints each configuration's mean and the four values.
 Configurations as NAME=KEY:VALUE,KEY:VALUE (settings as `--set` takes them); the uncached frame
 ("cache off") is always the first. Where a configuration is worse, `--maps DIR` writes each
@@ -35,6 +35,8 @@ def main():
     parser.add_argument("--frames", type=int, default=96, help="frames along the path")
     parser.add_argument("--size", type=int, default=128, help="image side (pixels)")
     parser.add_argument("--spp", type=int, default=256, help="reference samples per pixel")
+    parser.add_argument("--error-frames", type=int, default=4,
+                        help="frames measured, evenly spaced along the path (the last among them)")
     parser.add_argument("--maps", help="folder for the measured frames and their error maps")
     args = parser.parse_args()
     configs = {"cache off": {"cache": 0}}
@@ -46,7 +48,8 @@ def main():
     if not keys:
         raise SystemExit("error: %s: the scene has no camera_path" % args.scene)
     duration = keys[-1]["time"]
-    measured = [(args.frames - 1) * k // 4 for k in range(1, 5)]
+    n = args.error_frames
+    measured = [(args.frames - 1) * k // n for k in range(1, n + 1)]
     size = (args.size, args.size)
     scene = ssgi.Scene(args.scene)
     renderers = {}
