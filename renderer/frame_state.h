@@ -12,6 +12,9 @@ namespace ssgi {
 struct CachedEffectFrame {
     bool hasHistory = false; // last frame's value is there to reproject
     int refreshTile = -1;    // the tile its tiled refresh recomputes this frame, or none
+    // The first settled frame: its keep pass copies last frame's history whole to this frame's
+    // side of the pair. From then on both sides hold it, and settled frames write neither.
+    bool copyHistory = false;
 };
 
 struct FrameState {
@@ -30,7 +33,8 @@ struct FrameState {
     // An object moved since the sky maps were drawn (or they never were).
     bool drawSkyMaps = true;
     // Camera, light and objects unchanged for as many frames as a pixel needs rotations: every
-    // pixel is converged, and the cached effects run over their refresh tiles alone.
+    // pixel is converged, and the cached effects compute nothing (no refresh tile: a refreshed
+    // pixel's new sample would be left out of its converged history, temporal.comp).
     bool settled = false;
     // What the composite shows: the view's place in kViews (passes/views.h).
     int view = 0;

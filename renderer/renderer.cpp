@@ -251,6 +251,16 @@ FrameState Renderer::decideFrame() {
     f.settled = stillFrames_ >= uint32_t(settings.cache_rotations);
     f.view = view_;
     f.effects = nextCacheFrames(*graph_, build_->caches);
+    // A settled frame computes no effect. Its histories are converged and hold no resampling
+    // blur, and on a still camera a refreshed tile would be computed only to be left out of
+    // them (temporal.comp keeps such a history as it is: the refresh pulls back resampling
+    // blur, and there is none). The first settled frame copies each history to this frame's
+    // side of its pair; then both sides hold it, and nothing writes either.
+    if (f.settled)
+        for (CachedEffectFrame& effect : f.effects) {
+            effect.refreshTile = -1;
+            effect.copyHistory = !lastFrame_.settled;
+        }
     return f;
 }
 

@@ -43,8 +43,8 @@ TEST_F(CameraCutTest, AnExplicitCutRestartsEveryHistory) {
     EXPECT_GT(continued(r), 0.9) << "and the next frame accumulates again";
 }
 
-// The same once the still camera has settled (the passes then run over the refresh tile
-// alone, and the rest of each history is carried over): a cut ends that state too.
+// The same once the still camera has settled (the effects then compute nothing, and each
+// history is carried over as it is): a cut ends that state too.
 TEST_F(CameraCutTest, ACutAfterTheScreenSettledRestartsEveryHistory) {
     Renderer r(test::context(), scene, {32, 32});
     for (int i = 0; i < 40; ++i) // cache_rotations (36) still frames and a few more

@@ -55,15 +55,11 @@ shader::CacheConstants cacheConstants(const Settings& settings, const EffectCach
     }
     c.tileSize = cache->refresh ? int(cache->refresh->tileSize()) : 1;
     c.confidenceBias = float(settings.cache_bias);
-    const shader::ReprojectionConstants test = reprojectionConstants(settings, now.hasHistory);
-    c.epsilon = test.epsilon;
     c.runningMean = settings.cache_method != 0 ? 1 : 0;
-    c.settled = frame.settled ? 1 : 0;
     c.motionTest = cache->effect.motionTest;
     c.motionReach = cache->effect.motionReach;
     c.blurBudget = cache->blurBudget;
-    c.reprojection = (test.thinGeometry != 0 ? REPROJECT_THIN_GEOMETRY : 0) |
-                     (settings.cache_screen_edge ? REPROJECT_SCREEN_EDGE : 0) |
+    c.reprojection = (settings.cache_screen_edge ? REPROJECT_SCREEN_EDGE : 0) |
                      (settings.cache_reuse_moving ? REUSE_WHILE_MOVING : 0) |
                      (cache->effect.viewIndependent ? REUSE_AGREEING : 0);
     return c;
@@ -78,13 +74,8 @@ float radialOffset(const EffectCache* cache, const FrameState& frame) {
     return cache ? frame.patternOffset : -1.0f;
 }
 
-VkExtent2D cacheDispatch(const EffectCache* cache, const FrameState& frame, VkExtent2D full,
-                         uint32_t divisor) {
-    if (!cache || !frame.settled) return full;
-    const int tileIndex = frame.effects[cache->slot].refreshTile;
-    if (!cache->refresh || tileIndex < 0) return {0, 0};
-    const TileRect tile = cache->refresh->rect(uint32_t(tileIndex));
-    return {(tile.width + divisor - 1) / divisor, (tile.height + divisor - 1) / divisor};
+VkExtent2D cacheDispatch(const EffectCache* cache, const FrameState& frame, VkExtent2D full) {
+    return cache && frame.settled ? VkExtent2D{0, 0} : full;
 }
 
 void restartCache(graph::FrameGraph& graph, const EffectCache& cache) {

@@ -80,16 +80,14 @@ std::vector<CachedEffectFrame> nextCacheFrames(const graph::FrameGraph& graph, C
 shader::CacheConstants cacheConstants(const Settings& settings, const EffectCache* cache,
                                       const FrameState& frame);
 // The reprojection test as the settings give it (cache_epsilon, cache_thin_geometry): what the
-// reprojection pass takes, and what cacheConstants hands the passes that reproject their
-// refresh tile on a settled frame.
+// reprojection pass takes.
 shader::ReprojectionConstants reprojectionConstants(const Settings& settings, bool historyValid);
 // The pattern's radial offset for an effect's pass (the constants' pattern.w): this frame's
 // FrameState::patternOffset when the effect is cached, else -1 (a single frame's fixed pattern).
 float radialOffset(const EffectCache* cache, const FrameState& frame);
-// The threads a cached effect's pass dispatches: the whole image (`full`), or once settled only
-// its refresh tile (none without one); `divisor` 2 is for the half-resolution pass.
-VkExtent2D cacheDispatch(const EffectCache* cache, const FrameState& frame, VkExtent2D full,
-                         uint32_t divisor = 1);
+// The threads a cached effect's pass dispatches: the whole image (`full`), or none on a settled
+// frame, which computes nothing (Renderer::decideFrame).
+VkExtent2D cacheDispatch(const EffectCache* cache, const FrameState& frame, VkExtent2D full);
 
 // A moved light or object: the cache's history (value and count) holds nothing from the next
 // frame on.

@@ -21,7 +21,7 @@ std::vector<ShaderImage> cacheBindings(const FrameBuild& build, const EffectCach
 }
 
 void addKeepPass(FrameBuild& build, const EffectCache* cache,
-                 std::vector<graph::ImageRef> outputs) {
+                 std::vector<graph::ImageRef> cleared) {
     if (!cache) return;
     using graph::FrameGraph;
     using graph::Use;
@@ -31,12 +31,12 @@ void addKeepPass(FrameBuild& build, const EffectCache* cache,
         uses.push_back({FrameGraph::previous(history), Use::TransferSrc});
         uses.push_back({FrameGraph::current(history), Use::TransferDst});
     }
-    for (const graph::ImageRef& output : outputs)
-        uses.push_back({output, Use::TransferDst});
+    for (const graph::ImageRef& image : cleared)
+        uses.push_back({image, Use::TransferDst});
     build.graph.addPass(
         cache->name() + ".keep", graph::PassKind::Transfer, uses,
         [histories = std::vector<uint32_t>(std::begin(histories), std::end(histories)),
-         outputs](const graph::PassContext& pc) {
+         cleared](const graph::PassContext& pc) {
             for (uint32_t history : histories) {
                 const vk::Image& from = pc.image(FrameGraph::previous(history));
                 const vk::Image& to = pc.image(FrameGraph::current(history));
@@ -49,11 +49,16 @@ void addKeepPass(FrameBuild& build, const EffectCache* cache,
             }
             const VkClearColorValue zero{};
             const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-            for (const graph::ImageRef& output : outputs)
-                vkCmdClearColorImage(pc.cmd, pc.image(output).image,
+            for (const graph::ImageRef& image : cleared)
+                vkCmdClearColorImage(pc.cmd, pc.image(image).image,
                                      VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &range);
         },
-        [](const FrameState& frame) { return frame.settled; });
+        // Only the first settled frame: after it no pass writes the pair's sides or the cleared
+        // images while the frame stays settled (on a GPU, copying and clearing every settled
+        // frame cost more than the rest of the frame).
+        [slot = cache->slot](const FrameState& frame) {
+            return frame.settled && frame.effects[slot].copyHistory;
+        });
 }
 
 graph::ImageRef addTemporalPass(FrameBuild& build, const EffectCache* cache, graph::ImageRef raw,
@@ -90,6 +95,8 @@ graph::ImageRef addCachedComputePass(FrameBuild& build, const GBuffer& gbuffer,
     const graph::ImageRef raw = build.graph.createImage(
         name, VK_FORMAT_R16G16B16A16_SFLOAT, build.size,
         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    // On settled frames the effect's image reads "skipped" (what the tests and
+    // bench/computed_pixels.py count as computed).
     addKeepPass(build, cache, {raw});
     ComputePassDesc pass{name, desc.shader, std::move(desc.inputs)};
     for (ShaderImage& history : cacheBindings(build, cache, gbuffer.viewDepth))

@@ -1,5 +1,5 @@
-// The passes of a cached effect (thesis 3.1) around the effect's own: <effect>.keep carries a
-// settled frame's history over before the effect runs over its refresh tile alone, and
+// The passes of a cached effect (thesis 3.1) around the effect's own: <effect>.keep carries the
+// history over on the first settled frame (settled frames compute nothing), and
 // <effect>.temporal blends this frame's value into the history. An effect of one compute pass
 // is declared whole by addCachedComputePass; an effect of several passes (the indirect light)
 // uses the pieces below it. docs/frame.md, "Adding a cached effect".
@@ -67,10 +67,11 @@ graph::ImageRef addCachedComputePass(FrameBuild& build, const GBuffer& gbuffer,
 // the pass reads anyway) without a cache.
 std::vector<ShaderImage> cacheBindings(const FrameBuild& build, const EffectCache* cache,
                                        graph::ImageRef fallback);
-// <effect>.keep, run only on settled frames before the effect: last frame's history carried
-// over whole to this frame's side (the temporal pass then rewrites the refresh tile), and the
-// effect's own images cleared, so that what the tile-only passes do not write reads "skipped".
-void addKeepPass(FrameBuild& build, const EffectCache* cache, std::vector<graph::ImageRef> outputs);
+// <effect>.keep, run on the first settled frame alone, before the effect: last frame's history
+// copied whole to this frame's side of the pair (settled frames compute nothing, so from then
+// on both sides hold it), and the images in `cleared` cleared to "skipped", so that what the
+// effect's passes wrote last reads as skipped while nothing is computed.
+void addKeepPass(FrameBuild& build, const EffectCache* cache, std::vector<graph::ImageRef> cleared);
 // <effect>.temporal: blends an effect's value of this frame into its history; returns what
 // the effect's consumers read (the raw value when there is no cache).
 graph::ImageRef addTemporalPass(FrameBuild& build, const EffectCache* cache, graph::ImageRef raw,

@@ -36,14 +36,8 @@ graph::ImageRef addInterleavedIndirectPasses(FrameBuild& build, const GBufferAnd
     const int k =
         std::min(int(build.settings.indirect_interleave), int(std::sqrt(double(vpls)) + 1e-9));
     const int radius = int(build.settings.indirect_filter_radius);
-    // On settled frames the refresh tile's pixels need their neighbours: the gather and the x
-    // axis run over the tile widened by the filter's reach (temporal.glsl cachePixelAround).
-    const uint32_t margin = uint32_t(shader::interleavedFilterReach(radius, k));
-    auto dispatchArea = [&build, cache](const FrameState& frame, uint32_t widen) {
-        VkExtent2D area = cacheDispatch(cache, frame, build.size);
-        if (cache && frame.settled && area.width > 0)
-            area = {area.width + 2 * widen, area.height + 2 * widen};
-        return area;
+    auto dispatchArea = [&build, cache](const FrameState& frame) {
+        return cacheDispatch(cache, frame, build.size);
     };
     const Settings& settings = build.settings;
     vk::Specialization gatherSpec{{{"VPLS", vpls},
@@ -73,7 +67,8 @@ graph::ImageRef addInterleavedIndirectPasses(FrameBuild& build, const GBufferAnd
     const graph::ImageRef history =
         cache ? graph::FrameGraph::previous(cache->valueHistory) : in.gbuffer.viewDepth;
 
-    addKeepPass(build, cache, {subsets, subsetsDirectional, across, acrossDirectional});
+    // `indirect` (the subsets, then the result) reads "skipped" on settled frames.
+    addKeepPass(build, cache, {subsets});
     using graph::Use;
     // Method 1 gathers the RSM's texels; method 2 the VPL map's, and the flux's list.
     ComputePassDesc gather{"indirect",
@@ -94,11 +89,10 @@ graph::ImageRef addInterleavedIndirectPasses(FrameBuild& build, const GBufferAnd
                           {"interleavedDirectional", subsetsDirectional, Use::StorageWrite}});
     gather.pushSize = sizeof(shader::IndirectConstants);
     gather.spec = gatherSpec;
-    addComputePass(build, std::move(gather),
-                   [dispatchArea, margin, constants](const ComputeRecorder& r) {
-                       const VkExtent2D area = dispatchArea(r.frame(), margin);
-                       r.dispatch(area.width, area.height, constants(r.frame(), {0, 0}));
-                   });
+    addComputePass(build, std::move(gather), [dispatchArea, constants](const ComputeRecorder& r) {
+        const VkExtent2D area = dispatchArea(r.frame());
+        r.dispatch(area.width, area.height, constants(r.frame(), {0, 0}));
+    });
     // The filter, one axis a pass: x from the subsets, y from x's result.
     struct Axis {
         const char* pass;
@@ -122,9 +116,8 @@ graph::ImageRef addInterleavedIndirectPasses(FrameBuild& build, const GBufferAnd
         filter.pushSize = sizeof(shader::IndirectConstants);
         filter.spec = filterSpec;
         addComputePass(build, std::move(filter),
-                       [axis = a.axis, dispatchArea, margin, constants](const ComputeRecorder& r) {
-                           const VkExtent2D area =
-                               dispatchArea(r.frame(), axis.x == 1 ? margin : 0);
+                       [axis = a.axis, dispatchArea, constants](const ComputeRecorder& r) {
+                           const VkExtent2D area = dispatchArea(r.frame());
                            r.dispatch(area.width, area.height, constants(r.frame(), axis));
                        });
     }

@@ -39,7 +39,7 @@ graph::ImageRef addIndirectPasses(FrameBuild& build, const GBufferAndRsm& in,
     addComputePass(
         build, std::move(gather),
         [&build, cache, constants](const ComputeRecorder& r) {
-            const VkExtent2D area = cacheDispatch(cache, r.frame(), build.size, 2);
+            const VkExtent2D area = cacheDispatch(cache, r.frame(), build.size);
             r.dispatch(area.width, area.height, constants(r.frame()));
         },
         // At full resolution the upsampling gathers every pixel itself.

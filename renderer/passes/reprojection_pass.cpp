@@ -1,8 +1,7 @@
 // reprojection: where each pixel's surface lay in last frame's image, and which history texels
 // hold it, once a frame for every cached effect (reproject.comp; temporal.glsl reads it). Not on
-// a settled frame, whose passes run over their refresh tiles alone and reproject those: the
-// image is persistent and keeps what it held. Before the G-buffer has a history, nothing is
-// found anywhere.
+// a settled frame, which computes no effect: the image is persistent and keeps what it held. Before
+// the G-buffer has a history, nothing is found anywhere.
 //   reads:  gbuffer.view_depth, gbuffer.normal, last frame's gbuffer.view_depth
 //   writes: reprojection (RGBA32F: reprojection.glsl packReprojection)
 #include "passes/passes.h"

@@ -28,7 +28,7 @@ layout(push_constant) uniform IndirectBlock { IndirectConstants constants; };
 
 void main() {
     loadPixelToWorld(); // pixel_to_world.glsl
-    ivec2 pixel = cachePixel(gl_GlobalInvocationID.xy, constants.cache, 2);
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pixel, ivec2(constants.width, constants.height)))) return;
     ivec2 source = pixel * 2;
     // Skipped when every full-resolution pixel of the block is converged.

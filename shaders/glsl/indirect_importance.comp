@@ -103,9 +103,8 @@ void main() {
     bool cached = constants.radialOffset >= 0.0;
     loadList(cached);
     int margin = interleavedFilterReach(RADIUS, INTERLEAVE);
-    ivec2 pixel = cachePixelAround(gl_GlobalInvocationID.xy, constants.cache, margin);
-    if (any(lessThan(pixel, ivec2(0))) || any(greaterThanEqual(pixel, ivec2(frame.viewport.xy))))
-        return;
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
     vec4 position = gbufferPosition(pixel);
     vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     if (position.w == 0.0 || convergedAround(pixel, position.xyz, n, constants.cache, margin)) {

@@ -38,11 +38,10 @@ layout(push_constant) uniform IndirectBlock { IndirectConstants constants; };
 
 void main() {
     loadPixelToWorld(); // pixel_to_world.glsl
-    // The refresh tile with a margin as wide as the filter's two axes reach.
+    // The refresh tile is computed with a margin as wide as the filter's two axes reach.
     int margin = interleavedFilterReach(RADIUS, INTERLEAVE);
-    ivec2 pixel = cachePixelAround(gl_GlobalInvocationID.xy, constants.cache, margin);
-    if (any(lessThan(pixel, ivec2(0))) || any(greaterThanEqual(pixel, ivec2(frame.viewport.xy))))
-        return;
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
     vec4 position = gbufferPosition(pixel);
     if (position.w == 0.0) {
         imageStore(interleavedIndirect, pixel, vec4(0.0));

@@ -11,9 +11,9 @@
 // bumpy surface keeps its shading instead of being blurred flat. The directional sums are
 // averaged alike for the next axis. Both axes together give a pixel the mean of up to
 // (2 RADIUS)^2 subset estimates, the whole VPL set's many times over; at an edge or a contact,
-// those of its own side. A converged pixel is skipped: its cache holds it. On
-// settled frames the x axis runs over the refresh tile and a margin of RADIUS rows above and
-// below it, the y axis over the tile alone.
+// those of its own side. A converged pixel is skipped: its cache holds it; the refresh tile is
+// computed with a margin as wide as the two axes reach, so that its pixels find their neighbours
+// computed.
 #include "shared.h"
 #include "common.glsl"
 
@@ -49,12 +49,10 @@ float directionalAt(vec4 sums, vec3 m) {
 // A skipped neighbour's estimate: its history, the whole VPL set's estimate accumulated over
 // frames, at the texel the reprojection pass found for it (reused while the camera moves, most
 // pixels around a computed one are skipped, and a filter over the computed ones alone would
-// average a few subsets, which differ by block: the error shows the blocks). Not found (on a
-// settled frame the reprojection pass does not run, and there the refresh tile's margin is
-// computed whole): none.
+// average a few subsets, which differ by block: the error shows the blocks). Not found: none.
 bool skippedEstimate(ivec2 q, out vec3 estimate) {
     estimate = vec3(0.0);
-    if (constants.cache.historyValid == 0 || constants.cache.settled != 0) return false;
+    if (constants.cache.historyValid == 0) return false;
     SurfaceReprojection s = unpackReprojection(texelFetch(reprojection, q, 0));
     if (!s.found || texelFetch(historyCount, s.texel, 0).r == 0.0) return false;
     estimate = texelFetch(historyValue, s.texel, 0).rgb;
@@ -68,9 +66,9 @@ void main() {
     int reach = interleavedFilterReach(RADIUS, INTERLEAVE);
     // The x axis also filters the refresh tile's margin rows, which the y axis reads.
     int margin = axis.x == 1 ? reach : 0;
-    ivec2 pixel = cachePixelAround(gl_GlobalInvocationID.xy, constants.cache, margin);
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     ivec2 size = ivec2(frame.viewport.xy);
-    if (any(lessThan(pixel, ivec2(0))) || any(greaterThanEqual(pixel, size))) return;
+    if (any(greaterThanEqual(pixel, size))) return;
     vec4 position = gbufferPosition(pixel);
     if (position.w == 0.0) {
         imageStore(filtered, pixel, vec4(0.0, 0.0, 0.0, 1.0));

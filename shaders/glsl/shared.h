@@ -96,10 +96,9 @@ SSGI_CHECK_SIZE(DrawConstants, 96);
 #define MOTION_NEAR_BOX 1    // the pixels within motionReach of a moved box (occlusion)
 #define MOTION_LIGHT_PATH 2  // the pixels whose path to the light passes within motionReach of one
 
-// What the reprojection does beyond the thesis (CacheConstants.reprojection): where the nearest
-// history texel lies behind, also try the texels beside it (thin geometry); where the camera
-// moved the screen's edges across the radius the effect gathers within, start over.
-#define REPROJECT_THIN_GEOMETRY 1
+// What the reprojection does beyond the thesis (CacheConstants.reprojection): where the camera
+// moved the screen's edges across the radius the effect gathers within, start over. (The
+// reprojection pass's own test, thin geometry included, is ReprojectionConstants'.)
 #define REPROJECT_SCREEN_EDGE 2
 // What is reused beyond the thesis (CacheConstants.reprojection, with the REPROJECT_ flags):
 // while the camera moves, a pixel whose history holds one computation or more is reused until
@@ -122,8 +121,8 @@ SSGI_INLINE float encodeSrgb(float linear) {
 }
 
 // How far the interleaved indirect light's filter reaches along each axis, in pixels: its
-// radius, and at least across the k x k block of VPL subsets (indirect_reconstruct.comp). A
-// settled frame's refresh tile is widened by as much, so that its pixels find their neighbours.
+// radius, and at least across the k x k block of VPL subsets (indirect_reconstruct.comp). The
+// refresh tile is widened by as much, so that its pixels find their neighbours computed.
 SSGI_INLINE int interleavedFilterReach(int radius, int interleave) {
     return max(radius, interleave / 2);
 }
@@ -140,17 +139,14 @@ struct CacheConstants {
                            // (TileRefresh::rect places it), or -1: none
     int tileSize;          // the refresh tile's side, pixels
     float confidenceBias;  // bias of the thesis's confidence rule (eq. 4)
-    float epsilon;         // reprojection test (eq. 3), in pixel footprints
     int runningMean;       // 1 for the running mean, 0 for the thesis's rule
-    int settled;           // 1 when the whole screen is converged and passes run over the
-                           // refresh tile alone
     int motionTest;        // MOTION_*: what a moved object (FrameUniforms.motion) restarts
     float motionReach;     // scene units
     float blurBudget;      // the resampling blur (squared pixels) a cached value may carry:
                            // beyond it the history's weight is cut and the pixel recomputed
     int reprojection;      // REPROJECT_* and REUSE_* flags (temporal.glsl)
 };
-SSGI_CHECK_SIZE(CacheConstants, 48);
+SSGI_CHECK_SIZE(CacheConstants, 40);
 
 // The reprojection pass's settings (reproject.comp), from the cache's (CacheConstants).
 struct ReprojectionConstants {
@@ -171,7 +167,7 @@ struct ShadowConstants {
     float radialOffset; // common.glsl radialOffset
     CacheConstants cache;
 };
-SSGI_CHECK_SIZE(ShadowConstants, 64);
+SSGI_CHECK_SIZE(ShadowConstants, 56);
 
 struct AoConstants {
     float rotation, scale, radius, radialOffset; // radius: the AO radius (scene units)
@@ -179,7 +175,7 @@ struct AoConstants {
     float unused[2];
     CacheConstants cache;
 };
-SSGI_CHECK_SIZE(AoConstants, 80);
+SSGI_CHECK_SIZE(AoConstants, 72);
 
 // Interleaved sampling of the VPLs (Keller and Heidrich 2001): the pattern's VPLs 0..n-1 are
 // split into k*k disjoint subsets, subset s holding VPLs s, s + k*k, s + 2*k*k, ...; a pixel
@@ -288,7 +284,7 @@ struct IndirectConstants {
     CacheConstants cache;
     float visibilityStart; // indirect_visibility_start (indirect_visibility.glsl)
 };
-SSGI_CHECK_SIZE(IndirectConstants, 84);
+SSGI_CHECK_SIZE(IndirectConstants, 76);
 
 // The VPLs of indirect_method 2 (indirect_vpls.comp): the RSM clustered into a coarser VPL
 // map, and a pyramid of the VPLs' flux luminance (level 0 the map padded to `paddedSize`, a
@@ -309,7 +305,7 @@ struct SsdoConstants {
     float bounceStrength; // the screen-space bounce's weight
     CacheConstants cache;
 };
-SSGI_CHECK_SIZE(SsdoConstants, 64);
+SSGI_CHECK_SIZE(SsdoConstants, 56);
 
 struct ContactConstants {
     float segmentTexels; // the march's length in shadow-map texels at the pixel
@@ -321,7 +317,7 @@ SSGI_CHECK_SIZE(ContactConstants, 16);
 struct TemporalConstants {
     CacheConstants cache;
 };
-SSGI_CHECK_SIZE(TemporalConstants, 48);
+SSGI_CHECK_SIZE(TemporalConstants, 40);
 
 // Sky visibility maps (sky_maps.glsl): orthographic depth maps of the scene from `tile.y`
 // directions over the sphere, tiled `tile.z` to a row of an atlas, `tile.w` texels a side each,
@@ -343,7 +339,7 @@ struct SkyVisibilityConstants {
     float unused[2];
     CacheConstants cache;
 };
-SSGI_CHECK_SIZE(SkyVisibilityConstants, 96);
+SSGI_CHECK_SIZE(SkyVisibilityConstants, 88);
 
 // The sky's occluders the lookup tests exactly instead of through the maps: the triangles of
 // the scene's single quads and triangles (floors, walls), corners 3i..3i+2 in the GPU's

@@ -35,7 +35,7 @@ layout(push_constant) uniform SsdoBlock { SsdoConstants constants; };
 
 void main() {
     loadPixelToWorld(); // pixel_to_world.glsl
-    ivec2 pixel = cachePixel(gl_GlobalInvocationID.xy, constants.cache, 1);
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
     vec4 position = gbufferPosition(pixel);
     if (position.w == 0.0) {

@@ -122,7 +122,7 @@ vec4 historyAt(Reprojection r, out float spread, out bool agree) {
 
 void main() {
     loadPixelToWorld(); // pixel_to_world.glsl
-    ivec2 pixel = cachePixel(gl_GlobalInvocationID.xy, constants.cache, 1);
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
     vec4 position = gbufferPosition(pixel);
     if (position.w == 0.0) {

@@ -96,18 +96,13 @@ bool gatherMeetsEdge(vec3 world, vec4 previousClip, CacheConstants cache) {
 }
 
 // The surface's reprojection into the effect's history: the reprojection pass's (computed once
-// for every effect), except on a settled frame, where the passes run over their refresh tiles
-// alone and the reprojection pass does not run, so each computes its tile's own. Valid where a
+// for every effect; a settled frame, which runs neither, computes nothing). Valid where a
 // texel holds the surface (reprojection.glsl) and a value of the effect (its count is not 0),
 // no moved object may have changed it, and the screen's edge cuts off what it cut off before.
 Reprojection reproject(ivec2 pixel, vec3 world, vec3 normal, CacheConstants cache) {
     Reprojection r = Reprojection(false, vec2(0.0), ivec2(0), 0.0, 0, false);
     if (cache.historyValid == 0 || movedNearby(world, cache)) return r;
-    SurfaceReprojection s =
-        cache.settled != 0
-            ? reprojectSurface(world, normal, cache.epsilon,
-                               (cache.reprojection & REPROJECT_THIN_GEOMETRY) != 0)
-            : unpackReprojection(texelFetch(reprojection, pixel, 0));
+    SurfaceReprojection s = unpackReprojection(texelFetch(reprojection, pixel, 0));
     if (!s.found) return r;
     vec2 count = texelFetch(historyCount, s.texel, 0).rg;
     if (count.r == 0.0) return r;
@@ -125,25 +120,6 @@ Reprojection reproject(ivec2 pixel, vec3 world, vec3 normal, CacheConstants cach
 ivec2 refreshTileCorner(CacheConstants cache) {
     return ivec2(cache.refreshTileCorner % REFRESH_TILE_ROW,
                  cache.refreshTileCorner / REFRESH_TILE_ROW);
-}
-
-// Where a thread's pixel lies. Once the whole screen is settled (camera and light unchanged for
-// as many frames as a pixel needs rotations, so every pixel is converged), the effect and
-// temporal passes run over the refresh tile alone, offset to it; `divisor` 2 is for the
-// half-resolution pass.
-ivec2 cachePixel(uvec2 thread, CacheConstants cache, int divisor) {
-    if (cache.settled == 0 || cache.refreshTileCorner < 0) return ivec2(thread);
-    return ivec2(thread) + refreshTileCorner(cache) / divisor;
-}
-
-// The same for a pass whose pixels read their neighbours' values of this frame (the interleaved
-// indirect light's filter): its refresh tile widened by `margin` pixels on every side, so that
-// the tile's pixels find their neighbours computed. The dispatch is widened to match
-// (indirect_interleaved_pass.cpp); the threads offset to the widened tile's corner may fall
-// outside the image.
-ivec2 cachePixelAround(uvec2 thread, CacheConstants cache, int margin) {
-    if (cache.settled == 0 || cache.refreshTileCorner < 0) return ivec2(thread);
-    return ivec2(thread) + refreshTileCorner(cache) - margin;
 }
 
 // An exact effect's count (one rotation, CachedEffect::exact) for a value that resampling has
