@@ -12,9 +12,6 @@ namespace ssgi {
 struct CachedEffectFrame {
     bool hasHistory = false; // last frame's value is there to reproject
     int refreshTile = -1;    // the tile its tiled refresh recomputes this frame, or none
-    // The first settled frame: its keep pass copies last frame's history whole to this frame's
-    // side of the pair. From then on both sides hold it, and settled frames write neither.
-    bool copyHistory = false;
 };
 
 struct FrameState {
@@ -36,6 +33,9 @@ struct FrameState {
     // pixel is converged, and the cached effects compute nothing (no refresh tile: a refreshed
     // pixel's new sample would be left out of its converged history, temporal.comp).
     bool settled = false;
+    // The first settled frame: the keep passes copy each history whole to this frame's side of
+    // its pair. From then on both sides hold it, and settled frames write neither.
+    bool copyHistories = false;
     // What the composite shows: the view's place in kViews (passes/views.h).
     int view = 0;
     std::vector<CachedEffectFrame> effects;

@@ -256,11 +256,10 @@ FrameState Renderer::decideFrame() {
     // them (temporal.comp keeps such a history as it is: the refresh pulls back resampling
     // blur, and there is none). The first settled frame copies each history to this frame's
     // side of its pair; then both sides hold it, and nothing writes either.
+    f.copyHistories = f.settled && !lastFrame_.settled;
     if (f.settled)
-        for (CachedEffectFrame& effect : f.effects) {
+        for (CachedEffectFrame& effect : f.effects)
             effect.refreshTile = -1;
-            effect.copyHistory = !lastFrame_.settled;
-        }
     return f;
 }
 

@@ -56,9 +56,7 @@ void addKeepPass(FrameBuild& build, const EffectCache* cache,
         // Only the first settled frame: after it no pass writes the pair's sides or the cleared
         // images while the frame stays settled (on a GPU, copying and clearing every settled
         // frame cost more than the rest of the frame).
-        [slot = cache->slot](const FrameState& frame) {
-            return frame.settled && frame.effects[slot].copyHistory;
-        });
+        [](const FrameState& frame) { return frame.copyHistories; });
 }
 
 graph::ImageRef addTemporalPass(FrameBuild& build, const EffectCache* cache, graph::ImageRef raw,
@@ -69,7 +67,6 @@ graph::ImageRef addTemporalPass(FrameBuild& build, const EffectCache* cache, gra
     const graph::ImageRef value = FrameGraph::current(cache->valueHistory);
     ComputePassDesc pass{cache->name() + ".temporal", "temporal.comp"};
     pass.images = {{"gbufferViewDepth", gbuffer.viewDepth, Use::Sampled},
-                   {"gbufferNormal", gbuffer.normal, Use::Sampled},
                    {"current", raw, Use::Sampled},
                    {"historyValue", FrameGraph::previous(cache->valueHistory), Use::Sampled}};
     for (ShaderImage& history : cacheBindings(build, cache, gbuffer.viewDepth))

@@ -36,9 +36,6 @@ graph::ImageRef addInterleavedIndirectPasses(FrameBuild& build, const GBufferAnd
     const int k =
         std::min(int(build.settings.indirect_interleave), int(std::sqrt(double(vpls)) + 1e-9));
     const int radius = int(build.settings.indirect_filter_radius);
-    auto dispatchArea = [&build, cache](const FrameState& frame) {
-        return cacheDispatch(cache, frame, build.size);
-    };
     const Settings& settings = build.settings;
     vk::Specialization gatherSpec{{{"VPLS", vpls},
                                    {"VISIBILITY", int(settings.indirect_visibility)},
@@ -89,8 +86,8 @@ graph::ImageRef addInterleavedIndirectPasses(FrameBuild& build, const GBufferAnd
                           {"interleavedDirectional", subsetsDirectional, Use::StorageWrite}});
     gather.pushSize = sizeof(shader::IndirectConstants);
     gather.spec = gatherSpec;
-    addComputePass(build, std::move(gather), [dispatchArea, constants](const ComputeRecorder& r) {
-        const VkExtent2D area = dispatchArea(r.frame());
+    addComputePass(build, std::move(gather), [&build, cache, constants](const ComputeRecorder& r) {
+        const VkExtent2D area = cacheDispatch(cache, r.frame(), build.size);
         r.dispatch(area.width, area.height, constants(r.frame(), {0, 0}));
     });
     // The filter, one axis a pass: x from the subsets, y from x's result.
@@ -116,8 +113,8 @@ graph::ImageRef addInterleavedIndirectPasses(FrameBuild& build, const GBufferAnd
         filter.pushSize = sizeof(shader::IndirectConstants);
         filter.spec = filterSpec;
         addComputePass(build, std::move(filter),
-                       [axis = a.axis, dispatchArea, constants](const ComputeRecorder& r) {
-                           const VkExtent2D area = dispatchArea(r.frame());
+                       [axis = a.axis, &build, cache, constants](const ComputeRecorder& r) {
+                           const VkExtent2D area = cacheDispatch(cache, r.frame(), build.size);
                            r.dispatch(area.width, area.height, constants(r.frame(), axis));
                        });
     }

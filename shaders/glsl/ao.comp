@@ -42,7 +42,7 @@ void main() {
     }
     vec3 p = position.xyz;
     vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
-    if (converged(pixel, p, n, constants.cache)) {
+    if (converged(pixel, p, constants.cache)) {
         imageStore(aoImage, pixel, SKIPPED); // converged: the cache holds the value
         return;
     }

@@ -37,7 +37,7 @@ void main() {
         ivec2 q = min(source + ivec2(j & 1, j >> 1), ivec2(frame.viewport.xy) - 1);
         vec4 w = gbufferPosition(q);
         allConverged = w.w == 0.0 ||
-                       converged(q, w.xyz, texelFetch(gbufferNormal, q, 0).xyz, constants.cache);
+                       converged(q, w.xyz, constants.cache);
     }
     if (allConverged) {
         imageStore(halfIndirect, pixel, SKIPPED);

@@ -107,7 +107,7 @@ void main() {
     if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
     vec4 position = gbufferPosition(pixel);
     vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
-    if (position.w == 0.0 || convergedAround(pixel, position.xyz, n, constants.cache, margin)) {
+    if (position.w == 0.0 || convergedAround(pixel, position.xyz, constants.cache, margin)) {
         imageStore(interleavedIndirect, pixel, SKIPPED);
         imageStore(interleavedDirectional, pixel, SKIPPED);
         return;

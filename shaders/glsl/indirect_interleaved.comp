@@ -49,7 +49,7 @@ void main() {
         return;
     }
     vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
-    if (convergedAround(pixel, position.xyz, n, constants.cache, margin)) {
+    if (convergedAround(pixel, position.xyz, constants.cache, margin)) {
         imageStore(interleavedIndirect, pixel, SKIPPED);
         imageStore(interleavedDirectional, pixel, SKIPPED);
         return;

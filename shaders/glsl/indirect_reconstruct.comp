@@ -77,7 +77,7 @@ void main() {
     }
     vec3 p = position.xyz;
     vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
-    Reprojection history = reproject(pixel, p, n, constants.cache);
+    Reprojection history = reproject(pixel, p, constants.cache);
     if (convergedAround(pixel, history, constants.cache, margin)) {
         imageStore(filtered, pixel, vec4(0.0));
         if (axis.x == 1) imageStore(filteredDirectional, pixel, vec4(0.0));

@@ -57,7 +57,7 @@ void main() {
         return;
     }
     vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
-    if (converged(pixel, position.xyz, n, constants.cache)) {
+    if (converged(pixel, position.xyz, constants.cache)) {
         imageStore(shadowImage, pixel, SKIPPED); // converged: the cache holds the value
         return;
     }

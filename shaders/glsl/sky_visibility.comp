@@ -62,7 +62,7 @@ void main() {
         return;
     }
     vec3 n = normalize(texelFetch(gbufferNormal, pixel, 0).xyz);
-    if (converged(pixel, position.xyz, n, constants.cache)) {
+    if (converged(pixel, position.xyz, constants.cache)) {
         imageStore(sky_visibilityImage, pixel, SKIPPED); // its cache holds the value
         return;
     }

@@ -37,14 +37,13 @@ const float MOTION_BLUR_STEP = 0.5;
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
 layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
-layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
-layout(set = 0, binding = 3) uniform sampler2D current; // wasSkipped: converged, not computed
-layout(set = 0, binding = 4) uniform sampler2D historyValue;
-layout(set = 0, binding = 5) uniform sampler2D historyViewDepth;
-layout(set = 0, binding = 6) uniform sampler2D reprojection;
-layout(set = 0, binding = 7) uniform sampler2D historyCount;
-layout(set = 0, binding = 8) uniform writeonly image2D newValue; // rgba16f or rg16f
-layout(set = 0, binding = 9, rg16f) uniform writeonly image2D newCount; // count, due
+layout(set = 0, binding = 2) uniform sampler2D current; // wasSkipped: converged, not computed
+layout(set = 0, binding = 3) uniform sampler2D historyValue;
+layout(set = 0, binding = 4) uniform sampler2D historyViewDepth;
+layout(set = 0, binding = 5) uniform sampler2D reprojection;
+layout(set = 0, binding = 6) uniform sampler2D historyCount;
+layout(set = 0, binding = 7) uniform writeonly image2D newValue; // rgba16f or rg16f
+layout(set = 0, binding = 8, rg16f) uniform writeonly image2D newCount; // count, due
 layout(push_constant) uniform TemporalBlock { TemporalConstants constants; };
 
 #include "gbuffer_position.glsl"
@@ -132,7 +131,7 @@ void main() {
     }
     CacheConstants cache = constants.cache;
     vec4 now = texelFetch(current, pixel, 0);
-    Reprojection r = reproject(pixel, position.xyz, texelFetch(gbufferNormal, pixel, 0).xyz, cache);
+    Reprojection r = reproject(pixel, position.xyz, cache);
     float spread = 0.0;
     bool agree = false;
     vec4 history = r.valid ? historyAt(r, spread, agree) : vec4(0.0);

@@ -3,7 +3,7 @@
 // Needs: frame, historyViewDepth (last frame's G-buffer view depths, shared by every cached
 // effect), reprojection (the reprojection pass's image of this frame, reproject.comp),
 // historyCount (the effect's rotation counts, 0 where it holds nothing, and whether a pixel is
-// due), gbufferNormal, screen_space.glsl; loadPixelToWorld() called in main().
+// due), screen_space.glsl; loadPixelToWorld() called in main().
 #ifndef SSGI_TEMPORAL_GLSL
 #define SSGI_TEMPORAL_GLSL
 
@@ -99,7 +99,7 @@ bool gatherMeetsEdge(vec3 world, vec4 previousClip, CacheConstants cache) {
 // for every effect; a settled frame, which runs neither, computes nothing). Valid where a
 // texel holds the surface (reprojection.glsl) and a value of the effect (its count is not 0),
 // no moved object may have changed it, and the screen's edge cuts off what it cut off before.
-Reprojection reproject(ivec2 pixel, vec3 world, vec3 normal, CacheConstants cache) {
+Reprojection reproject(ivec2 pixel, vec3 world, CacheConstants cache) {
     Reprojection r = Reprojection(false, vec2(0.0), ivec2(0), 0.0, 0, false);
     if (cache.historyValid == 0 || movedNearby(world, cache)) return r;
     SurfaceReprojection s = unpackReprojection(texelFetch(reprojection, pixel, 0));
@@ -159,12 +159,12 @@ bool convergedAround(ivec2 pixel, Reprojection r, CacheConstants cache, int marg
            any(greaterThanEqual(pixel, corner + cache.tileSize + margin));
 }
 
-bool convergedAround(ivec2 pixel, vec3 world, vec3 normal, CacheConstants cache, int margin) {
-    return convergedAround(pixel, reproject(pixel, world, normal, cache), cache, margin);
+bool convergedAround(ivec2 pixel, vec3 world, CacheConstants cache, int margin) {
+    return convergedAround(pixel, reproject(pixel, world, cache), cache, margin);
 }
 
-bool converged(ivec2 pixel, vec3 world, vec3 normal, CacheConstants cache) {
-    return convergedAround(pixel, world, normal, cache, 0);
+bool converged(ivec2 pixel, vec3 world, CacheConstants cache) {
+    return convergedAround(pixel, world, cache, 0);
 }
 
 #endif

@@ -41,7 +41,7 @@ void main() {
     }
     vec3 p = position.xyz;
     vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
-    if (converged(pixel, p, n, constants.cache)) {
+    if (converged(pixel, p, constants.cache)) {
         imageStore(indirectImage, pixel, vec4(0.0));
         return;
     }
