@@ -38,7 +38,7 @@ def main():
     parser.add_argument("--error-frames", type=int, default=4,
                         help="frames measured, evenly spaced along the path (the last among them)")
     parser.add_argument("--maps", help="folder for the measured frames and their error maps")
-    args = parser.parse_args()
+    args = parser.parse_intermixed_args()
     configs = {"cache off": {"cache": 0}}
     for text in args.configs:
         name, _, values = text.partition("=")

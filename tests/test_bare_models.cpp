@@ -127,8 +127,13 @@ TEST_F(SceneFiles, BareModelIsFramedAndLitAtEveryScale) {
         EXPECT_LT(plane.min.x, model.min.x - 2 * radius);
         EXPECT_GT(plane.max.z, model.max.z + 2 * radius);
         EXPECT_TRUE(inside(plane.min, scene.bounds) && inside(plane.max, scene.bounds));
-        // The AO radius stays the model's, not the ground's.
-        EXPECT_NEAR(ssgi::aoRadius(scene), 0.05f * glm::length(model.size()),
+        // The AO radius stays the model's, not the ground's: 1.25% of its diagonal beside the
+        // sky's visibility (on by default), 5% without it.
+        EXPECT_NEAR(ssgi::aoRadius(scene), 0.0125f * glm::length(model.size()),
+                    1e-4f * glm::length(model.size()));
+        Scene withoutSkyMaps = scene;
+        withoutSkyMaps.settings.sky_visibility = false;
+        EXPECT_NEAR(ssgi::aoRadius(withoutSkyMaps), 0.05f * glm::length(model.size()),
                     1e-4f * glm::length(model.size()));
     }
 }

@@ -40,11 +40,7 @@ void addFramePasses(FrameBuild& build) {
         composite.direct = addDirectPass(build, rasterized, composite.shadow);
     // The sky's visibility beyond the screen, for the sky term beside the AO (none to see
     // under a black sky, as in the Cornell boxes).
-    const bool blackSky = scene.sky.zenith == glm::vec3(0.0f) &&
-                          scene.sky.horizon == glm::vec3(0.0f) &&
-                          scene.sky.ground == glm::vec3(0.0f);
-    if (settings.sky_visibility && !settings.ssdo && !blackSky)
-        addSkyVisibilityPasses(build, rasterized);
+    if (hasSkyVisibility(scene)) addSkyVisibilityPasses(build, rasterized);
     addCompositePass(build, rasterized, composite);
 }
 

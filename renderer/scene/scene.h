@@ -158,7 +158,10 @@ struct Scene {
     Camera camera;
     CameraPath cameraPath;
     std::vector<ObjectPath> objectPaths;
-    Aabb bounds;       // world space, over all instances, wherever their paths take them
+    Aabb bounds; // world space, over all instances, wherever their paths take them
+    // The diagonal the derived AO radius is a share of (aoRadius): the bounds' own, but a bare
+    // model's without the ground plane staged under it (0: the bounds').
+    float aoDiagonal = 0.0f;
     Settings settings; // the method settings (settings.h), defaults where nothing set them
 };
 
@@ -168,8 +171,13 @@ struct Scene {
 // ground_plane must be. Throws InputError naming the file and the problem.
 Scene loadScene(const std::string& path, const SettingOverrides& overrides = {});
 
-// The ambient-occlusion radius in scene units: the ao_radius setting when > 0, else 5% of the
-// scene's bounding-box diagonal. The real-time AO and the reference's AO use the same value.
+// The ambient-occlusion radius in scene units: the ao_radius setting when > 0, else 1.25% of the
+// scene's bounding-box diagonal where the sky's visibility takes the occluders beyond it
+// (hasSkyVisibility), 5% where the AO stands for all of the sky's occlusion. The real-time AO
+// and the reference's AO use the same value.
 float aoRadius(const Scene& scene);
+// Whether the frame looks up the sky's visibility (addSkyVisibilityPasses): on, beside the AO
+// (SSDO occludes the sky by itself), under a sky that is not black (none to see there).
+bool hasSkyVisibility(const Scene& scene);
 
 } // namespace ssgi

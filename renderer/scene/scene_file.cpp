@@ -266,9 +266,8 @@ Scene buildScene(const std::string& path, const SceneDescription& description, b
         addGroundPlane(scene, model);
         for (const Vertex& vertex : scene.meshes.back().vertices)
             scene.bounds.extend(vertex.position);
-        // The AO radius stays the model's, not 5% of the far larger ground's diagonal.
-        if (scene.settings.ao_radius == 0.0)
-            scene.settings.ao_radius = 0.05 * glm::length(model.size());
+        // The AO radius stays the model's, not a share of the far larger ground's diagonal.
+        scene.aoDiagonal = glm::length(model.size());
     }
 
     // Path keys refine the scene camera as written, before its clip planes are derived, so a

@@ -122,8 +122,21 @@ std::string settingsMarkdown() {
 
 float aoRadius(const Scene& scene) {
     const double radius = scene.settings.ao_radius;
-    const double derived = 0.05 * glm::length(scene.bounds.size());
+    // With the sky's visibility (and AO, not SSDO), its depth maps see every occluder they
+    // resolve, and they see it better than the screen does (docs/effects.md, "AO and the sky's
+    // visibility"): the AO is left what is too near for them, about three of their texels.
+    // Without them the AO stands for all of the sky's occlusion and reaches further.
+    const double diagonal =
+        scene.aoDiagonal > 0.0f ? scene.aoDiagonal : glm::length(scene.bounds.size());
+    const double derived = (hasSkyVisibility(scene) ? 0.0125 : 0.05) * diagonal;
     return float(radius > 0.0 ? radius : (derived > 0.0 ? derived : 0.1));
+}
+
+bool hasSkyVisibility(const Scene& scene) {
+    const bool blackSky = scene.sky.zenith == glm::vec3(0.0f) &&
+                          scene.sky.horizon == glm::vec3(0.0f) &&
+                          scene.sky.ground == glm::vec3(0.0f);
+    return scene.settings.sky_visibility && !scene.settings.ssdo && !blackSky;
 }
 
 } // namespace ssgi
