@@ -14,7 +14,7 @@ import analysis  # noqa: E402
 
 GROUP_STYLE = {  # group -> (colour, marker, legend)
     "default": ("black", "*",
-                "defaults (thesis AO 8x4, 384 VPLs + visibility, interleaved, PCF 49)"),
+                "defaults (horizon AO 8x4, 384 VPLs + visibility, interleaved, PCF 49)"),
     "ao": ("tab:blue", "o", "AO / SSDO varied"),
     "indirect": ("tab:orange", "s", "indirect varied"),
     "shadow": ("tab:green", "^", "shadow varied"),
@@ -93,13 +93,13 @@ def pareto_chart(scene, sweep, images_dir):
 
 def selected_bars(sweep):
     """(label, passes) of a few configurations worth comparing pass by pass."""
-    wanted = ["thesis AO 8x4 + 384 VPLs + visibility, interleaved + PCF 49",
-              "thesis AO 8x4 + 512 VPLs + visibility + PCF 49",
-              "thesis AO 8x4 + 512 VPLs + PCF 49",
-              "thesis AO 8x4 + 64 VPLs + visibility + PCF 49",
+    wanted = ["horizon AO 8x4 + 384 VPLs + visibility, interleaved + PCF 49",
               "horizon AO 8x4 + 512 VPLs + visibility + PCF 49",
+              "horizon AO 8x4 + 512 VPLs + PCF 49",
+              "horizon AO 8x4 + 64 VPLs + visibility + PCF 49",
+              "thesis AO 8x4 + 512 VPLs + visibility + PCF 49",
               "SSDO 16 + 512 VPLs + visibility + PCF 49",
-              "thesis AO 8x4 + 512 VPLs + visibility + PCF 9",
+              "horizon AO 8x4 + 512 VPLs + visibility + PCF 9",
               "thesis AO 4x2 + 256 VPLs + PCF 9",
               "no AO + no indirect + PCF 9"]
     by_label = {c["label"]: c["passes"] for c in sweep["configs"]}

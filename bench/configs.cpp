@@ -8,9 +8,11 @@ namespace ssgi::bench {
 
 std::vector<Axis> makeAxes() {
     Axis ao{"ao", {"ao", "ssdo"}, {}};
+    // ao_variant's values by name; horizon (GTAO, the default) first, so that the axis's first
+    // value is the renderer's default AO.
     const char* variants[] = {"thesis AO", "Crytek AO", "horizon AO"};
     const int sizes[][2] = {{8, 4}, {4, 2}, {16, 4}};
-    for (int variant = 0; variant < 3; ++variant)
+    for (int variant : {2, 0, 1})
         for (const auto& size : sizes)
             ao.values.push_back({std::string(variants[variant]) + " " + std::to_string(size[0]) +
                                      "x" + std::to_string(size[1]),

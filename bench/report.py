@@ -146,7 +146,7 @@ def tables(sweeps, walks, size, note):
     md.append("\n### Targets (issues 5 and 6), %s\n\n" % size)
     md.append(targets(sweeps, walks, size))
     md.append("\n### Best configuration at a time budget (cache off), %s\n\n" % size)
-    md.append("Budgets are fractions of the scene's default frame (thesis AO 8x4, 384 VPLs + "
+    md.append("Budgets are fractions of the scene's default frame (horizon AO 8x4, 384 VPLs + "
               "visibility, interleaved, PCF 49) in the same run; error is relMSE against the "
               "reference.\n\n")
     rows = []

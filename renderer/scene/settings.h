@@ -35,7 +35,7 @@ namespace ssgi {
     X(contact_shadow_texels, double, 6, 0, 1e3, "Shadow",                                          \
       "length of the contact-shadow segment, in shadow-map texels")                                \
     X(ao, bool, true, 0, 1, "Ambient occlusion", "ambient occlusion on or off")                    \
-    X(ao_variant, int, 0, 0, 2, "Ambient occlusion",                                               \
+    X(ao_variant, int, 2, 0, 2, "Ambient occlusion",                                               \
       "0 thesis (eq. 6-8), 1 Crytek/Mittring, 2 horizon (GTAO)")                                   \
     X(ao_radius, double, 0, 0, 1e9, "Ambient occlusion",                                           \
       "AO radius in scene units; 0 = 1.25% of the scene's diagonal beside the sky's visibility "   \
