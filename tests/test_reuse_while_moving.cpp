@@ -88,10 +88,13 @@ TEST_F(ReuseWhileMovingTest, AWholePixelShiftKeepsTheConvergedValue) {
                 const size_t j = y * kSize + x + 3;
                 // To the history's half float, and what a rounding of the reprojection by a
                 // thirtieth of a pixel may blend in of a neighbour (a weight below 1/30).
+                // Its neighbours in the history: beside it in its row, above and below.
                 float spread = 0.0f;
-                for (size_t n : {j - 1, j + 1, j - kSize, j + kSize})
-                    if (n < before[k].size() / 4)
+                for (size_t n : {j - 1, j + 1, j - kSize, j + kSize}) {
+                    const bool sameRowOrColumn = n / kSize == j / kSize || n % kSize == j % kSize;
+                    if (n < before[k].size() / 4 && sameRowOrColumn)
                         spread = std::max(spread, std::abs(before[k][4 * n] - before[k][4 * j]));
+                }
                 const bool same = std::abs(after[4 * i] - before[k][4 * j]) <=
                                   std::ldexp(std::abs(before[k][4 * j]), -10) + spread / 30.0f;
                 exact += same ? 1 : 0;

@@ -41,11 +41,11 @@ void main() {
         return;
     }
     vec3 p = position.xyz;
-    vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     if (converged(pixel, p, constants.cache)) {
         imageStore(aoImage, pixel, SKIPPED); // converged: the cache holds the value
         return;
     }
+    vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     float radius = constants.radius * constants.scale;
     float radiusPixels = radius * pixelsPerUnit(viewDepth(p));
     float rotation = pixelRotation(pixel) + constants.rotation;

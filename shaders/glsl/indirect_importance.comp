@@ -106,12 +106,12 @@ void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
     vec4 position = gbufferPosition(pixel);
-    vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     if (position.w == 0.0 || convergedAround(pixel, position.xyz, constants.cache, margin)) {
         imageStore(interleavedIndirect, pixel, SKIPPED);
         imageStore(interleavedDirectional, pixel, SKIPPED);
         return;
     }
+    vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     vec3 p = position.xyz;
     int turn = cached ? int(fract(frame.patternFrame * 0.618034) * float(SUBSETS)) : 0;
     int subset = (vplSubset(pixel.x, pixel.y, INTERLEAVE) + turn) % SUBSETS;

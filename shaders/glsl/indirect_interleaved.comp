@@ -48,12 +48,12 @@ void main() {
         imageStore(interleavedDirectional, pixel, vec4(0.0));
         return;
     }
-    vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     if (convergedAround(pixel, position.xyz, constants.cache, margin)) {
         imageStore(interleavedIndirect, pixel, SKIPPED);
         imageStore(interleavedDirectional, pixel, SKIPPED);
         return;
     }
+    vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     // Cached, the subsets also turn frame by frame (a low-discrepancy sequence over the frame
     // index), so that over frames every pixel gathers every subset; a single frame keeps its
     // place's own.

@@ -76,13 +76,13 @@ void main() {
         return;
     }
     vec3 p = position.xyz;
-    vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     Reprojection history = reproject(pixel, p, constants.cache);
     if (convergedAround(pixel, history, constants.cache, margin)) {
         imageStore(filtered, pixel, vec4(0.0));
         if (axis.x == 1) imageStore(filteredDirectional, pixel, vec4(0.0));
         return;
     }
+    vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     float footprint = 1.0 / pixelsPerUnit(viewDepth(p));
     // A pixel without history (the cache off, a first frame, a surface just revealed) has only
     // this frame's subsets: it weighs neighbours facing another way more (cos^4), for less

@@ -56,11 +56,11 @@ void main() {
         imageStore(shadowImage, pixel, vec4(1.0));
         return;
     }
-    vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     if (converged(pixel, position.xyz, constants.cache)) {
         imageStore(shadowImage, pixel, SKIPPED); // converged: the cache holds the value
         return;
     }
+    vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     // Normal-offset lookup, scaled by the cosine at which the light meets the surface. The
     // receiver's depth is compared at each texel's centre, where the map's depth was rasterised
     // (receiverPlaneDepth), so a flat receiver needs no offset at any slope; what the offset is

@@ -61,11 +61,11 @@ void main() {
         imageStore(sky_visibilityImage, pixel, vec4(1.0));
         return;
     }
-    vec3 n = normalize(texelFetch(gbufferNormal, pixel, 0).xyz);
     if (converged(pixel, position.xyz, constants.cache)) {
         imageStore(sky_visibilityImage, pixel, SKIPPED); // its cache holds the value
         return;
     }
+    vec3 n = normalize(texelFetch(gbufferNormal, pixel, 0).xyz);
     SkyMapView maps = constants.maps;
     float diameter = 2.0 * maps.sphere.w;
     // Off the surface along its normal, so that it does not shadow itself within a texel.

@@ -43,11 +43,11 @@ void main() {
         return;
     }
     vec3 p = position.xyz;
-    vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     if (converged(pixel, p, constants.cache)) {
         imageStore(ssdoImage, pixel, SKIPPED); // converged: the cache holds the value
         return;
     }
+    vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     vec3 albedo = texelFetch(gbufferAlbedo, pixel, 0).rgb;
     float rMax = constants.rMax * constants.scale;
     float patchArea = PI * rMax * rMax / float(SAMPLES);

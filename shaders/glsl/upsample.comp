@@ -40,11 +40,11 @@ void main() {
         return;
     }
     vec3 p = position.xyz;
-    vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     if (converged(pixel, p, constants.cache)) {
         imageStore(indirectImage, pixel, vec4(0.0));
         return;
     }
+    vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     // A neighbour is compatible within a few pixels' world footprint, on p's plane.
     float footprint = 1.0 / pixelsPerUnit(viewDepth(p));
     ivec2 halfSize = ivec2(constants.width, constants.height); // half-res samples skipped this frame are not used
