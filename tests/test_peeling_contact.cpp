@@ -1,5 +1,6 @@
 // SSDO's own fixes (SSDO paper sections 4-5) measured against the path-traced reference: depth
-// peeling on a thin occluder, contact shadows where an object touches its floor.
+// peeling on a thin occluder and in the bounce's visibility test, contact shadows where an
+// object touches its floor.
 #include "reference/cache.h"
 #include "renderer.h"
 #include "support.h"
@@ -134,6 +135,48 @@ TEST_F(SsdoFixesTest, ContactShadowsLowerTheErrorWhereTheBunnyTouchesTheFloor) {
     // layers), 0.0470 (one layer).
     EXPECT_LT(errorWith, 0.95 * errorWithout);
     EXPECT_LT(errorOneLayer, 0.95 * errorWithout);
+}
+
+// The Cornell box's ceiling and upper back wall are lit by the bounce alone, from VPLs the tall
+// block hides from the camera's view of them in part: one depth layer's thickness guess takes
+// the open space behind the block for the block. With the second layer the test knows where the
+// block ends. The ratio of the converged bounce to the reference's one bounce, summed over the
+// image's top third.
+TEST_F(SsdoFixesTest, DepthPeelingGivesTheCornellBoxsCeilingItsBounce) {
+    Scene scene = loadScene(test::sourcePath("scenes/cornell-box.json"));
+    const uint32_t w = 128, h = 128;
+    reference::ReferenceOptions options;
+    options.mode = reference::Mode::Indirect;
+    options.width = w;
+    options.height = h;
+    options.spp = 1024;
+    const std::vector<float> truth = reference::cachedReference(scene, options).rgba;
+    auto topRatio = [&](int peeling) {
+        scene.settings.depth_peeling = peeling;
+        Renderer renderer(test::context(), scene, {w, h, "final"});
+        for (int frame = 0; frame < 40; ++frame)
+            renderer.renderFrame(scene.camera);
+        const std::vector<float> bounce = renderer.readImage("indirect.history"); // E / pi
+        const std::vector<float> albedo = renderer.readImage("gbuffer.albedo");
+        const std::vector<float> position = renderer.readImage("gbuffer.position");
+        double realtime = 0.0, reference = 0.0;
+        for (size_t i = 0; i < size_t(w) * (h / 3); ++i) {
+            if (position[4 * i + 3] == 0.0f) continue;
+            for (size_t c = 0; c < 3; ++c) {
+                realtime += bounce[4 * i + c] * albedo[4 * i + c];
+                reference += truth[4 * i + c];
+            }
+        }
+        return realtime / reference;
+    };
+    const double single = topRatio(0), peeled = topRatio(1);
+    std::printf("the Cornell box's top third, bounce / reference: one layer %.3f, two layers "
+                "%.3f\n",
+                single, peeled);
+    // Measured at 128x128: one layer 0.850, two layers 0.981 (at 192x192 0.881 and 1.039; at
+    // 96x96 the one layer's guess finds few false occluders, 0.947 against 0.932).
+    EXPECT_LT(single, 0.92);
+    EXPECT_LT(std::abs(peeled - 1.0), 0.5 * std::abs(single - 1.0));
 }
 
 } // namespace

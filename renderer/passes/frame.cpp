@@ -19,9 +19,12 @@ void addFramePasses(FrameBuild& build) {
     // order they come here (FrameBuild::addCompositeTerm).
     CompositeImages composite;
     composite.shadow = addShadowPass(build, rasterized);
-    // Depth peeling's second layer serves SSDO's occlusion test and the contact shadows'.
-    if (settings.depth_peeling && (settings.ssdo || settings.contact_shadows))
-        composite.secondLayer = addPeelPass(build, rasterized);
+    // Depth peeling's second layer serves SSDO's occlusion test, the contact shadows' and the
+    // bounce's visibility test.
+    if (settings.depth_peeling && (settings.ssdo || settings.contact_shadows ||
+                                   (settings.indirect && settings.indirect_visibility)))
+        rasterized.secondLayer = addPeelPass(build, rasterized);
+    composite.secondLayer = rasterized.secondLayer;
     if (settings.contact_shadows)
         composite.shadow =
             addContactPass(build, rasterized, composite.shadow, composite.secondLayer);

@@ -41,7 +41,8 @@ graph::ImageRef addInterleavedIndirectPasses(FrameBuild& build, const GBufferAnd
                                    {"VISIBILITY", int(settings.indirect_visibility)},
                                    {"VISIBILITY_STEPS", int(settings.indirect_visibility_steps)},
                                    {"INTERLEAVE", k},
-                                   {"RADIUS", radius}}};
+                                   {"RADIUS", radius},
+                                   {"PEELING", in.secondLayer.valid() ? 1 : 0}}};
     if (fluxVpls) { // method 2: its flux-drawn VPLs, the tests drawn, the pool, the map's side
         const int cluster = int(settings.indirect_vpl_cluster);
         gatherSpec.constants.insert(
@@ -83,7 +84,11 @@ graph::ImageRef addInterleavedIndirectPasses(FrameBuild& build, const GBufferAnd
     gather.images.insert(gather.images.end(), cacheInputs.begin(), cacheInputs.end());
     gather.images.insert(gather.images.end(),
                          {{"interleavedIndirect", subsets, Use::StorageWrite},
-                          {"interleavedDirectional", subsetsDirectional, Use::StorageWrite}});
+                          {"interleavedDirectional", subsetsDirectional, Use::StorageWrite},
+                          // Without depth peeling the shader never reads it; the depth stands in.
+                          {"secondLayer",
+                           in.secondLayer.valid() ? in.secondLayer : in.gbuffer.viewDepth,
+                           Use::Sampled}});
     gather.pushSize = sizeof(shader::IndirectConstants);
     gather.spec = gatherSpec;
     addComputePass(build, std::move(gather), [&build, cache, constants](const ComputeRecorder& r) {

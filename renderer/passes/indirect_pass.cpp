@@ -14,12 +14,18 @@ graph::ImageRef addIndirectPasses(FrameBuild& build, const GBufferAndRsm& in,
         build.graph.createImage("indirect.half", VK_FORMAT_R16G16B16A16_SFLOAT, halfSize, usage);
     graph::ImageRef full =
         build.graph.createImage("indirect", VK_FORMAT_R16G16B16A16_SFLOAT, build.size, usage);
-    const vk::Specialization gatherSpec{
+    vk::Specialization gatherSpec{
         {{"VPLS", int(build.settings.indirect_vpls)},
          {"VISIBILITY", int(build.settings.indirect_visibility)},
          {"VISIBILITY_STEPS", int(build.settings.indirect_visibility_steps)}}};
     vk::Specialization upsampleSpec = gatherSpec;
     upsampleSpec.constants.push_back({"HALF_RES", int(build.settings.indirect_half_res)});
+    upsampleSpec.constants.push_back({"PEELING", in.secondLayer.valid() ? 1 : 0});
+    gatherSpec.constants.push_back({"PEELING", in.secondLayer.valid() ? 1 : 0});
+    // Without depth peeling the shaders never read the second layer; the depth stands in.
+    const ShaderImage secondLayer{
+        "secondLayer", in.secondLayer.valid() ? in.secondLayer : in.gbuffer.viewDepth,
+        graph::Use::Sampled};
     const bool halfRes = build.settings.indirect_half_res;
     auto constants = [&build, halfSize, cache](const FrameState& frame) {
         return indirectConstants(build, cache, frame, halfSize);
@@ -34,6 +40,7 @@ graph::ImageRef addIndirectPasses(FrameBuild& build, const GBufferAndRsm& in,
         reads.push_back(std::move(history));
     ComputePassDesc gather{"indirect", "indirect.comp", reads};
     gather.images.push_back({"halfIndirect", half, Use::StorageWrite});
+    gather.images.push_back(secondLayer);
     gather.pushSize = sizeof(shader::IndirectConstants);
     gather.spec = gatherSpec;
     addComputePass(
@@ -48,6 +55,7 @@ graph::ImageRef addIndirectPasses(FrameBuild& build, const GBufferAndRsm& in,
     ComputePassDesc upsample{"upsample", "upsample.comp", reads};
     upsample.images.push_back({"halfIndirect", half, Use::Sampled});
     upsample.images.push_back({"indirectImage", full, Use::StorageWrite});
+    upsample.images.push_back(secondLayer);
     upsample.pushSize = sizeof(shader::IndirectConstants);
     upsample.spec = upsampleSpec;
     addComputePass(build, std::move(upsample),

@@ -46,6 +46,10 @@ Rsm addRsmPass(FrameBuild& build);
 struct GBufferAndRsm {
     GBuffer gbuffer;
     Rsm rsm;
+    // Depth peeling's second layer (peel_pass.cpp: the world position of the nearest surface
+    // behind the G-buffer's, w = 0 where none), valid where depth_peeling is on and a pass
+    // tests occlusion with it (frame.cpp).
+    graph::ImageRef secondLayer;
 };
 
 } // namespace ssgi

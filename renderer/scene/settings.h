@@ -60,7 +60,7 @@ namespace ssgi {
     X(ssdo_bounce, double, 1.0, 0, 1e3, "SSDO",                                                    \
       "SSDO one-bounce strength (the paper's user factor)")                                        \
     X(depth_peeling, bool, false, 0, 1, "SSDO",                                                    \
-      "SSDO's and the contact shadows' occlusion test between two depth layers")                   \
+      "SSDO's, the contact shadows' and the bounce's occlusion tests between two depth layers")    \
     X(indirect, bool, true, 0, 1, "Indirect light",                                                \
       "one-bounce indirect light from the RSM on or off")                                          \
     X(indirect_method, int, 1, 0, 2, "Indirect light",                                             \

@@ -28,6 +28,7 @@ layout(constant_id = 5) const int FLUX_VPLS = 256;
 layout(constant_id = 6) const int TESTS = 8; // visibility tests a pixel; 0: every VPL
 layout(constant_id = 7) const int POOL = 2048; // the flux's VPLs drawn this frame
 layout(constant_id = 8) const int MAP_SIZE = 256; // the VPL map's side
+layout(constant_id = 9) const int PEELING = 0; // the visibility test between two depth layers
 const int SUBSETS = INTERLEAVE * INTERLEAVE;
 const int CANDIDATES = (VPLS + SUBSETS - 1) / SUBSETS + (FLUX_VPLS + SUBSETS - 1) / SUBSETS;
 // At most every candidate is tested.
@@ -46,6 +47,7 @@ layout(set = 0, binding = 8) uniform sampler2D reprojection;
 layout(set = 0, binding = 9) uniform sampler2D historyCount;
 layout(set = 0, binding = 10, rgba16f) uniform writeonly image2D interleavedIndirect;
 layout(set = 0, binding = 11, rgba16f) uniform writeonly image2D interleavedDirectional;
+layout(set = 0, binding = 12) uniform sampler2D secondLayer; // peel.position (PEELING only)
 layout(push_constant) uniform IndirectBlock { IndirectConstants constants; };
 
 #include "gbuffer_position.glsl"

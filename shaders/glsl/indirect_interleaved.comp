@@ -18,6 +18,7 @@ layout(constant_id = 1) const int VISIBILITY = 1;
 layout(constant_id = 2) const int VISIBILITY_STEPS = 6;
 layout(constant_id = 3) const int INTERLEAVE = 4;
 layout(constant_id = 4) const int RADIUS = 8; // the filter's, for the refresh tile's margin
+layout(constant_id = 5) const int PEELING = 0; // the visibility test between two depth layers
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
 layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
@@ -28,6 +29,7 @@ layout(set = 0, binding = 5) uniform sampler2D reprojection;
 layout(set = 0, binding = 6) uniform sampler2D historyCount;
 layout(set = 0, binding = 7, rgba16f) uniform writeonly image2D interleavedIndirect;
 layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D interleavedDirectional;
+layout(set = 0, binding = 9) uniform sampler2D secondLayer; // peel.position (PEELING only)
 layout(push_constant) uniform IndirectBlock { IndirectConstants constants; };
 
 #include "gbuffer_position.glsl"

@@ -1,7 +1,8 @@
 // The screen-space visibility test of a VPL (thesis 3.3, equation 8), shared by the indirect
 // light's gathers (indirect_gather.glsl, indirect_importance.comp).
 // Needs: frame, gbufferViewDepth, gbufferNormal, pixel_to_world.glsl (loadPixelToWorld),
-// VISIBILITY_STEPS, constants (IndirectConstants), screen_space.glsl.
+// VISIBILITY_STEPS, constants (IndirectConstants), screen_space.glsl, PEELING and secondLayer
+// (depth peeling's layer, peel.position; read only where PEELING is 1).
 #ifndef SSGI_INDIRECT_VISIBILITY_GLSL
 #define SSGI_INDIRECT_VISIBILITY_GLSL
 
@@ -45,7 +46,23 @@ bool vplVisible(vec3 p, vec3 q) {
         // silhouette is lost). The surface's normal and position are read only where the step
         // lies within twice its length behind, the most the cosine can allow.
         float behind = clip.w - depth;
-        if (behind <= 0.01 * clip.w || behind >= 2.0 * stepLength) continue;
+        if (behind <= 0.01 * clip.w) continue;
+        // With depth peeling's second layer (the nearest surface behind the visible one: a
+        // closed object's far side) no guess is needed: a step between the two layers is
+        // inside the object, one beyond the second in the open space behind it (the Cornell
+        // box's ceiling and upper back wall, which the guess left at 0.80-0.85 of their bounce,
+        // docs/effects.md). Where nothing lies behind, the guess below. A long step can cross
+        // a thin wall from one side to the other unseen, which the guess would have caught:
+        // Sponza's error rises with it, and depth peeling stays off by default.
+        if (PEELING != 0) {
+            vec4 back = texelFetch(secondLayer, pixel, 0);
+            if (back.w != 0.0) {
+                float backDepth = (worldToGbuffer.viewProjection * vec4(back.xyz, 1.0)).w;
+                if (clip.w < backDepth) return false;
+                continue;
+            }
+        }
+        if (behind >= 2.0 * stepLength) continue;
         vec3 surfaceNormal = texelFetch(gbufferNormal, pixel, 0).xyz;
         vec3 surface = worldAt(gbufferToWorld, pixel, depth);
         float facing = abs(dot(surfaceNormal, normalize(gbufferToWorld.eye - surface)));
