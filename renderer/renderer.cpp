@@ -84,10 +84,12 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
             " is outside 1.." + std::to_string(limit) + " (this device's largest 2D image)");
     checkImageMemory(ctx, rendered.width, rendered.height);
     const int view = viewIndex(options.view);
-    const uint32_t rsmSize = uint32_t(scene.settings.shadow_map_size);
-    if (rsmSize == 0 || rsmSize > limit)
-        throw InputError("shadow_map_size " + std::to_string(rsmSize) + " is outside 1.." +
-                         std::to_string(limit));
+    const uint32_t rsmSize = uint32_t(scene.settings.rsm_size);
+    for (const auto& [name, side] : {std::pair{"rsm_size", rsmSize},
+                                     {"shadow_map_size", uint32_t(scene.settings.shadow_map_size)}})
+        if (side == 0 || side > limit)
+            throw InputError(std::string(name) + " " + std::to_string(side) + " is outside 1.." +
+                             std::to_string(limit));
 
     // A failure past this point (out of device memory) gives back what was made before it.
     try {

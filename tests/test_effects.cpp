@@ -180,7 +180,7 @@ TEST_F(EffectTest, FluxVplsAreDrawnInProportionToTheirFlux) {
     const std::vector<float> map = renderer.readImage("indirect.vpl_flux");
     const std::vector<float> list = renderer.readImage("indirect.vpl_list");
     const int side =
-        (int(scene.settings.shadow_map_size) + int(scene.settings.indirect_vpl_cluster) - 1) /
+        (int(scene.settings.rsm_size) + int(scene.settings.indirect_vpl_cluster) - 1) /
         int(scene.settings.indirect_vpl_cluster);
     const int pool = int(scene.settings.indirect_flux_pool);
     ASSERT_EQ(map.size(), size_t(4 * side * side));

@@ -193,7 +193,8 @@ TEST_F(RenderTest, FrameReportsEveryPassInOrderWithTimings) {
         names.push_back(t.name);
         EXPECT_GE(t.milliseconds, 0.0);
     }
-    EXPECT_EQ(names, (std::vector<std::string>{"gbuffer", "rsm", "reprojection", "shadow.keep",
+    EXPECT_EQ(names, (std::vector<std::string>{"gbuffer", "rsm", "shadow_map", "reprojection",
+                                               "shadow.keep",
                                                "shadow", "shadow.temporal", "ao.keep", "ao",
                                                "ao.temporal", "indirect.keep", "indirect",
                                                "indirect.filter_x", "indirect.filter_y",

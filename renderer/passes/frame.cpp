@@ -13,6 +13,7 @@ void addFramePasses(FrameBuild& build) {
     GBufferAndRsm rasterized;
     rasterized.gbuffer = addGBufferPass(build);
     rasterized.rsm = addRsmPass(build);
+    rasterized.shadowMap = addShadowMapPass(build, rasterized.rsm);
     if (settings.cache) addReprojectionPass(build, rasterized.gbuffer);
     // Each cached effect returns its blended history (cached_effect_pass.h), which is what its
     // consumers read; the lighting terms hand theirs to the composite, which adds them up in the

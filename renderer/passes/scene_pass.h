@@ -42,10 +42,14 @@ struct Rsm {
     graph::ImageRef vpls, depth;
 };
 Rsm addRsmPass(FrameBuild& build);
+// shadow_map: the light's depth at shadow_map_size for the shadow test, drawn on the RSM's
+// frames; where the sizes are equal, the RSM's own depth.
+graph::ImageRef addShadowMapPass(FrameBuild& build, const Rsm& rsm);
 
 struct GBufferAndRsm {
     GBuffer gbuffer;
     Rsm rsm;
+    graph::ImageRef shadowMap; // addShadowMapPass
     // Depth peeling's second layer (peel_pass.cpp: the world position of the nearest surface
     // behind the G-buffer's, w = 0 where none), valid where depth_peeling is on and a pass
     // tests occlusion with it (frame.cpp).

@@ -1,6 +1,7 @@
 // shadow: how much of the spot light's disk each G-buffer pixel sees, by percentage-closer
-// filtering of the RSM depth with a kernel sized from the disk (thesis 3.4, PCSS), cached.
-//   reads:  gbuffer.view_depth, gbuffer.normal, rsm.depth (and its cache's history)
+// filtering of the shadow map with a kernel sized from the disk (thesis 3.4, PCSS), cached.
+//   reads:  gbuffer.view_depth, gbuffer.normal, shadow_map.depth (rsm.depth where the two are
+//           the same size; and its cache's history)
 //   writes: shadow (the fraction of the disk seen, in r; the history's blur in g), shadow.history
 #include "passes/passes.h"
 
@@ -19,7 +20,7 @@ graph::ImageRef addShadowPass(FrameBuild& build, const GBufferAndRsm& in) {
     using graph::Use;
     pass.inputs = {{"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
                    {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
-                   {"rsmDepth", in.rsm.depth, Use::Sampled}};
+                   {"shadowMap", in.shadowMap, Use::Sampled}};
     pass.pushSize = sizeof(shader::ShadowConstants);
     pass.spec = {{{"TAPS", int(build.settings.shadow_taps)}}};
     return addCachedComputePass(build, in.gbuffer, std::move(pass),

@@ -23,8 +23,10 @@ namespace ssgi {
     X(guard_band, int, 0, 0, 256, "Image",                                                         \
       "pixels rendered beyond each edge of the image, for the screen-space effects to see what "   \
       "lies just off screen (0: none; docs/frame.md)")                                             \
-    X(shadow_map_size, int, 1024, 16, 8192, "Shadow", "RSM resolution, texels per side")           \
-    X(shadow_bias, double, 1.5, 0, 100, "Shadow",                                                  \
+    X(shadow_map_size, int, 2048, 16, 8192, "Shadow",                                              \
+      "the shadow test's depth map from the light, texels per side (the RSM's own depth when "    \
+      "equal to rsm_size)")                                                                        \
+    X(shadow_bias, double, 3, 0, 100, "Shadow",                                                    \
       "normal offset of the shadow lookup, in texels, times the cosine at which the light "        \
       "meets the surface")                                                                         \
     X(shadow_taps, int, 49, 1, 64, "Shadow",                                                       \
@@ -33,7 +35,7 @@ namespace ssgi {
       "screen-space contact shadows on the shadow term")                                           \
     X(contact_shadow_steps, int, 8, 1, 64, "Shadow", "samples along the contact-shadow segment")   \
     X(contact_shadow_texels, double, 6, 0, 1e3, "Shadow",                                          \
-      "length of the contact-shadow segment, in shadow-map texels")                                \
+      "length of the contact-shadow segment, in texels of the RSM (rsm_size)")                     \
     X(ao, bool, true, 0, 1, "Ambient occlusion", "ambient occlusion on or off")                    \
     X(ao_variant, int, 2, 0, 2, "Ambient occlusion",                                               \
       "0 thesis (eq. 6-8), 1 Crytek/Mittring, 2 horizon (GTAO)")                                   \
@@ -61,6 +63,8 @@ namespace ssgi {
       "SSDO one-bounce strength (the paper's user factor)")                                        \
     X(depth_peeling, bool, false, 0, 1, "SSDO",                                                    \
       "SSDO's, the contact shadows' and the bounce's occlusion tests between two depth layers")    \
+    X(rsm_size, int, 1024, 16, 8192, "Indirect light",                                             \
+      "the reflective shadow map, texels per side: each texel a VPL")                              \
     X(indirect, bool, true, 0, 1, "Indirect light",                                                \
       "one-bounce indirect light from the RSM on or off")                                          \
     X(indirect_method, int, 1, 0, 2, "Indirect light",                                             \

@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Soft shadows by percentage-closer filtering of the RSM depth (thesis 3.4), with the kernel
+// Soft shadows by percentage-closer filtering of the shadow map (thesis 3.4), with the kernel
 // tied to the light's disk: a blocker search estimates the occluders' mean distance, and the
 // penumbra a disk of that radius would cast (r (z_receiver - z_blocker) / z_blocker) sets the
 // filter's size (percentage-closer soft shadows). One tap is the hard shadow test.
@@ -13,7 +13,7 @@ layout(constant_id = 0) const int TAPS = 49;
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
 layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
 layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
-layout(set = 0, binding = 3) uniform sampler2D rsmDepth;
+layout(set = 0, binding = 3) uniform sampler2D shadowMap; // the light's depth (shadow_map_pass.cpp)
 layout(set = 0, binding = 4) uniform sampler2D historyViewDepth;
 layout(set = 0, binding = 5) uniform sampler2D reprojection;
 layout(set = 0, binding = 6) uniform sampler2D historyCount;
@@ -24,12 +24,12 @@ layout(push_constant) uniform ShadowBlock { ShadowConstants constants; };
 #include "screen_space.glsl"
 #include "temporal.glsl"
 
-float shadowMapSize() { return frame.lightFrustum.w; }
+float shadowMapSize() { return float(textureSize(shadowMap, 0).x); }
 
 // Distance along the light's axis of the nearest surface the light sees through uv.
 float occluderDepth(vec2 uv) {
     vec2 texel = clamp(uv * shadowMapSize(), vec2(0.0), vec2(shadowMapSize() - 1.0));
-    float depth = texelFetch(rsmDepth, ivec2(texel), 0).r;
+    float depth = texelFetch(shadowMap, ivec2(texel), 0).r;
     return linearDepth(depth, frame.lightFrustum.x, frame.lightFrustum.y);
 }
 

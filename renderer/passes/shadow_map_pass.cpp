@@ -1,0 +1,20 @@
+// shadow_map: the light's depth alone, at shadow_map_size, for the shadow test (shadow.comp).
+// The RSM (rsm_pass.cpp) holds a VPL a texel and needs no more of them than the bounce's
+// patterns sample; a shadow edge needs finer texels than that: at 2048 against the RSM's 1024,
+// Sponza's one frame 0.0120 -> 0.0093 against the converged reference (docs/effects.md). Where
+// the two sizes are equal the RSM's own depth is the map, and no pass is drawn.
+#include "passes/passes.h"
+
+namespace ssgi {
+
+graph::ImageRef addShadowMapPass(FrameBuild& build, const Rsm& rsm) {
+    const uint32_t side = uint32_t(build.settings.shadow_map_size);
+    if (side == build.rsmSize.width) return rsm.depth;
+    // Drawn on the RSM's frames: after the light moved, or every frame without the cache.
+    graph::EnabledFn enabled;
+    if (build.settings.cache) enabled = [](const FrameState& frame) { return frame.drawRsm; };
+    return addScenePass(build, "shadow_map", "shadow_map", VkExtent2D{side, side}, {}, enabled)
+        .depth;
+}
+
+} // namespace ssgi
