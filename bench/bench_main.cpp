@@ -28,7 +28,8 @@ const char* kUsage =
   --path-frames N       walkthrough, cache-fixes: frames along the camera path (default 120)
   --error-frames N      walkthrough, cache-fixes: frames whose error is measured (default 4)
   --still-frames N      cache-fixes: frames of the still camera at the path's end (default 64)
-  --spp N               reference samples per pixel, at most (default 4096)
+  --spp N               reference samples per pixel, at most (default 16384; each stops at 1%
+                        estimated noise)
   --no-error            timing only: no reference, no error renders
   --no-series           sweep: no cached still-camera series
   --series-methods N    sweep: 1 = the thesis rule only, 2 = also the running mean, 3 = also

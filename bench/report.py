@@ -143,6 +143,14 @@ def tables(sweeps, walks, size, note):
     md.append("Device: **%s**, driver %s, Vulkan %s; commit `%s`; %s. %s\n" % (
         first["device"]["name"], first["device"]["driver"], first["device"]["api"],
         first["commit"], first["date"], note))
+    refs = ["%s %d spp (noise %.2f%%, so its own relMSE about %.5f)" % (
+        scene, sz[size]["reference"]["samples"], 100 * sz[size]["reference"]["noise"],
+        sz[size]["reference"]["noise"] ** 2)
+        for scene, sz in sweeps.items() if "reference" in sz.get(size, {})]
+    if refs:
+        md.append("\nThe references of the error figures (each the path tracer's `full` image at "
+                  "the error size, to 1%% estimated noise or 16,384 samples): %s.\n" %
+                  "; ".join(refs))
     md.append("\n### Targets (issues 5 and 6), %s\n\n" % size)
     md.append(targets(sweeps, walks, size))
     md.append("\n### Best configuration at a time budget (cache off), %s\n\n" % size)
