@@ -44,6 +44,15 @@ const std::vector<vk::LayoutBinding> kReconstruct = {
 
 } // namespace
 
+// A failed call's message names its VkResult: the presentation codes by name, any other by its
+// number (a swapchain that failed on an H200 under Xvfb said only "VkResult error").
+TEST(VulkanResults, AreNamedOrNumbered) {
+    EXPECT_STREQ(vk::resultName(VK_ERROR_OUT_OF_DATE_KHR), "VK_ERROR_OUT_OF_DATE_KHR");
+    EXPECT_STREQ(vk::resultName(VK_ERROR_SURFACE_LOST_KHR), "VK_ERROR_SURFACE_LOST_KHR");
+    EXPECT_STREQ(vk::resultName(VK_ERROR_DEVICE_LOST), "VK_ERROR_DEVICE_LOST");
+    EXPECT_STREQ(vk::resultName(VkResult(-1000255000)), "VkResult -1000255000");
+}
+
 TEST(ShaderBindings, ReflectTheShadersOwnDeclarations) {
     const vk::EmbeddedShader& s = shader("indirect_reconstruct.comp");
     const auto bindings = vk::shaderBindings(s.code, s.bytes / 4, 0);

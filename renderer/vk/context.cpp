@@ -33,9 +33,27 @@ const char* resultName(VkResult result) {
         CASE(VK_ERROR_FEATURE_NOT_PRESENT)
         CASE(VK_ERROR_INCOMPATIBLE_DRIVER)
         CASE(VK_ERROR_FORMAT_NOT_SUPPORTED)
+        CASE(VK_ERROR_TOO_MANY_OBJECTS)
+        CASE(VK_ERROR_FRAGMENTED_POOL)
+        CASE(VK_ERROR_UNKNOWN)
+        CASE(VK_ERROR_OUT_OF_POOL_MEMORY)
+        CASE(VK_ERROR_FRAGMENTATION)
+        // Presentation (the viewer's swapchain and surface).
+        CASE(VK_SUBOPTIMAL_KHR)
+        CASE(VK_ERROR_OUT_OF_DATE_KHR)
+        CASE(VK_ERROR_SURFACE_LOST_KHR)
+        CASE(VK_ERROR_NATIVE_WINDOW_IN_USE_KHR)
+        CASE(VK_ERROR_INCOMPATIBLE_DISPLAY_KHR)
+        CASE(VK_ERROR_VALIDATION_FAILED_EXT)
 #undef CASE
-    default:
-        return "VkResult error";
+    default: {
+        // Any other code by its number, which the specification's VkResult table names: a
+        // driver's failure to create a swapchain on an H200 under Xvfb printed "VkResult error"
+        // and told nothing more. One buffer a thread, as the name is read before the next call.
+        thread_local char text[32];
+        std::snprintf(text, sizeof text, "VkResult %d", int(result));
+        return text;
+    }
     }
 }
 
