@@ -27,8 +27,7 @@ CompositeOutputs addCompositePass(FrameBuild& build, const GBufferAndRsm& in,
                    {"shadowImage", images.shadow, Use::Sampled},
                    {"rsmVpls", in.rsm.vpls, Use::Sampled},
                    // The shader reads the second layer only for its view, when there is one.
-                   {"secondLayer", images.secondLayer.valid() ? images.secondLayer : images.direct,
-                    Use::Sampled}};
+                   secondLayerInput(in)};
     pass.spec = {{{"HAS_CONTACT", build.settings.contact_shadows ? 1 : 0}}};
     // Each slot's role is structural: a slot without a term (TERM_NONE) is never read, and holds
     // the direct light so that every binding holds a valid image.

@@ -25,14 +25,12 @@ void addFramePasses(FrameBuild& build) {
     if (settings.depth_peeling && (settings.ssdo || settings.contact_shadows ||
                                    (settings.indirect && settings.indirect_visibility)))
         rasterized.secondLayer = addPeelPass(build, rasterized);
-    composite.secondLayer = rasterized.secondLayer;
     if (settings.contact_shadows)
-        composite.shadow =
-            addContactPass(build, rasterized, composite.shadow, composite.secondLayer);
+        composite.shadow = addContactPass(build, rasterized, composite.shadow);
     if (settings.ssdo) {
         // SSDO's bounce reads the direct light.
         composite.direct = addDirectPass(build, rasterized, composite.shadow);
-        addSsdoPass(build, rasterized, composite.direct, composite.secondLayer);
+        addSsdoPass(build, rasterized, composite.direct);
     } else if (settings.ao) {
         addAoPass(build, rasterized);
     }

@@ -85,10 +85,7 @@ graph::ImageRef addInterleavedIndirectPasses(FrameBuild& build, const GBufferAnd
     gather.images.insert(gather.images.end(),
                          {{"interleavedIndirect", subsets, Use::StorageWrite},
                           {"interleavedDirectional", subsetsDirectional, Use::StorageWrite},
-                          // Without depth peeling the shader never reads it; the depth stands in.
-                          {"secondLayer",
-                           in.secondLayer.valid() ? in.secondLayer : in.gbuffer.viewDepth,
-                           Use::Sampled}});
+                          secondLayerInput(in)});
     gather.pushSize = sizeof(shader::IndirectConstants);
     gather.spec = gatherSpec;
     addComputePass(build, std::move(gather), [&build, cache, constants](const ComputeRecorder& r) {

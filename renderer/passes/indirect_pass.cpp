@@ -22,10 +22,7 @@ graph::ImageRef addIndirectPasses(FrameBuild& build, const GBufferAndRsm& in,
     upsampleSpec.constants.push_back({"HALF_RES", int(build.settings.indirect_half_res)});
     upsampleSpec.constants.push_back({"PEELING", in.secondLayer.valid() ? 1 : 0});
     gatherSpec.constants.push_back({"PEELING", in.secondLayer.valid() ? 1 : 0});
-    // Without depth peeling the shaders never read the second layer; the depth stands in.
-    const ShaderImage secondLayer{
-        "secondLayer", in.secondLayer.valid() ? in.secondLayer : in.gbuffer.viewDepth,
-        graph::Use::Sampled};
+    const ShaderImage secondLayer = secondLayerInput(in);
     const bool halfRes = build.settings.indirect_half_res;
     auto constants = [&build, halfSize, cache](const FrameState& frame) {
         return indirectConstants(build, cache, frame, halfSize);

@@ -26,11 +26,15 @@ void addReprojectionPass(FrameBuild& build, const GBuffer& gbuffer);
 // shadow: fraction of the spot light's disk each pixel sees (PCF/PCSS, or a hard test).
 graph::ImageRef addShadowPass(FrameBuild& build, const GBufferAndRsm& inputs);
 // contact: the shadow term with screen-space contact shadows added; with depth peeling's second
-// layer (valid or not), an occluder is a sample between the two layers.
+// layer (inputs.secondLayer), an occluder is a sample between the two layers.
 graph::ImageRef addContactPass(FrameBuild& build, const GBufferAndRsm& inputs,
-                               graph::ImageRef shadow, graph::ImageRef secondLayer);
+                               graph::ImageRef shadow);
 // peel: the second depth layer (world position of the next surface behind the G-buffer's).
 graph::ImageRef addPeelPass(FrameBuild& build, const GBufferAndRsm& inputs);
+// The binding "secondLayer" of a pass whose occlusion test may use two layers (SSDO, contact
+// shadows, the bounce's visibility test, the composite's view): inputs.secondLayer, or without
+// depth peeling the view depth, an image the shader (PEELING 0) never reads.
+ShaderImage secondLayerInput(const GBufferAndRsm& inputs);
 // direct: spot-light radiance times the shadow term.
 graph::ImageRef addDirectPass(FrameBuild& build, const GBufferAndRsm& inputs,
                               graph::ImageRef shadow);
@@ -66,16 +70,15 @@ graph::ImageRef addInterleavedIndirectPasses(FrameBuild& build, const GBufferAnd
 // The one-bounce indirect light, cached, by the method the settings choose (indirect_light.cpp).
 graph::ImageRef addIndirectLight(FrameBuild& build, const GBufferAndRsm& inputs);
 
-// ssdo: directionally occluded sky light plus one bounce, as radiance.
-// `secondLayer` (valid with depth peeling) makes its occlusion test two-layered.
-graph::ImageRef addSsdoPass(FrameBuild& build, const GBufferAndRsm& inputs, graph::ImageRef direct,
-                            graph::ImageRef secondLayer);
+// ssdo: directionally occluded sky light plus one bounce, as radiance. Depth peeling's second
+// layer (inputs.secondLayer) makes its occlusion test two-layered.
+graph::ImageRef addSsdoPass(FrameBuild& build, const GBufferAndRsm& inputs, graph::ImageRef direct);
 
 // What the composite reads beside the lighting terms the passes hand it
-// (FrameBuild::compositeTerms): the direct light, the shadow term for its views, and depth
-// peeling's second layer for its view (invalid without peeling).
+// (FrameBuild::compositeTerms) and its inputs (depth peeling's second layer for its view): the
+// direct light and the shadow term for its views.
 struct CompositeImages {
-    graph::ImageRef direct, shadow, secondLayer;
+    graph::ImageRef direct, shadow;
 };
 
 // sky.maps + sky_visibility: the fraction of the sky's light reaching each pixel past the

@@ -63,4 +63,9 @@ graph::ImageRef addPeelPass(FrameBuild& build, const GBufferAndRsm& in) {
     return position;
 }
 
+ShaderImage secondLayerInput(const GBufferAndRsm& in) {
+    return {"secondLayer", in.secondLayer.valid() ? in.secondLayer : in.gbuffer.viewDepth,
+            graph::Use::Sampled};
+}
+
 } // namespace ssgi

@@ -7,8 +7,7 @@
 
 namespace ssgi {
 
-graph::ImageRef addSsdoPass(FrameBuild& build, const GBufferAndRsm& in, graph::ImageRef direct,
-                            graph::ImageRef secondLayer) {
+graph::ImageRef addSsdoPass(FrameBuild& build, const GBufferAndRsm& in, graph::ImageRef direct) {
     const Settings& settings = build.settings;
     const float rMax =
         settings.ssdo_radius > 0.0 ? float(settings.ssdo_radius) : aoRadius(build.scene);
@@ -20,16 +19,14 @@ graph::ImageRef addSsdoPass(FrameBuild& build, const GBufferAndRsm& in, graph::I
     pass.term = "ssdo";
     pass.shader = "ssdo.comp";
     using graph::Use;
-    // Without peeling the shader never reads its second layer: any valid image will do.
-    pass.inputs = {
-        {"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
-        {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
-        {"gbufferAlbedo", in.gbuffer.albedo, Use::Sampled},
-        {"directRadiance", direct, Use::Sampled},
-        {"secondLayer", secondLayer.valid() ? secondLayer : in.gbuffer.viewDepth, Use::Sampled}};
+    pass.inputs = {{"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
+                   {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
+                   {"gbufferAlbedo", in.gbuffer.albedo, Use::Sampled},
+                   {"directRadiance", direct, Use::Sampled},
+                   secondLayerInput(in)};
     pass.pushSize = sizeof(shader::SsdoConstants);
     pass.spec = {
-        {{"SAMPLES", int(settings.ssdo_samples)}, {"PEELING", secondLayer.valid() ? 1 : 0}}};
+        {{"SAMPLES", int(settings.ssdo_samples)}, {"PEELING", in.secondLayer.valid() ? 1 : 0}}};
     return addCachedComputePass(build, in.gbuffer, std::move(pass),
                                 [&build, rMax](const CachedRecorder& r) {
                                     shader::SsdoConstants constants{};

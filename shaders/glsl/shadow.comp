@@ -24,11 +24,12 @@ layout(push_constant) uniform ShadowBlock { ShadowConstants constants; };
 #include "screen_space.glsl"
 #include "temporal.glsl"
 
-float shadowMapSize() { return float(textureSize(shadowMap, 0).x); }
+// The map's side in texels, read once in main(): the tap loops below use it at every tap.
+float mapSize;
 
 // Distance along the light's axis of the nearest surface the light sees through uv.
 float occluderDepth(vec2 uv) {
-    vec2 texel = clamp(uv * shadowMapSize(), vec2(0.0), vec2(shadowMapSize() - 1.0));
+    vec2 texel = clamp(uv * mapSize, vec2(0.0), vec2(mapSize - 1.0));
     float depth = texelFetch(shadowMap, ivec2(texel), 0).r;
     return linearDepth(depth, frame.lightFrustum.x, frame.lightFrustum.y);
 }
@@ -38,7 +39,7 @@ float occluderDepth(vec2 uv) {
 // keeps a filter kernel on a sloped receiver from shadowing the receiver itself, and the texel's
 // centre is where the map's depth was rasterised, so a flat receiver matches it exactly.
 float receiverPlaneDepth(vec2 uv, vec3 p, vec3 n, float fallback) {
-    uv = (floor(uv * shadowMapSize()) + 0.5) / shadowMapSize();
+    uv = (floor(uv * mapSize) + 0.5) / mapSize;
     vec4 far = frame.inverseLightViewProjection * vec4(uv * 2.0 - 1.0, 1.0, 1.0);
     vec3 dir = normalize(far.xyz / far.w - frame.lightPosition.xyz);
     float denom = dot(dir, n);
@@ -49,6 +50,7 @@ float receiverPlaneDepth(vec2 uv, vec3 p, vec3 n, float fallback) {
 
 void main() {
     loadPixelToWorld(); // pixel_to_world.glsl
+    mapSize = float(textureSize(shadowMap, 0).x);
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
     vec4 position = gbufferPosition(pixel);
@@ -70,7 +72,7 @@ void main() {
     // 81 degrees from their normal, took a 5.4 cm offset, which moves a shadow's edge along
     // them by 5.4 / tan(9 degrees) = 34 cm; scaled by the cosine, Sponza's one frame went from
     // relMSE 0.0386 to 0.0125 against the path tracer (docs/ground-truth.md).
-    float texelAngle = 2.0 * frame.lightFrustum.z / shadowMapSize();
+    float texelAngle = 2.0 * frame.lightFrustum.z / mapSize;
     float texelAtP = distance(position.xyz, frame.lightPosition.xyz) * texelAngle;
     float cosLight = abs(dot(n, normalize(frame.lightPosition.xyz - position.xyz)));
     vec3 p = position.xyz + n * (constants.normalOffset * texelAtP * cosLight);
@@ -102,8 +104,8 @@ void main() {
     // receiver's distance, in shadow-map uv; at least a few texels so PCF still antialiases.
     float uvPerUnit = 1.0 / (2.0 * frame.lightFrustum.z * receiver);
     float lightRadius = frame.lightPosition.w;
-    float maxRadius = 48.0 / shadowMapSize();
-    float minRadius = 1.5 / shadowMapSize();
+    float maxRadius = 48.0 / mapSize;
+    float minRadius = 1.5 / mapSize;
     float searchRadius = clamp(4.0 * lightRadius * uvPerUnit, minRadius, maxRadius);
     float blockerSum = 0.0;
     int blockers = 0;
