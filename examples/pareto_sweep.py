@@ -30,7 +30,7 @@ for label, settings in configs.items():
 points.sort()  # cheapest first: a point is on the front when it beats every cheaper one
 front = [p for i, p in enumerate(points) if all(p[1] < q[1] for q in points[:i])]
 for ms, error, label in points:
-    print(f"{'front' if (ms, error, label) in front else '':5} {ms:8.1f} ms {error:.4f} {label}")
+    print(f"{'front' if (ms, error, label) in front else '':5} {ms:8.1f} ms {error:.5f} {label}")
 plt.scatter([p[0] for p in points], [p[1] for p in points])
 plt.plot([p[0] for p in front], [p[1] for p in front], "r-", label="Pareto front")
 [plt.annotate(label, (ms, error), fontsize=7) for ms, error, label in points]
