@@ -14,6 +14,8 @@ void addFramePasses(FrameBuild& build) {
     rasterized.gbuffer = addGBufferPass(build);
     rasterized.rsm = addRsmPass(build);
     rasterized.shadowMap = addShadowMapPass(build, rasterized.rsm);
+    if (settings.shadow_variant == 1 && settings.shadow_taps > 1)
+        rasterized.shadowMapBack = addShadowMapBackPass(build);
     if (settings.cache) addReprojectionPass(build, rasterized.gbuffer);
     // Each cached effect returns its blended history (cached_effect_pass.h), which is what its
     // consumers read; the lighting terms hand theirs to the composite, which adds them up in the

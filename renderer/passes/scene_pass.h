@@ -45,11 +45,15 @@ Rsm addRsmPass(FrameBuild& build);
 // shadow_map: the light's depth at shadow_map_size for the shadow test, drawn on the RSM's
 // frames; where the sizes are equal, the RSM's own depth.
 graph::ImageRef addShadowMapPass(FrameBuild& build, const Rsm& rsm);
+// shadow_map_back: the depth of the nearest surface facing away from the light, at half
+// shadow_map_size, for the shadow test's horizons (shadow_variant 1); drawn on the map's frames.
+graph::ImageRef addShadowMapBackPass(FrameBuild& build);
 
 struct GBufferAndRsm {
     GBuffer gbuffer;
     Rsm rsm;
-    graph::ImageRef shadowMap; // addShadowMapPass
+    graph::ImageRef shadowMap;     // addShadowMapPass
+    graph::ImageRef shadowMapBack; // addShadowMapBackPass (shadow_variant 1; else invalid)
     // Depth peeling's second layer (peel_pass.cpp: the world position of the nearest surface
     // behind the G-buffer's, w = 0 where none), valid where depth_peeling is on and a pass
     // tests occlusion with it (frame.cpp).

@@ -1,7 +1,8 @@
-// shadow: how much of the spot light's disk each G-buffer pixel sees, by percentage-closer
-// filtering of the shadow map with a kernel sized from the disk (thesis 3.4, PCSS), cached.
+// shadow: how much of the spot light's disk each G-buffer pixel sees, from the shadow map: by
+// light-space horizons over the map's front and back faces (shadow_variant 1), or by
+// percentage-closer filtering with a kernel sized from the disk (0: thesis 3.4, PCSS); cached.
 //   reads:  gbuffer.view_depth, gbuffer.normal, shadow_map.depth (rsm.depth where the two are
-//           the same size; and its cache's history)
+//           the same size), shadow_map_back.depth (variant 1; and its cache's history)
 //   writes: shadow (the fraction of the disk seen, in r; the history's blur in g), shadow.history
 #include "passes/passes.h"
 
@@ -20,9 +21,15 @@ graph::ImageRef addShadowPass(FrameBuild& build, const GBufferAndRsm& in) {
     using graph::Use;
     pass.inputs = {{"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
                    {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
-                   {"shadowMap", in.shadowMap, Use::Sampled}};
+                   {"shadowMap", in.shadowMap, Use::Sampled},
+                   // Variant 1's back faces; the map itself stands in where they are not drawn.
+                   {"shadowMapBack", in.shadowMapBack.valid() ? in.shadowMapBack : in.shadowMap,
+                    Use::Sampled}};
     pass.pushSize = sizeof(shader::ShadowConstants);
-    pass.spec = {{{"TAPS", int(build.settings.shadow_taps)}}};
+    pass.spec = {{{"TAPS", int(build.settings.shadow_taps)},
+                  {"VARIANT", int(build.settings.shadow_variant)},
+                  {"DIRECTIONS", int(build.settings.shadow_directions)},
+                  {"STEPS", int(build.settings.shadow_steps)}}};
     return addCachedComputePass(build, in.gbuffer, std::move(pass),
                                 [&build](const CachedRecorder& r) {
                                     shader::ShadowConstants constants{};

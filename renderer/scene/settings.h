@@ -24,13 +24,19 @@ namespace ssgi {
       "pixels rendered beyond each edge of the image, for the screen-space effects to see what "   \
       "lies just off screen (0: none; docs/frame.md)")                                             \
     X(shadow_map_size, int, 2048, 16, 8192, "Shadow",                                              \
-      "the shadow test's depth map from the light, texels per side (the RSM's own depth when "    \
+      "the shadow test's depth map from the light, texels per side (the RSM's own depth when "     \
       "equal to rsm_size)")                                                                        \
     X(shadow_bias, double, 3, 0, 100, "Shadow",                                                    \
       "normal offset of the shadow lookup, in texels, times the cosine at which the light "        \
       "meets the surface")                                                                         \
+    X(shadow_variant, int, 1, 0, 1, "Shadow",                                                      \
+      "0 PCSS: blocker search and PCF (thesis 3.4), 1 light-space horizons over the map's front "  \
+      "and back faces (docs/effects.md)")                                                          \
     X(shadow_taps, int, 49, 1, 64, "Shadow",                                                       \
-      "PCF taps (1 = hard shadow; thesis: 49, or 9 + cache)")                                      \
+      "PCF taps of variant 0 (1 = the hard shadow test, in either variant; thesis: 49, or 9 + "    \
+      "cache)")                                                                                    \
+    X(shadow_directions, int, 12, 1, 64, "Shadow", "directions of variant 1's horizons per pixel") \
+    X(shadow_steps, int, 6, 1, 64, "Shadow", "samples along each of variant 1's directions")       \
     X(contact_shadows, bool, false, 0, 1, "Shadow",                                                \
       "screen-space contact shadows on the shadow term")                                           \
     X(contact_shadow_steps, int, 8, 1, 64, "Shadow", "samples along the contact-shadow segment")   \
