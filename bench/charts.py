@@ -14,7 +14,7 @@ import analysis  # noqa: E402
 
 GROUP_STYLE = {  # group -> (colour, marker, legend)
     "default": ("black", "*",
-                "defaults (horizon AO 8x4, 384 VPLs + visibility, interleaved, PCF 49)"),
+                "defaults (horizon AO 8x4, 384 VPLs + visibility, interleaved, shadow horizons 12x6)"),
     "ao": ("tab:blue", "o", "AO / SSDO varied"),
     "indirect": ("tab:orange", "s", "indirect varied"),
     "shadow": ("tab:green", "^", "shadow varied"),
@@ -93,7 +93,8 @@ def pareto_chart(scene, sweep, images_dir):
 
 def selected_bars(sweep):
     """(label, passes) of a few configurations worth comparing pass by pass."""
-    wanted = ["horizon AO 8x4 + 384 VPLs + visibility, interleaved + PCF 49",
+    wanted = ["horizon AO 8x4 + 384 VPLs + visibility, interleaved + horizons 12x6",
+              "horizon AO 8x4 + 384 VPLs + visibility, interleaved + PCF 49",
               "horizon AO 8x4 + 512 VPLs + visibility + PCF 49",
               "horizon AO 8x4 + 512 VPLs + PCF 49",
               "horizon AO 8x4 + 64 VPLs + visibility + PCF 49",

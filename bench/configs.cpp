@@ -68,10 +68,13 @@ std::vector<Axis> makeAxes() {
     indirect.values.push_back({"no indirect", {{"indirect", 0}}});
     indirect.off = indirect.values.size() - 1;
 
+    // The light-space horizons (the default), the thesis's PCSS at 49 and 9 taps, the hard test.
     Axis shadow{"shadow", {"shadow"}, {}};
+    shadow.values.push_back(
+        {"horizons 12x6", {{"shadow_variant", 1}, {"shadow_directions", 12}, {"shadow_steps", 6}}});
     for (int taps : {49, 9, 1})
-        shadow.values.push_back(
-            {taps == 1 ? "hard shadow" : "PCF " + std::to_string(taps), {{"shadow_taps", taps}}});
+        shadow.values.push_back({taps == 1 ? "hard shadow" : "PCF " + std::to_string(taps),
+                                 {{"shadow_variant", 0}, {"shadow_taps", taps}}});
     shadow.off = shadow.values.size() - 1;
     return {ao, indirect, shadow};
 }

@@ -29,6 +29,7 @@ const Method& cheapFrames() {
                                    {"ao_directions", 4},
                                    {"ao_steps", 2},
                                    {"indirect_vpls", 64},
+                                   {"shadow_variant", 0},
                                    {"shadow_taps", 9},
                                    {"cache_blur_indirect", 4.0}}};
     return method;
