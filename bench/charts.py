@@ -95,11 +95,11 @@ def selected_bars(sweep):
     """(label, passes) of a few configurations worth comparing pass by pass."""
     wanted = ["horizon AO 8x4 + 384 VPLs + visibility, interleaved + horizons 12x6",
               "horizon AO 8x4 + 384 VPLs + visibility, interleaved + PCF 49",
-              "horizon AO 8x4 + 512 VPLs + visibility + PCF 49",
-              "horizon AO 8x4 + 512 VPLs + PCF 49",
-              "horizon AO 8x4 + 64 VPLs + visibility + PCF 49",
-              "thesis AO 8x4 + 512 VPLs + visibility + PCF 49",
-              "SSDO 16 + 512 VPLs + visibility + PCF 49",
+              "horizon AO 8x4 + 512 VPLs + visibility + horizons 12x6",
+              "horizon AO 8x4 + 512 VPLs + horizons 12x6",
+              "horizon AO 8x4 + 64 VPLs + visibility + horizons 12x6",
+              "thesis AO 8x4 + 512 VPLs + visibility + horizons 12x6",
+              "SSDO 16 + 512 VPLs + visibility + horizons 12x6",
               "horizon AO 8x4 + 512 VPLs + visibility + PCF 9",
               "thesis AO 4x2 + 256 VPLs + PCF 9",
               "no AO + no indirect + PCF 9"]

@@ -155,8 +155,8 @@ def tables(sweeps, walks, size, note):
     md.append(targets(sweeps, walks, size))
     md.append("\n### Best configuration at a time budget (cache off), %s\n\n" % size)
     md.append("Budgets are fractions of the scene's default frame (horizon AO 8x4, 384 VPLs + "
-              "visibility, interleaved, PCF 49) in the same run; error is relMSE against the "
-              "reference.\n\n")
+              "visibility, interleaved, shadow horizons 12x6) in the same run; error is relMSE "
+              "against the reference.\n\n")
     rows = []
     for scene, sizes in sweeps.items():
         j = sizes[size]
