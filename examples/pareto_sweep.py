@@ -16,7 +16,7 @@ configs = {"defaults": {}, "no AO": {"ao": 0}, "AO 4x2": {"ao_directions": 4, "a
            "horizon AO 8x4": {"ao_variant": 2}, "SSDO 16": {"ssdo": 1},
            "128 VPLs + vis.": {"indirect_vpls": 128}, "no indirect": {"indirect": 0},
            "512 VPLs + vis., thesis": {"indirect_method": 0, "indirect_vpls": 512},
-           "PCF 9": {"shadow_variant": 0, "shadow_taps": 9}, "direct only": {"ao": 0, "indirect": 0}}
+           "PCF 9": dict(shadow_variant=0, shadow_taps=9), "direct only": dict(ao=0, indirect=0)}
 truth = ssgi.reference(ssgi.Scene("scenes/cornell-box.json"), size=(size, size), spp=spp,
                        noise=0.02)
 points = []  # (ms, relMSE, label)
