@@ -92,7 +92,8 @@ float receiverPlaneDepth(vec2 uv, float fallback) {
 // (bin i: (r/R)^2 in [i/32, (i+1)/32)), one bit each, so the blocked ranges of all of a
 // direction's columns add up without counting a radius twice.
 
-// The sample k of `steps` along a direction: denser near p, where contacts need them.
+// The angular offset of sample k of `steps` along a direction, from `first` out to `reach`:
+// denser near p, where contacts need them.
 float horizonSample(int k, int steps, float first, float reach, float ring) {
     float t = (float(k) + ring) / float(steps);
     return first + (reach - first) * t * t;
@@ -115,12 +116,12 @@ uint binBits(ivec2 bins) {
     return ones << uint(bins.x);
 }
 
-// The share of the disk p sees (p at uv and depth `receiver`; its plane in receiverPlane). Each direction starts from its own point within a texel of p's (a percentage-closer
-// filter's smallest kernel, which antialiases the map's texels) and tests that point's own
-// column, then STEPS columns out to where blockers a fifth of p's distance from the light would
-// still reach the disk. Where two successive columns both block, the radii between their
-// ranges are blocked too: the surface is taken to run on between them, as a ray march takes a
-// depth buffer's to.
+// The share of the disk p sees (p at uv and depth `receiver`; its plane in receiverPlane). Each
+// direction starts from its own point within a texel of p's (a percentage-closer filter's
+// smallest kernel, which antialiases the map's texels) and tests that point's own column, then
+// STEPS columns out to where blockers a fifth of p's distance from the light would still reach
+// the disk. Where two successive columns both block, the radii between their ranges are blocked
+// too: the surface is taken to run on between them, as a ray march takes a depth buffer's to.
 float horizonShare(vec2 uv, float receiver, float bias, float rotation, float ring) {
     float tanHalf = frame.lightFrustum.z;
     float radius = max(frame.lightPosition.w, tinyLength());
@@ -128,7 +129,7 @@ float horizonShare(vec2 uv, float receiver, float bias, float rotation, float ri
     float texelAngle = 2.0 * tanHalf / mapSize;
     float first = 1.5 * texelAngle;
     float reach = max(4.0 * radius / receiver, 2.0 * first);
-    int steps = STEPS;
+    int steps = STEPS; // not const: a const copy left the module without STEPS by name
     int unblocked = 0;
     for (int d = 0; d < DIRECTIONS; ++d) {
         float theta = rotation + (float(d) + 0.5) * 2.0 * PI / float(DIRECTIONS);
