@@ -42,6 +42,10 @@ struct Rsm {
     graph::ImageRef vpls, depth;
 };
 Rsm addRsmPass(FrameBuild& build);
+// When the light's maps (the RSM, the shadow map and its back faces) are drawn: every frame
+// without the cache; with it, on the frames FrameState::drawRsm names (the first, and after the
+// light moved), the maps persisting in between.
+graph::EnabledFn onLightFrames(const FrameBuild& build);
 // shadow_map: the light's depth at shadow_map_size for the shadow test, drawn on the RSM's
 // frames; where the sizes are equal, the RSM's own depth.
 graph::ImageRef addShadowMapPass(FrameBuild& build, const Rsm& rsm);

@@ -16,10 +16,8 @@ graph::ImageRef addShadowMapBackPass(FrameBuild& build) {
     // Sponza at 256x256 took 103 ms at 2048 and 45 at 1024, the map 77; direct light against
     // the path tracer 0.00396 and 0.00405, the Cornell box's 0.00076 and 0.00092.
     const uint32_t side = std::max(uint32_t(build.settings.shadow_map_size) / 2, 16u);
-    graph::EnabledFn enabled;
-    if (build.settings.cache) enabled = [](const FrameState& frame) { return frame.drawRsm; };
     return addScenePass(build, "shadow_map_back", "shadow_map_back", VkExtent2D{side, side}, {},
-                        enabled)
+                        onLightFrames(build))
         .depth;
 }
 

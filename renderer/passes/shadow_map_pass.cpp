@@ -11,9 +11,8 @@ graph::ImageRef addShadowMapPass(FrameBuild& build, const Rsm& rsm) {
     const uint32_t side = uint32_t(build.settings.shadow_map_size);
     if (side == build.rsmSize.width) return rsm.depth;
     // Drawn on the RSM's frames: after the light moved, or every frame without the cache.
-    graph::EnabledFn enabled;
-    if (build.settings.cache) enabled = [](const FrameState& frame) { return frame.drawRsm; };
-    return addScenePass(build, "shadow_map", "shadow_map", VkExtent2D{side, side}, {}, enabled)
+    return addScenePass(build, "shadow_map", "shadow_map", VkExtent2D{side, side}, {},
+                        onLightFrames(build))
         .depth;
 }
 

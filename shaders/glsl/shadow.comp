@@ -33,23 +33,21 @@ layout(push_constant) uniform ShadowBlock { ShadowConstants constants; };
 #include "screen_space.glsl"
 #include "temporal.glsl"
 
-// The map's side in texels, read once in main(): the tap loops below use it at every tap.
-float mapSize;
+// The maps' sides in texels, read once in main(): the tap loops below use them at every tap.
+float mapSize, backMapSize;
+
+// Distance along the light's axis of the depth `map` (side `size`) holds through uv.
+float depthAlongAxis(sampler2D map, float size, vec2 uv) {
+    vec2 texel = clamp(uv * size, vec2(0.0), vec2(size - 1.0));
+    float depth = texelFetch(map, ivec2(texel), 0).r;
+    return linearDepth(depth, frame.lightFrustum.x, frame.lightFrustum.y);
+}
 
 // Distance along the light's axis of the nearest surface the light sees through uv.
-float occluderDepth(vec2 uv) {
-    vec2 texel = clamp(uv * mapSize, vec2(0.0), vec2(mapSize - 1.0));
-    float depth = texelFetch(shadowMap, ivec2(texel), 0).r;
-    return linearDepth(depth, frame.lightFrustum.x, frame.lightFrustum.y);
-}
+float occluderDepth(vec2 uv) { return depthAlongAxis(shadowMap, mapSize, uv); }
 
 // Distance along the light's axis of the nearest back face through uv (the far plane if none).
-float backDepth(vec2 uv) {
-    float backSize = float(textureSize(shadowMapBack, 0).x);
-    vec2 texel = clamp(uv * backSize, vec2(0.0), vec2(backSize - 1.0));
-    float depth = texelFetch(shadowMapBack, ivec2(texel), 0).r;
-    return linearDepth(depth, frame.lightFrustum.x, frame.lightFrustum.y);
-}
+float backDepth(vec2 uv) { return depthAlongAxis(shadowMapBack, backMapSize, uv); }
 
 // The receiver's plane (point p, normal n) as the light sees it: along the light's ray through
 // NDC point x, the distance along its axis to the plane is 1 / (c.x + c.y x.x + c.z x.y), its
@@ -122,14 +120,15 @@ uint binBits(ivec2 bins) {
 // STEPS columns out to where blockers a fifth of p's distance from the light would still reach
 // the disk. Where two successive columns both block, the radii between their ranges are blocked
 // too: the surface is taken to run on between them, as a ray march takes a depth buffer's to.
-float horizonShare(vec2 uv, float receiver, float bias, float rotation, float ring) {
+float horizonShare(vec2 uv, float receiver, float bias, float texelAngle, float rotation,
+                   float ring) {
     float tanHalf = frame.lightFrustum.z;
     float radius = max(frame.lightPosition.w, tinyLength());
     float invR2 = 1.0 / (radius * radius);
-    float texelAngle = 2.0 * tanHalf / mapSize;
     float first = 1.5 * texelAngle;
     float reach = max(4.0 * radius / receiver, 2.0 * first);
     int steps = STEPS; // not const: a const copy left the module without STEPS by name
+    float a0 = horizonSample(0, steps, first, reach, ring);
     int unblocked = 0;
     for (int d = 0; d < DIRECTIONS; ++d) {
         float theta = rotation + (float(d) + 0.5) * 2.0 * PI / float(DIRECTIONS);
@@ -139,11 +138,10 @@ float horizonShare(vec2 uv, float receiver, float bias, float rotation, float ri
         ivec2 previous = ivec2(0); // the last column's bins; empty where it did not block
         float front = occluderDepth(origin);
         if (front + bias < receiverPlaneDepth(origin, receiver)) {
-            float a0 = horizonSample(0, steps, first, reach, ring);
             previous = blockedBins(0.0, 0.5 * a0, front, backDepth(origin), receiver, invR2);
             blocked = binBits(previous);
         }
-        float a = horizonSample(0, steps, first, reach, ring), aBefore = 0.0;
+        float a = a0, aBefore = 0.0;
         for (int k = 0; k < steps; ++k) {
             float aAfter = horizonSample(k + 1, steps, first, reach, ring);
             vec2 tap = origin + dir * a;
@@ -170,6 +168,7 @@ float horizonShare(vec2 uv, float receiver, float bias, float rotation, float ri
 void main() {
     loadPixelToWorld(); // pixel_to_world.glsl
     mapSize = float(textureSize(shadowMap, 0).x);
+    backMapSize = float(textureSize(shadowMapBack, 0).x);
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
     vec4 position = gbufferPosition(pixel);
@@ -221,7 +220,7 @@ void main() {
     }
 
     if (VARIANT == 1) {
-        float lit = horizonShare(uv, receiver, bias, rotation, ring);
+        float lit = horizonShare(uv, receiver, bias, texelAngle, rotation, ring);
         imageStore(shadowImage, pixel, vec4(vec3(lit), 1.0));
         return;
     }
