@@ -387,33 +387,4 @@ TEST_F(ReferenceAgainstRealTime, DirectLightOfAPointLight) {
     EXPECT_LT(relMseAway, 1e-4);
 }
 
-// The disk light's soft shadows on the Cornell box against the path tracer's direct light: the
-// light-space horizons (shadow_variant 1, the default) see that the blocks stand on the floor,
-// where percentage-closer soft shadows (0) size one penumbra from the blocks' tops and light the
-// floor beside their feet (docs/effects.md, "Light-space horizons").
-TEST_F(ReferenceAgainstRealTime, DiskShadowsOfTheBlocksFollowThePathTracer) {
-    Scene scene = loadScene(test::sourcePath("scenes/cornell-box.json"));
-    const uint32_t size = 96;
-    // 1024 samples: two seeds differ by relMSE 2.5e-4, a fourth of the figure tested.
-    const ReferenceImage reference = cachedReference(scene, options(Mode::Direct, size, 1024));
-    auto relMse = [&](int variant) {
-        scene.settings.shadow_variant = variant;
-        Renderer renderer(test::context(), scene, {size, size, "final"});
-        renderer.renderFrame(scene.camera);
-        const std::vector<float> direct = renderer.readImage("direct");
-        double sum = 0.0;
-        for (size_t i = 0; i < size_t(size) * size; ++i)
-            for (size_t c = 0; c < 3; ++c) {
-                const double a = direct[4 * i + c], b = reference.rgba[4 * i + c];
-                sum += (a - b) * (a - b) / (b * b + 0.01) / 3.0;
-            }
-        return sum / double(size * size);
-    };
-    const double horizons = relMse(1), pcss = relMse(0);
-    std::printf("direct light's relMSE: horizons %.5f, PCSS %.5f\n", horizons, pcss);
-    // Measured: horizons 0.00123, PCSS 0.00865 (12 directions of 6 samples; 49 taps).
-    EXPECT_LT(horizons, 0.002);
-    EXPECT_LT(horizons, pcss / 4.0);
-}
-
 } // namespace
