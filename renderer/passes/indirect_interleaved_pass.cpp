@@ -5,8 +5,9 @@
 // (Keller and Heidrich 2001; Segovia et al. 2006). No upsampling, so no staircase, and no pixel
 // gathers every VPL.
 //   reads:  gbuffer.view_depth, gbuffer.normal, rsm.vpls, last frame's gbuffer.view_depth and
-//           the cache's indirect.count (to skip converged pixels); the filter also last frame's
-//           indirect.history (what a skipped neighbour holds)
+//           the cache's indirect.count (to skip converged pixels), shadow_map.depth (the
+//           visibility test's light check); the filter also last frame's indirect.history (what
+//           a skipped neighbour holds)
 //   writes: indirect + indirect.directional (each pixel's subset: irradiance / pi, and the L1
 //           sums of its VPLs' light), indirect.filtered_x + .filtered_x_directional (after the
 //           x axis), indirect again (after the y axis: the result; the y pass binds
@@ -42,7 +43,8 @@ graph::ImageRef addInterleavedIndirectPasses(FrameBuild& build, const GBufferAnd
                                    {"VISIBILITY_STEPS", int(settings.indirect_visibility_steps)},
                                    {"INTERLEAVE", k},
                                    {"RADIUS", radius},
-                                   {"PEELING", in.secondLayer.valid() ? 1 : 0}}};
+                                   {"PEELING", in.secondLayer.valid() ? 1 : 0},
+                                   {"LIGHT_CHECK", int(settings.indirect_visibility_light)}}};
     if (fluxVpls) { // method 2: its flux-drawn VPLs, the tests drawn, the pool, the map's side
         const int cluster = int(settings.indirect_vpl_cluster);
         gatherSpec.constants.insert(
@@ -85,7 +87,7 @@ graph::ImageRef addInterleavedIndirectPasses(FrameBuild& build, const GBufferAnd
     gather.images.insert(gather.images.end(),
                          {{"interleavedIndirect", subsets, Use::StorageWrite},
                           {"interleavedDirectional", subsetsDirectional, Use::StorageWrite},
-                          secondLayerInput(in)});
+                          secondLayerInput(in), {"shadowMap", in.shadowMap, Use::Sampled}});
     gather.pushSize = sizeof(shader::IndirectConstants);
     gather.spec = gatherSpec;
     addComputePass(build, std::move(gather), [&build, cache, constants](const ComputeRecorder& r) {

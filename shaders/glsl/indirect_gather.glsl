@@ -67,7 +67,7 @@ vec3 gatherIndirect(vec3 p, vec3 n, float rotation, float radiusScale, float rad
             dot(flux, vec3(0.2126, 0.7152, 0.0722)) * cosQ / (PI * d2) * r * vec4(1.0, D);
         // A VPL outside the spot's cone reflects nothing: no visibility test for it.
         if (cosP * cosQ <= 0.0 || all(equal(flux, vec3(0.0)))) continue;
-        if (VISIBILITY != 0 && !vplVisible(p, q)) continue;
+        if (VISIBILITY != 0 && !vplVisible(p, q, rsmTexelNormal(vpl))) continue;
         irradiance += flux * (cosP * cosQ / (PI * d2)) * r;
     }
     directional *= weightScale / PI;

@@ -29,6 +29,7 @@ layout(constant_id = 6) const int TESTS = 8; // visibility tests a pixel; 0: eve
 layout(constant_id = 7) const int POOL = 2048; // the flux's VPLs drawn this frame
 layout(constant_id = 8) const int MAP_SIZE = 256; // the VPL map's side
 layout(constant_id = 9) const int PEELING = 0; // the visibility test between two depth layers
+layout(constant_id = 10) const int LIGHT_CHECK = 1; // the visibility test asks the light's map
 const int SUBSETS = INTERLEAVE * INTERLEAVE;
 const int CANDIDATES = (VPLS + SUBSETS - 1) / SUBSETS + (FLUX_VPLS + SUBSETS - 1) / SUBSETS;
 // At most every candidate is tested.
@@ -48,6 +49,7 @@ layout(set = 0, binding = 9) uniform sampler2D historyCount;
 layout(set = 0, binding = 10, rgba16f) uniform writeonly image2D interleavedIndirect;
 layout(set = 0, binding = 11, rgba16f) uniform writeonly image2D interleavedDirectional;
 layout(set = 0, binding = 12) uniform sampler2D secondLayer; // peel.position (PEELING only)
+layout(set = 0, binding = 13) uniform sampler2D shadowMap; // the light's depth (LIGHT_CHECK only)
 layout(push_constant) uniform IndirectBlock { IndirectConstants constants; };
 
 #include "gbuffer_position.glsl"
@@ -96,9 +98,11 @@ void loadList(bool cached) {
     barrier();
 }
 
-// Each candidate's light before visibility (rgb; a: luminance) and where its VPL lies.
+// Each candidate's light before visibility (rgb; a: luminance), where its VPL lies and the
+// normal of its surface there.
 vec4 candidateLight[CANDIDATES];
 vec3 candidatePosition[CANDIDATES];
+vec3 candidateNormal[CANDIDATES];
 
 void main() {
     loadPixelToWorld(); // pixel_to_world.glsl
@@ -184,6 +188,7 @@ void main() {
         float cosP = max(dot(n, D), 0.0);
         candidateLight[c] = vec4(flux * (toP * cosP), lightLuminance * cosP);
         candidatePosition[c] = q;
+        candidateNormal[c] = nq;
         lightSum += candidateLight[c].a;
         if (cosP > 0.0) ++lit;
     }
@@ -216,7 +221,7 @@ void main() {
         }
     }
     for (int t = 0; t < tests; ++t)
-        if (vplVisible(p, candidatePosition[chosen[t]]))
+        if (vplVisible(p, candidatePosition[chosen[t]], candidateNormal[chosen[t]]))
             irradiance += candidateLight[chosen[t]].rgb * factor[t];
     imageStore(interleavedIndirect, pixel, vec4(irradiance, 1.0));
     imageStore(interleavedDirectional, pixel, directional);

@@ -13,6 +13,7 @@ layout(constant_id = 1) const int VISIBILITY = 1;
 layout(constant_id = 2) const int VISIBILITY_STEPS = 6;
 layout(constant_id = 3) const int HALF_RES = 1; // 0: no half-res gather, every pixel gathers
 layout(constant_id = 4) const int PEELING = 0; // the visibility test between two depth layers
+layout(constant_id = 5) const int LIGHT_CHECK = 1; // the visibility test asks the light's map
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
 layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
@@ -24,6 +25,7 @@ layout(set = 0, binding = 6) uniform sampler2D historyCount;
 layout(set = 0, binding = 7) uniform sampler2D halfIndirect;
 layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D indirectImage;
 layout(set = 0, binding = 9) uniform sampler2D secondLayer; // peel.position (PEELING only)
+layout(set = 0, binding = 10) uniform sampler2D shadowMap; // the light's depth (LIGHT_CHECK only)
 layout(push_constant) uniform IndirectBlock { IndirectConstants constants; };
 
 #include "gbuffer_position.glsl"
