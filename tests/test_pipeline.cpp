@@ -4,6 +4,7 @@
 // the shader and the binding or constant named.
 #include "support.h"
 
+#include "scene_gpu.h"
 #include "vk/embedded_shaders.h"
 #include "vk/pipeline.h"
 #include "vk/shader_bindings.h"
@@ -187,4 +188,41 @@ TEST_F(PipelineTest, SpecializationConstantsAreGivenByTheShadersNames) {
         << unknown;
     const std::string missing = refusal({{{"INTERLEAVE", 4}}});
     EXPECT_NE(missing.find("RADIUS, which the pass does not give"), std::string::npos) << missing;
+}
+
+// A depth-only pipeline (no fragment shader: the shadow map's opaque draws, scene_pass.cpp) is
+// the vertex stage alone: its set 0 is what the vertex shader reads (the frame's uniforms), the
+// texture only the fragment shader would read is refused as one it never declares, and its
+// layout's stages (push constants' included) are the vertex stage's.
+TEST_F(PipelineTest, ADepthOnlyPipelineIsTheVertexStageAlone) {
+    vk::GraphicsPipelineDesc desc;
+    desc.vertices = sceneVertexInput();
+    desc.vertexShader = "shadow_map.vert";
+    desc.depthFormat = VK_FORMAT_D32_SFLOAT;
+    desc.bindings = {{kUniform, "FrameBlock"}};
+    desc.pushConstantSize = 96; // shared.h's DrawConstants
+    vk::Pipeline p = vk::createGraphicsPipeline(test::context(), desc);
+    EXPECT_NE(p.pipeline, VK_NULL_HANDLE);
+    EXPECT_EQ(p.stages, VkShaderStageFlags(VK_SHADER_STAGE_VERTEX_BIT));
+    EXPECT_EQ(p.bindingCount, 1u);
+    vk::destroyPipeline(test::context(), p);
+
+    auto refusal = [](const vk::GraphicsPipelineDesc& d) {
+        try {
+            vk::Pipeline p = vk::createGraphicsPipeline(test::context(), d);
+            vk::destroyPipeline(test::context(), p);
+        } catch (const vk::VulkanError& e) {
+            return std::string(e.what());
+        }
+        return std::string("accepted");
+    };
+    vk::GraphicsPipelineDesc texture = desc;
+    texture.bindings.push_back({kSampled, "baseColorTexture"});
+    const std::string never = refusal(texture);
+    EXPECT_NE(never.find("binding 1"), std::string::npos) << never;
+    EXPECT_NE(never.find("shadow_map.vert never declares"), std::string::npos) << never;
+    vk::GraphicsPipelineDesc colour = desc;
+    colour.colorFormats = {VK_FORMAT_R8G8B8A8_UNORM};
+    const std::string targets = refusal(colour);
+    EXPECT_NE(targets.find("colour targets need a fragment shader"), std::string::npos) << targets;
 }

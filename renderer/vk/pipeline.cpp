@@ -53,6 +53,7 @@ static void createLayout(Context& ctx, Pipeline& p, const std::vector<LayoutBind
     layoutInfo.pPushConstantRanges = &range;
     VK_CHECK(vkCreatePipelineLayout(ctx.device, &layoutInfo, nullptr, &p.layout));
     p.pushConstantSize = pushSize;
+    p.bindingCount = uint32_t(bindings.size());
 }
 
 // The map entries that give each of `spec`'s constants to the shader's constant of that name;
@@ -112,16 +113,22 @@ Pipeline createComputePipeline(Context& ctx, const std::string& shader,
 }
 
 Pipeline createGraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& desc) {
+    const bool fragment = !desc.fragmentShader.empty();
+    const std::string shaders =
+        fragment ? desc.vertexShader + " + " + desc.fragmentShader : desc.vertexShader;
+    if (!fragment && !desc.colorFormats.empty())
+        throw VulkanError(shaders + ": colour targets need a fragment shader");
     std::map<uint32_t, ShaderBinding> declared = declaredBindings(desc.vertexShader);
-    declared.merge(declaredBindings(desc.fragmentShader)); // a binding both read is the same
-    checkBindings(desc.vertexShader + " + " + desc.fragmentShader, declared, desc.bindings);
+    if (fragment) // a binding both read is the same
+        declared.merge(declaredBindings(desc.fragmentShader));
+    checkBindings(shaders, declared, desc.bindings);
     Pipeline p;
     p.bindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-    p.stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+    p.stages = VK_SHADER_STAGE_VERTEX_BIT | (fragment ? VK_SHADER_STAGE_FRAGMENT_BIT : 0);
     createLayout(ctx, p, desc.bindings, desc.textureSetLayout, desc.pushConstantSize);
 
     VkShaderModule vs = loadShader(ctx, desc.vertexShader);
-    VkShaderModule fs = loadShader(ctx, desc.fragmentShader);
+    VkShaderModule fs = fragment ? loadShader(ctx, desc.fragmentShader) : VK_NULL_HANDLE;
     VkPipelineShaderStageCreateInfo stages[2] = {
         {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
          VK_SHADER_STAGE_VERTEX_BIT, vs, "main", nullptr},
@@ -175,7 +182,7 @@ Pipeline createGraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& desc) 
 
     VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
     info.pNext = &rendering;
-    info.stageCount = 2;
+    info.stageCount = fragment ? 2 : 1;
     info.pStages = stages;
     info.pVertexInputState = &vertexInput;
     info.pInputAssemblyState = &assembly;
@@ -189,9 +196,10 @@ Pipeline createGraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& desc) 
     VkResult result =
         vkCreateGraphicsPipelines(ctx.device, VK_NULL_HANDLE, 1, &info, nullptr, &p.pipeline);
     vkDestroyShaderModule(ctx.device, vs, nullptr);
-    vkDestroyShaderModule(ctx.device, fs, nullptr);
+    if (fs) vkDestroyShaderModule(ctx.device, fs, nullptr);
     VK_CHECK(result);
-    ctx.nameObject(VK_OBJECT_TYPE_PIPELINE, uint64_t(p.pipeline), desc.fragmentShader);
+    ctx.nameObject(VK_OBJECT_TYPE_PIPELINE, uint64_t(p.pipeline),
+                   fragment ? desc.fragmentShader : desc.vertexShader);
     return p;
 }
 

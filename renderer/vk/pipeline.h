@@ -17,8 +17,9 @@ struct Pipeline {
     VkDescriptorSetLayout pushSetLayout = VK_NULL_HANDLE;
     VkPipelineBindPoint bindPoint = VK_PIPELINE_BIND_POINT_COMPUTE;
     uint32_t pushConstantSize = 0;
-    VkShaderStageFlags stages = 0;
-    WorkgroupSize workgroup; // a compute shader's, as its SPIR-V declares it
+    uint32_t bindingCount = 0;     // set 0's
+    VkShaderStageFlags stages = 0; // those the pipeline has: its layout's and push constants'
+    WorkgroupSize workgroup;       // a compute shader's, as its SPIR-V declares it
 };
 
 // Structural settings (kernel sizes, variants) go in as specialization constants, by the names
@@ -46,6 +47,8 @@ struct VertexInput {
 };
 
 struct GraphicsPipelineDesc {
+    // No fragment shader (empty): a depth-only pipeline of the vertex stage alone, which takes
+    // no colour formats; its bindings are then the vertex shader's.
     std::string vertexShader, fragmentShader;
     VertexInput vertices;
     std::vector<VkFormat> colorFormats;
