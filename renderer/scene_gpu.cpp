@@ -78,17 +78,22 @@ SceneGpu::~SceneGpu() {
         vkDestroySampler(ctx_.device, entry.second, nullptr);
 }
 
-void SceneGpu::draw(VkCommandBuffer cmd, const vk::Pipeline& pipeline, VkBuffer frameUniforms,
-                    VkDeviceSize frameUniformsSize,
+void SceneGpu::draw(VkCommandBuffer cmd, const vk::Pipeline& opaque, const vk::Pipeline& masked,
+                    VkBuffer frameUniforms, VkDeviceSize frameUniformsSize,
                     const std::function<void(vk::Descriptors&)>& extra,
                     const std::vector<bool>& only) const {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline);
+    VkPipeline bound = VK_NULL_HANDLE;
     for (size_t i = 0; i < scene_.instances.size(); ++i) {
         if (!only.empty() && !only[i]) continue;
         const Instance& instance = scene_.instances[i];
         const MeshBuffers& mesh = meshes_[instance.mesh];
         if (mesh.indexCount == 0) continue;
         const Material& material = scene_.materials[scene_.meshes[instance.mesh].material];
+        const vk::Pipeline& pipeline = material.alphaMask ? masked : opaque;
+        if (pipeline.pipeline != bound) {
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline);
+            bound = pipeline.pipeline;
+        }
         const bool textured = material.baseColorTexture >= 0;
         shader::DrawConstants constants{};
         constants.model = transforms_[i];
@@ -97,11 +102,13 @@ void SceneGpu::draw(VkCommandBuffer cmd, const vk::Pipeline& pipeline, VkBuffer 
                               material.alphaMask ? material.alphaCutoff : 0.0f,
                               scene_.meshes[instance.mesh].vertexColors ? 1.0f : 0.0f, 0.0f};
         vk::Descriptors descriptors;
-        descriptors.uniformBuffer(0, frameUniforms, frameUniformsSize)
-            .sampledImage(1,
-                          textured ? textures_[material.baseColorTexture].view : whiteTexture_.view,
-                          samplers_.at(textured ? material.baseColorSampler : TextureSampler{}));
-        if (extra) extra(descriptors);
+        descriptors.uniformBuffer(0, frameUniforms, frameUniformsSize);
+        if (pipeline.bindingCount > 1) {
+            descriptors.sampledImage(
+                1, textured ? textures_[material.baseColorTexture].view : whiteTexture_.view,
+                samplers_.at(textured ? material.baseColorSampler : TextureSampler{}));
+            if (extra) extra(descriptors);
+        }
         descriptors.push(ctx_, cmd, pipeline);
         vkCmdPushConstants(cmd, pipeline.layout, pipeline.stages, 0, sizeof(constants), &constants);
         VkDeviceSize offset = 0;

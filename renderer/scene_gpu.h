@@ -30,6 +30,15 @@ public:
     void draw(VkCommandBuffer cmd, const vk::Pipeline& pipeline, VkBuffer frameUniforms,
               VkDeviceSize frameUniformsSize,
               const std::function<void(vk::Descriptors&)>& extra = {},
+              const std::vector<bool>& only = {}) const {
+        draw(cmd, pipeline, pipeline, frameUniforms, frameUniformsSize, extra, only);
+    }
+    // As above, the instances of opaque materials with `opaque` and the alpha-masked ones with
+    // `masked`, in the instances' order. An `opaque` pipeline whose set 0 is binding 0 alone (a
+    // depth-only one, no fragment shader: scene_pass.h) is given the frame uniforms alone.
+    void draw(VkCommandBuffer cmd, const vk::Pipeline& opaque, const vk::Pipeline& masked,
+              VkBuffer frameUniforms, VkDeviceSize frameUniformsSize,
+              const std::function<void(vk::Descriptors&)>& extra = {},
               const std::vector<bool>& only = {}) const;
     // Places the instances (moving objects) for the draws recorded from now on.
     void setTransforms(const std::vector<glm::mat4>& transforms) { transforms_ = transforms; }

@@ -7,7 +7,8 @@ namespace ssgi {
 
 SceneTargets addScenePass(FrameBuild& build, const std::string& name, const std::string& shader,
                           VkExtent2D extent, const std::vector<SceneTarget>& targets,
-                          graph::EnabledFn enabled, std::optional<uint32_t>* firstTargetHistory) {
+                          graph::EnabledFn enabled, std::optional<uint32_t>* firstTargetHistory,
+                          OpaqueDraws opaqueDraws) {
     const bool persistent = bool(enabled);
     const VkImageUsageFlags color =
         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
@@ -38,7 +39,17 @@ SceneTargets addScenePass(FrameBuild& build, const std::string& name, const std:
     desc.bindings = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, "FrameBlock"},
                      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, "baseColorTexture"}};
     desc.pushConstantSize = sizeof(shader::DrawConstants);
-    const vk::Pipeline pipeline = build.graphicsPipeline(desc);
+    const vk::Pipeline masked = build.graphicsPipeline(desc);
+    // A fragment shader that may discard keeps llvmpipe from testing depth before it runs: it
+    // runs for every fragment, the opaque ones' too. With none at all their depth is tested and
+    // written without it: shadow_map (lavapipe, 256x256, uncached) 62 -> 26 ms on the bunny,
+    // 141 -> 60 on Sponza, 40 -> 8 on the scrub pine; the images bit-identical.
+    vk::Pipeline opaque = masked;
+    if (opaqueDraws == OpaqueDraws::DepthOnly) {
+        desc.fragmentShader.clear();
+        desc.bindings = {desc.bindings[0]}; // the frame uniforms: the vertex shader's only one
+        opaque = build.graphicsPipeline(desc);
+    }
 
     using graph::Use;
     std::vector<graph::ImageUse> uses;
@@ -47,7 +58,7 @@ SceneTargets addScenePass(FrameBuild& build, const std::string& name, const std:
     uses.push_back({t.depth, Use::DepthAttachment});
     build.graph.addPass(
         name, graph::PassKind::Graphics, uses,
-        [&build, t, extent, pipeline](const graph::PassContext& pc) {
+        [&build, t, extent, opaque, masked](const graph::PassContext& pc) {
             std::vector<VkRenderingAttachmentInfo> attachments;
             for (const graph::ImageRef& c : t.colors) {
                 VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
@@ -74,7 +85,7 @@ SceneTargets addScenePass(FrameBuild& build, const std::string& name, const std:
             VkRect2D scissor{{0, 0}, extent};
             vkCmdSetViewport(pc.cmd, 0, 1, &viewport);
             vkCmdSetScissor(pc.cmd, 0, 1, &scissor);
-            build.sceneGpu.draw(pc.cmd, pipeline, build.frameUniforms.buffer,
+            build.sceneGpu.draw(pc.cmd, opaque, masked, build.frameUniforms.buffer,
                                 build.frameUniforms.size);
             vkCmdEndRendering(pc.cmd);
         },

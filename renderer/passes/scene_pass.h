@@ -22,13 +22,20 @@ struct SceneTargets {
     std::vector<graph::ImageRef> colors; // in the fragment shader's order
     graph::ImageRef depth;
 };
+// How a scene pass draws the instances of opaque materials (no alpha mask).
+enum class OpaqueDraws {
+    Shaded,    // with the pass's fragment shader, as the alpha-masked ones
+    DepthOnly, // with no fragment shader: a pass without colour targets whose fragment shader
+               // only tests the alpha mask (scene_pass.cpp says why)
+};
 // `enabled` (optional) is asked each frame whether to draw; the targets of a pass that may be
 // skipped persist from frame to frame. With `firstTargetHistory`, the first colour target is a
 // history pair (colors[0] is its current side), whose id is written there.
 SceneTargets addScenePass(FrameBuild& build, const std::string& name, const std::string& shader,
                           VkExtent2D extent, const std::vector<SceneTarget>& targets,
                           graph::EnabledFn enabled = {},
-                          std::optional<uint32_t>* firstTargetHistory = nullptr);
+                          std::optional<uint32_t>* firstTargetHistory = nullptr,
+                          OpaqueDraws opaqueDraws = OpaqueDraws::Shaded);
 
 // gbuffer: view depth (0 where nothing was drawn), normal, albedo, depth.
 struct GBuffer {

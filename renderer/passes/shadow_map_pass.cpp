@@ -11,8 +11,10 @@ graph::ImageRef addShadowMapPass(FrameBuild& build, const Rsm& rsm) {
     const uint32_t side = uint32_t(build.settings.shadow_map_size);
     if (side == build.rsmSize.width) return rsm.depth;
     // Drawn on the RSM's frames: after the light moved, or every frame without the cache.
+    // The opaque materials' draws with no fragment shader; the alpha-masked ones' with
+    // shadow_map.frag, which discards where the mask does.
     return addScenePass(build, "shadow_map", "shadow_map", VkExtent2D{side, side}, {},
-                        onLightFrames(build))
+                        onLightFrames(build), nullptr, OpaqueDraws::DepthOnly)
         .depth;
 }
 

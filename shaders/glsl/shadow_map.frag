@@ -1,7 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// The shadow map: depth only; alpha-masked surfaces (leaves) let the light through where their
-// mask does, as in the RSM (rsm.frag).
+// The shadow map's alpha-masked draws (the opaque ones have no fragment shader:
+// shadow_map_pass.cpp): depth only; the surfaces (leaves) let the light through where their mask
+// does, as in the RSM (rsm.frag).
 #include "shared.h"
 
 layout(set = 0, binding = 1) uniform sampler2D baseColorTexture;
@@ -12,6 +13,5 @@ layout(location = 0) in vec2 uv;
 layout(location = 1) in vec4 color;
 
 void main() {
-    // An opaque draw (cutoff 0) reads no texture: most of the map's texels.
-    if (draw.material.y > 0.0 && baseColor(uv, color).a < draw.material.y) discard;
+    if (baseColor(uv, color).a < draw.material.y) discard;
 }
