@@ -1,7 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Sky visibility maps: depth only; alpha-masked surfaces (leaves, needles) let the sky through
-// where their mask does.
+// Sky visibility maps, their alpha-masked draws (the opaque ones have no fragment shader:
+// sky_visibility_pass.cpp): depth only; the surfaces (leaves, needles) let the sky through where
+// their mask does.
 #include "shared.h"
 
 layout(set = 0, binding = 1) uniform sampler2D baseColorTexture;
