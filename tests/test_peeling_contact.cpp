@@ -184,7 +184,7 @@ TEST_F(SsdoFixesTest, DepthPeelingGivesTheCornellBoxsCeilingItsBounce) {
                 single, peeled, checked);
     // Measured at 128x128 before the light's check: one layer 0.850, two layers 0.981 (at
     // 192x192 0.881 and 1.039; at 96x96 the one layer's guess finds few false occluders, 0.947
-    // against 0.932). With the filter's symmetric window: 0.817, 0.942, and 1.027 checked.
+    // against 0.932). With the filter's symmetric window: 0.817, 0.942, and 1.025 checked.
     EXPECT_LT(single, 0.92);
     EXPECT_LT(std::abs(peeled - 1.0), 0.5 * std::abs(single - 1.0));
     EXPECT_LT(std::abs(checked - 1.0), 0.5 * std::abs(single - 1.0));

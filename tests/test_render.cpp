@@ -194,10 +194,10 @@ TEST_F(RenderTest, FrameReportsEveryPassInOrderWithTimings) {
         EXPECT_GE(t.milliseconds, 0.0);
     }
     EXPECT_EQ(names, (std::vector<std::string>{
-                         "gbuffer", "rsm", "shadow_map", "shadow_map_back", "reprojection",
-                         "shadow.keep", "shadow", "shadow.temporal", "ao.keep", "ao", "ao.temporal",
-                         "indirect.keep", "indirect", "indirect.filter_x", "indirect.filter_y",
-                         "indirect.temporal", "direct", "composite"}))
+                         "gbuffer", "rsm", "shadow_map", "shadow_map_back", "light_depth_min",
+                         "reprojection", "shadow.keep", "shadow", "shadow.temporal", "ao.keep",
+                         "ao", "ao.temporal", "indirect.keep", "indirect", "indirect.filter_x",
+                         "indirect.filter_y", "indirect.temporal", "direct", "composite"}))
         << "a black sky needs no sky visibility passes";
     // The second frame's barriers: each G-buffer target goes from being sampled by last frame's
     // compute passes back to an attachment (kept from frame to frame with the cache on, as a

@@ -159,9 +159,9 @@ TEST_F(ReuseWhileMovingTest, AComputedPixelAmongSkippedOnesIsFilteredWithTheirHi
     ASSERT_GT(n / 3, 20u);
     ASSERT_GT(skipped, on.size() / 2);
     // 0.063 when this test was written, 0.076 since the filter's window stays symmetric about
-    // the pixel (it ends where either side leaves the surface); 0.091 when the filter left
-    // skipped neighbours out.
-    EXPECT_LT(error / double(n), 0.083);
+    // the pixel (it ends where either side leaves the surface), 0.080 since the bounce's
+    // visibility test asks the light; 0.091 when the filter left skipped neighbours out.
+    EXPECT_LT(error / double(n), 0.085);
 }
 
 // Along a sub-pixel pan from a cut (one computation a pixel): without cache_reuse_moving the

@@ -16,6 +16,8 @@ void addFramePasses(FrameBuild& build) {
     rasterized.shadowMap = addShadowMapPass(build, rasterized.rsm);
     if (settings.shadow_variant == 1 && settings.shadow_taps > 1)
         rasterized.shadowMapBack = addShadowMapBackPass(build);
+    if (settings.indirect && settings.indirect_visibility && settings.indirect_visibility_light)
+        rasterized.lightDepthMin = addLightDepthMinPass(build, rasterized.rsm);
     if (settings.cache) addReprojectionPass(build, rasterized.gbuffer);
     // Each cached effect returns its blended history (cached_effect_pass.h), which is what its
     // consumers read; the lighting terms hand theirs to the composite, which adds them up in the

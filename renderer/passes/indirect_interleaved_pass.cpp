@@ -5,7 +5,7 @@
 // (Keller and Heidrich 2001; Segovia et al. 2006). No upsampling, so no staircase, and no pixel
 // gathers every VPL.
 //   reads:  gbuffer.view_depth, gbuffer.normal, rsm.vpls, last frame's gbuffer.view_depth and
-//           the cache's indirect.count (to skip converged pixels), shadow_map.depth (the
+//           the cache's indirect.count (to skip converged pixels), light_depth_min (the
 //           visibility test's light check); the filter also last frame's indirect.history (what
 //           a skipped neighbour holds)
 //   writes: indirect + indirect.directional (each pixel's subset: irradiance / pi, and the L1
@@ -44,7 +44,7 @@ graph::ImageRef addInterleavedIndirectPasses(FrameBuild& build, const GBufferAnd
                                    {"INTERLEAVE", k},
                                    {"RADIUS", radius},
                                    {"PEELING", in.secondLayer.valid() ? 1 : 0},
-                                   {"LIGHT_CHECK", int(settings.indirect_visibility_light)}}};
+                                   {"LIGHT_CHECK", in.lightDepthMin.valid() ? 1 : 0}}};
     if (fluxVpls) { // method 2: its flux-drawn VPLs, the tests drawn, the pool, the map's side
         const int cluster = int(settings.indirect_vpl_cluster);
         gatherSpec.constants.insert(
@@ -87,7 +87,8 @@ graph::ImageRef addInterleavedIndirectPasses(FrameBuild& build, const GBufferAnd
     gather.images.insert(gather.images.end(),
                          {{"interleavedIndirect", subsets, Use::StorageWrite},
                           {"interleavedDirectional", subsetsDirectional, Use::StorageWrite},
-                          secondLayerInput(in), {"shadowMap", in.shadowMap, Use::Sampled}});
+                          secondLayerInput(in),
+                          lightDepthMinInput(in)});
     gather.pushSize = sizeof(shader::IndirectConstants);
     gather.spec = gatherSpec;
     addComputePass(build, std::move(gather), [&build, cache, constants](const ComputeRecorder& r) {

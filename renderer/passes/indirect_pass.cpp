@@ -22,12 +22,11 @@ graph::ImageRef addIndirectPasses(FrameBuild& build, const GBufferAndRsm& in,
     upsampleSpec.constants.push_back({"HALF_RES", int(build.settings.indirect_half_res)});
     upsampleSpec.constants.push_back({"PEELING", in.secondLayer.valid() ? 1 : 0});
     gatherSpec.constants.push_back({"PEELING", in.secondLayer.valid() ? 1 : 0});
-    const vk::SpecConstant lightCheck{
-        "LIGHT_CHECK", int(build.settings.indirect_visibility_light)};
+    const vk::SpecConstant lightCheck{"LIGHT_CHECK", in.lightDepthMin.valid() ? 1 : 0};
     gatherSpec.constants.push_back(lightCheck);
     upsampleSpec.constants.push_back(lightCheck);
     const ShaderImage secondLayer = secondLayerInput(in);
-    const ShaderImage shadowMap{"shadowMap", in.shadowMap, graph::Use::Sampled};
+    const ShaderImage lightDepthMin = lightDepthMinInput(in);
     const bool halfRes = build.settings.indirect_half_res;
     auto constants = [&build, halfSize, cache](const FrameState& frame) {
         return indirectConstants(build, cache, frame, halfSize);
@@ -43,7 +42,7 @@ graph::ImageRef addIndirectPasses(FrameBuild& build, const GBufferAndRsm& in,
     ComputePassDesc gather{"indirect", "indirect.comp", reads};
     gather.images.push_back({"halfIndirect", half, Use::StorageWrite});
     gather.images.push_back(secondLayer);
-    gather.images.push_back(shadowMap);
+    gather.images.push_back(lightDepthMin);
     gather.pushSize = sizeof(shader::IndirectConstants);
     gather.spec = gatherSpec;
     addComputePass(
@@ -59,7 +58,7 @@ graph::ImageRef addIndirectPasses(FrameBuild& build, const GBufferAndRsm& in,
     upsample.images.push_back({"halfIndirect", half, Use::Sampled});
     upsample.images.push_back({"indirectImage", full, Use::StorageWrite});
     upsample.images.push_back(secondLayer);
-    upsample.images.push_back(shadowMap);
+    upsample.images.push_back(lightDepthMin);
     upsample.pushSize = sizeof(shader::IndirectConstants);
     upsample.spec = upsampleSpec;
     addComputePass(build, std::move(upsample),

@@ -29,6 +29,12 @@ graph::ImageRef addShadowPass(FrameBuild& build, const GBufferAndRsm& inputs);
 // layer (inputs.secondLayer), an occluder is a sample between the two layers.
 graph::ImageRef addContactPass(FrameBuild& build, const GBufferAndRsm& inputs,
                                graph::ImageRef shadow);
+// light_depth_min: the light's nearest depth in blocks of the RSM's texels, for the bounce's
+// visibility test's light check (light_depth_min_pass.cpp).
+graph::ImageRef addLightDepthMinPass(FrameBuild& build, const Rsm& rsm);
+// The binding "lightDepthMin" of the bounce's gathers: inputs.lightDepthMin, or without the
+// light check the RSM's depth, an image the shaders (LIGHT_CHECK 0) never read.
+ShaderImage lightDepthMinInput(const GBufferAndRsm& inputs);
 // peel: the second depth layer (world position of the next surface behind the G-buffer's).
 graph::ImageRef addPeelPass(FrameBuild& build, const GBufferAndRsm& inputs);
 // The binding "secondLayer" of a pass whose occlusion test may use two layers (SSDO, contact

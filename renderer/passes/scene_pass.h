@@ -65,6 +65,8 @@ struct GBufferAndRsm {
     Rsm rsm;
     graph::ImageRef shadowMap;     // addShadowMapPass
     graph::ImageRef shadowMapBack; // addShadowMapBackPass (shadow_variant 1; else invalid)
+    // addLightDepthMinPass, valid where the bounce's visibility test asks the light.
+    graph::ImageRef lightDepthMin;
     // Depth peeling's second layer (peel_pass.cpp: the world position of the nearest surface
     // behind the G-buffer's, w = 0 where none), valid where depth_peeling is on and a pass
     // tests occlusion with it (frame.cpp).

@@ -49,7 +49,7 @@ layout(set = 0, binding = 9) uniform sampler2D historyCount;
 layout(set = 0, binding = 10, rgba16f) uniform writeonly image2D interleavedIndirect;
 layout(set = 0, binding = 11, rgba16f) uniform writeonly image2D interleavedDirectional;
 layout(set = 0, binding = 12) uniform sampler2D secondLayer; // peel.position (PEELING only)
-layout(set = 0, binding = 13) uniform sampler2D shadowMap; // the light's depth (LIGHT_CHECK only)
+layout(set = 0, binding = 13) uniform sampler2D lightDepthMin; // light_depth_min (LIGHT_CHECK only)
 layout(push_constant) uniform IndirectBlock { IndirectConstants constants; };
 
 #include "gbuffer_position.glsl"

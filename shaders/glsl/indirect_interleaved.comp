@@ -31,7 +31,7 @@ layout(set = 0, binding = 6) uniform sampler2D historyCount;
 layout(set = 0, binding = 7, rgba16f) uniform writeonly image2D interleavedIndirect;
 layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D interleavedDirectional;
 layout(set = 0, binding = 9) uniform sampler2D secondLayer; // peel.position (PEELING only)
-layout(set = 0, binding = 10) uniform sampler2D shadowMap; // the light's depth (LIGHT_CHECK only)
+layout(set = 0, binding = 10) uniform sampler2D lightDepthMin; // light_depth_min (LIGHT_CHECK only)
 layout(push_constant) uniform IndirectBlock { IndirectConstants constants; };
 
 #include "gbuffer_position.glsl"
