@@ -17,9 +17,10 @@ const float LIGHT_CHECK_TOLERANCE = 0.5;
 const int LIGHT_CHECK_TAPS = 2;
 
 // Whether the light sees x in the open space above the plane (q, nq) of a VPL's lit surface:
-// the nearest surface light_depth_min holds around x lies at or beyond that plane (within one of
-// its texels' depth over the cosine at which the light's ray meets the plane), so that nothing
-// stands between the light and the plane there, and x is on the light's side of it.
+// the nearest surface light_depth_min holds around x lies at or beyond that plane (within
+// LIGHT_CHECK_TOLERANCE of its texels' depth over the cosine at which the light's ray meets the
+// plane), so that nothing stands between the light and the plane there, and x is on the
+// light's side of it.
 bool lightSeesOpenAbove(vec3 x, vec3 q, vec3 nq) {
     vec4 clip = frame.lightViewProjection * vec4(x, 1.0);
     if (clip.w <= frame.lightFrustum.x) return false;
@@ -102,7 +103,7 @@ bool vplVisible(vec3 p, vec3 q, vec3 nq) {
         float facing = abs(dot(surfaceNormal, normalize(gbufferToWorld.eye - surface)));
         if (behind >= stepLength / max(facing, 0.5)) continue;
         // Taken for blocked. At the last step the light can tell better, where it sees the
-        // step's stretch of the segment (from two thirds of the way to the VPL) open above the
+        // step's stretch of the segment (by default from two thirds of the way) open above the
         // VPL's surface, at LIGHT_CHECK_TAPS points. The Cornell box's upper back wall takes
         // its brightest light from the blocks' tops, which the camera below them does not see:
         // the last steps just above a top project onto the block's front face, behind it by
