@@ -9,12 +9,12 @@
 // the surface, so that it stays symmetric about the pixel. A neighbour's estimate belongs to the
 // neighbour's normal; it is carried over to the pixel's normal by the ratio f(n_p) / f(n_q) of
 // the neighbour's directional sums (indirect_gather.glsl: an L1 spherical harmonic of the light
-// its VPLs bring), so that a bumpy surface keeps its shading instead of being blurred flat. The directional sums are
-// averaged alike for the next axis. Both axes together give a pixel the mean of up to
-// (2 RADIUS)^2 subset estimates, the whole VPL set's many times over; at an edge or a contact,
-// those of its own side. A converged pixel is skipped: its cache holds it; the refresh tile is
-// computed with a margin as wide as the two axes reach, so that its pixels find their neighbours
-// computed.
+// its VPLs bring), so that a bumpy surface keeps its shading instead of being blurred flat. The
+// directional sums are averaged alike for the next axis. Both axes together give a pixel the
+// mean of up to (2 RADIUS)^2 subset estimates, the whole VPL set's many times over; at an edge
+// or a contact, those of its own side. A converged pixel is skipped: its cache holds it; the
+// refresh tile is computed with a margin as wide as the two axes reach, so that its pixels find
+// their neighbours computed.
 #include "shared.h"
 #include "common.glsl"
 
@@ -60,6 +60,40 @@ bool skippedEstimate(ivec2 q, out vec3 estimate) {
     return true;
 }
 
+// A neighbour on the pixel's surface: its estimate carried over to the pixel's normal, its
+// directional sums (none where it was skipped) and its weight by how it faces.
+struct Neighbour {
+    vec3 value;
+    vec4 sums;
+    float weight;
+    bool skipped;
+};
+
+// Neighbour q, `distance` pixels from the pixel (at p, normal n), where it lies on the pixel's
+// surface: within 1.5 pixel footprints of its tangent plane per pixel of distance, facing within
+// 60 degrees of it.
+bool surfaceNeighbour(ivec2 q, float distance, vec3 p, vec3 n, float footprint,
+                      float facingPower, out Neighbour s) {
+    if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(frame.viewport.xy))))
+        return false;
+    vec4 estimate = texelFetch(estimates, q, 0);
+    // Skipped, or background (stored alike; its reprojection finds nothing).
+    s.skipped = wasSkipped(estimate);
+    if (s.skipped && !skippedEstimate(q, estimate.rgb)) return false;
+    vec3 delta = gbufferPosition(q).xyz - p;
+    if (abs(dot(n, delta)) > 1.5 * footprint * max(1.0, distance)) return false;
+    vec3 nq = texelFetch(gbufferNormal, q, 0).xyz;
+    if (dot(n, nq) < 0.5) return false; // another face
+    s.weight = pow(max(dot(n, nq), 0.0), facingPower);
+    // A skipped neighbour has no directional sums: its value is carried over as it is, and adds
+    // none to the next axis's.
+    s.sums = s.skipped ? vec4(0.0) : texelFetch(directionals, q, 0);
+    float toPixel =
+        s.skipped ? 1.0 : min(directionalAt(s.sums, n) / directionalAt(s.sums, nq), 4.0);
+    s.value = toPixel * estimate.rgb;
+    return true;
+}
+
 void main() {
     loadPixelToWorld(); // pixel_to_world.glsl
     ivec2 axis = ivec2(constants.axisX, constants.axisY);
@@ -101,43 +135,24 @@ void main() {
     // At the Cornell box's ceiling's crease with the back wall the one-sided mean was 1.4-2.2
     // times the reference; the frame's relMSE 0.0120 -> 0.0107 (docs/effects.md).
     for (int i = 0; i <= reach; ++i) {
-        vec3 value[2];
-        vec4 sums[2];
-        float w[2];
-        bool skipped[2], found[2];
-        for (int side = 0; side < 2; ++side) {
-            found[side] = false;
-            if (i == 0 && side == 1) continue; // the pixel itself, once
-            int d = side == 0 ? -i : i;
-            ivec2 q = pixel + d * axis;
-            if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
-            vec4 estimate = texelFetch(estimates, q, 0);
-            // Skipped, or background (stored alike; its reprojection finds nothing).
-            skipped[side] = wasSkipped(estimate);
-            if (skipped[side] && !skippedEstimate(q, estimate.rgb)) continue;
-            vec3 delta = gbufferPosition(q).xyz - p;
-            if (abs(dot(n, delta)) > 1.5 * footprint * max(1.0, float(i))) continue;
-            vec3 nq = texelFetch(gbufferNormal, q, 0).xyz;
-            if (dot(n, nq) < 0.5) continue; // another face
-            w[side] = (halfEnds && i == reach ? 0.5 : 1.0) * pow(max(dot(n, nq), 0.0), facingPower);
-            // A skipped neighbour has no directional sums: its value is carried over as it is,
-            // and adds none to the next axis's.
-            sums[side] = skipped[side] ? vec4(0.0) : texelFetch(directionals, q, 0);
-            float toPixel = skipped[side] ? 1.0
-                                          : min(directionalAt(sums[side], n) /
-                                                    directionalAt(sums[side], nq), 4.0);
-            value[side] = toPixel * estimate.rgb;
-            found[side] = true;
-        }
+        Neighbour side[2];
+        bool found[2];
+        found[0] = surfaceNeighbour(pixel - i * axis, float(i), p, n, footprint, facingPower,
+                                    side[0]);
+        found[1] = i > 0 && // the pixel itself, once
+                   surfaceNeighbour(pixel + i * axis, float(i), p, n, footprint, facingPower,
+                                    side[1]);
         if (i > INTERLEAVE && !(found[0] && found[1])) break;
-        for (int side = 0; side < 2; ++side) {
-            if (!found[side]) continue;
-            sum += w[side] * value[side];
-            if (!skipped[side]) {
-                directionalSum += w[side] * sums[side];
-                directionalWeight += w[side];
+        float end = halfEnds && i == reach ? 0.5 : 1.0;
+        for (int k = 0; k < 2; ++k) {
+            if (!found[k]) continue;
+            float w = end * side[k].weight;
+            sum += w * side[k].value;
+            if (!side[k].skipped) {
+                directionalSum += w * side[k].sums;
+                directionalWeight += w;
             }
-            weightSum += w[side];
+            weightSum += w;
         }
     }
     // The pixel's own estimate is always kept, so weightSum > 0.
