@@ -5,6 +5,12 @@
 
 namespace ssgi {
 
+vk::GraphicsPipelineDesc depthOnly(vk::GraphicsPipelineDesc desc) {
+    desc.fragmentShader.clear();
+    desc.bindings = {desc.bindings[0]};
+    return desc;
+}
+
 SceneTargets addScenePass(FrameBuild& build, const std::string& name, const std::string& shader,
                           VkExtent2D extent, const std::vector<SceneTarget>& targets,
                           graph::EnabledFn enabled, std::optional<uint32_t>* firstTargetHistory,
@@ -44,12 +50,8 @@ SceneTargets addScenePass(FrameBuild& build, const std::string& name, const std:
     // runs for every fragment, the opaque ones' too. With none at all their depth is tested and
     // written without it: shadow_map (lavapipe, 256x256, uncached) 62 -> 26 ms on the bunny,
     // 141 -> 60 on Sponza, 40 -> 8 on the scrub pine; the images bit-identical.
-    vk::Pipeline opaque = masked;
-    if (opaqueDraws == OpaqueDraws::DepthOnly) {
-        desc.fragmentShader.clear();
-        desc.bindings = {desc.bindings[0]}; // the frame uniforms: the vertex shader's only one
-        opaque = build.graphicsPipeline(desc);
-    }
+    const vk::Pipeline opaque =
+        opaqueDraws == OpaqueDraws::DepthOnly ? build.graphicsPipeline(depthOnly(desc)) : masked;
 
     using graph::Use;
     std::vector<graph::ImageUse> uses;

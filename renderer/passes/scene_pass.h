@@ -28,6 +28,9 @@ enum class OpaqueDraws {
     DepthOnly, // with no fragment shader: a pass without colour targets whose fragment shader
                // only tests the alpha mask (scene_pass.cpp says why)
 };
+// A scene pipeline's depth-only twin for its opaque draws: no fragment shader, and of its
+// bindings only binding 0, the view's uniforms, which is all the scene's vertex shaders read.
+vk::GraphicsPipelineDesc depthOnly(vk::GraphicsPipelineDesc desc);
 // `enabled` (optional) is asked each frame whether to draw; the targets of a pass that may be
 // skipped persist from frame to frame. With `firstTargetHistory`, the first colour target is a
 // history pair (colors[0] is its current side), whose id is written there.

@@ -129,9 +129,7 @@ graph::ImageRef addSkyVisibilityPasses(FrameBuild& build, const GBufferAndRsm& i
     // The opaque materials' draws with no fragment shader, as the shadow map's (scene_pass.cpp):
     // sky_depth.frag's discard would run it for each of their fragments. sky.maps (lavapipe,
     // 256x256) 1263 -> 1030 ms on the bunny, 1070 -> 742 on Sponza, 54 -> 27 on the scrub pine.
-    desc.fragmentShader.clear();
-    desc.bindings = {desc.bindings[0]}; // the map's view: the vertex shader's only binding
-    const vk::Pipeline opaque = build.graphicsPipeline(desc);
+    const vk::Pipeline opaque = build.graphicsPipeline(depthOnly(desc));
 
     using graph::Use;
     build.graph.addPass(
