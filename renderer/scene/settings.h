@@ -104,8 +104,8 @@ namespace ssgi {
       "where the visibility test's log-spaced march begins, a fraction of the way to the VPL "     \
       "(nearer: longer far steps, which take open space behind an object for an occluder)")        \
     X(indirect_visibility_light, bool, true, 0, 1, "Indirect light",                               \
-      "where the visibility test takes a step for blocked, the light's shadow map may tell it "    \
-      "open: the step's stretch seen open above the VPL's surface")                                \
+      "where the visibility test takes its last step for blocked, the light's depth "              \
+      "(light_depth_min) may tell it open: the step's stretch seen open above the VPL's surface")  \
     X(indirect_half_res, bool, true, 0, 1, "Indirect light",                                       \
       "method 0: gather at half resolution and upsample (1), or every pixel at full (0)")          \
     X(cache, bool, true, 0, 1, "Temporal cache",                                                   \
