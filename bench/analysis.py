@@ -192,12 +192,10 @@ def value_taps(axis, settings):
         n = settings["ao_directions"] * settings["ao_steps"]
         return (2 * n if settings["ao_variant"] == 2 else n), 0  # horizon: both sides
     if axis == "shadow":
-        if "shadow_directions" in settings:  # horizons: each direction's origin + steps
+        if settings.get("shadow_variant") == 1:  # horizons: each direction's origin + steps
             return settings["shadow_directions"] * (settings["shadow_steps"] + 1), 0
         taps = settings["shadow_taps"]
-        if taps == 1:
-            return 1, 0
-        return 2 * taps, 0  # blocker search + filter
+        return (1 if taps == 1 else 2 * taps), 0  # blocker search + filter
     if axis == "indirect" and settings.get("indirect"):
         vpls = settings["indirect_vpls"]
         method = settings.get("indirect_method", 0)

@@ -5,6 +5,7 @@
 #include "support.h"
 
 #include "scene_gpu.h"
+#include "shared.h"
 #include "vk/embedded_shaders.h"
 #include "vk/pipeline.h"
 #include "vk/shader_bindings.h"
@@ -200,7 +201,7 @@ TEST_F(PipelineTest, ADepthOnlyPipelineIsTheVertexStageAlone) {
     desc.vertexShader = "shadow_map.vert";
     desc.depthFormat = VK_FORMAT_D32_SFLOAT;
     desc.bindings = {{kUniform, "FrameBlock"}};
-    desc.pushConstantSize = 96; // shared.h's DrawConstants
+    desc.pushConstantSize = sizeof(shader::DrawConstants);
     vk::Pipeline p = vk::createGraphicsPipeline(test::context(), desc);
     EXPECT_NE(p.pipeline, VK_NULL_HANDLE);
     EXPECT_EQ(p.stages, VkShaderStageFlags(VK_SHADER_STAGE_VERTEX_BIT));
