@@ -17,7 +17,7 @@ using namespace ssgi;
 
 namespace {
 
-const vk::EmbeddedShader& shader(const std::string& name) {
+const vk::EmbeddedShader& embedded(const std::string& name) {
     const auto& all = vk::embeddedShaders();
     auto found =
         std::find_if(all.begin(), all.end(), [&](const auto& s) { return name == s.name; });
@@ -56,7 +56,7 @@ TEST(VulkanResults, AreNamedOrNumbered) {
 }
 
 TEST(ShaderBindings, ReflectTheShadersOwnDeclarations) {
-    const vk::EmbeddedShader& s = shader("indirect_reconstruct.comp");
+    const vk::EmbeddedShader& s = embedded("indirect_reconstruct.comp");
     const auto bindings = vk::shaderBindings(s.code, s.bytes / 4, 0);
     ASSERT_EQ(bindings.size(), kReconstruct.size());
     for (uint32_t b = 0; b < kReconstruct.size(); ++b) {
@@ -67,14 +67,14 @@ TEST(ShaderBindings, ReflectTheShadersOwnDeclarations) {
     EXPECT_EQ(bindings.at(8).format, VK_FORMAT_R16G16B16A16_SFLOAT) << "layout(rgba16f)";
     EXPECT_EQ(bindings.at(6).format, VK_FORMAT_UNDEFINED) << "a sampler2D has no format";
     // A storage image declared without a format (the temporal pass writes either history).
-    const vk::EmbeddedShader& t = shader("temporal.comp");
+    const vk::EmbeddedShader& t = embedded("temporal.comp");
     for (const auto& [b, binding] : vk::shaderBindings(t.code, t.bytes / 4, 0))
         if (binding.name == "newValue") {
             EXPECT_EQ(binding.format, VK_FORMAT_UNDEFINED);
         }
     EXPECT_TRUE(vk::shaderBindings(s.code, s.bytes / 4, 1).empty()) << "nothing in set 1";
     // A graphics shader with a texture in set 1: the G-buffer's fragment shader.
-    const vk::EmbeddedShader& g = shader("gbuffer.frag");
+    const vk::EmbeddedShader& g = embedded("gbuffer.frag");
     EXPECT_FALSE(vk::shaderBindings(g.code, g.bytes / 4, 0).empty());
 }
 
@@ -155,7 +155,7 @@ TEST_F(PipelineTest, ABindingTheShaderNamesOtherwiseIsRefusedNamingBoth) {
 // The specialization constants and the workgroup size are read from the SPIR-V, as the bindings
 // are: a pass gives its constants by name, and the dispatch counts groups of the shader's size.
 TEST(ShaderBindings, ReflectSpecializationConstantsAndWorkgroupSize) {
-    const vk::EmbeddedShader& s = shader("composite.comp");
+    const vk::EmbeddedShader& s = embedded("composite.comp");
     const std::map<std::string, uint32_t> constants = vk::shaderSpecConstants(s.code, s.bytes / 4);
     const std::map<std::string, uint32_t> expected = {{"HAS_CONTACT", 0},
                                                       {"TERM0_ROLE", 1},
@@ -166,7 +166,7 @@ TEST(ShaderBindings, ReflectSpecializationConstantsAndWorkgroupSize) {
     const vk::WorkgroupSize group = vk::shaderWorkgroupSize(s.code, s.bytes / 4);
     EXPECT_EQ(group.x, 8u);
     EXPECT_EQ(group.y, 8u);
-    const vk::EmbeddedShader& probe = shader("probe_fill.comp");
+    const vk::EmbeddedShader& probe = embedded("probe_fill.comp");
     EXPECT_TRUE(vk::shaderSpecConstants(probe.code, probe.bytes / 4).empty());
 }
 
