@@ -275,11 +275,15 @@ TEST_F(EffectTest, AoDarkensTheFloorUnderTheBunny) {
                     farSum / farCount);
         ASSERT_GT(nearCount, 20u);
         ASSERT_GT(farCount, 200u);
-        // Measured at 160x120, AO at contact against away: thesis 0.894 / 1.000, Crytek
-        // 0.551 / 0.823, horizon 0.500 / 0.979.
+        // Measured at 160x120, AO at contact against away: thesis 0.893 / 1.000, Crytek
+        // 0.555 / 0.822, horizon 0.510 / 0.994.
         EXPECT_LT(nearSum / nearCount, farSum / farCount - 0.08)
             << "variant " << variant << ": near " << nearSum / nearCount << " far "
             << farSum / farCount;
+        // The horizons of the flat floor away from the bunny lie in its plane: 0.979 while a
+        // sample's angle was taken from its direction, off the slice by up to half a pixel
+        // (ao_horizon.glsl), in stripes across the floor.
+        if (variant == 2) EXPECT_GT(farSum / farCount, 0.99);
     }
 }
 

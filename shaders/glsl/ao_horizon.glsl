@@ -17,6 +17,8 @@ float horizonAo(vec2 center, vec3 p, vec3 n, float radius, float radiusPixels, f
         float cosN = clamp(dot(projectedNormal, viewVector) / projectedLength, 0.0, 1.0);
         float angleN = sign(dot(ortho, projectedNormal)) * acos(cosN);
         float lowest[2] = float[2](cos(angleN + 0.5 * PI), cos(angleN - 0.5 * PI));
+        // The tangent plane's line in the slice, toward the first side (side_sign 1).
+        vec3 tangent = ortho * cosN - viewVector * sin(angleN);
         float horizon[2] = lowest;
         for (int side = 0; side < 2; ++side) {
             float side_sign = side == 0 ? 1.0 : -1.0;
@@ -31,7 +33,17 @@ float horizonAo(vec2 center, vec3 p, vec3 n, float radius, float radiusPixels, f
                 if (distance < 1e-6 * radius) continue;
                 // Samples fade out over the last tenth of the radius, beyond which they are open.
                 float weight = clamp((radius - distance) / (0.1 * radius), 0.0, 1.0);
-                float cosHorizon = mix(lowest[side], dot(toSample / distance, viewVector), weight);
+                // The sample's angle in the slice, from its height above p's tangent plane and
+                // its length along the slice's tangent. A sample's pixel centre lies off the
+                // slice by up to half a pixel: its direction's angle from the view vector lifted a
+                // flat floor's horizons above the tangent, and the bunny's grazing floor had an
+                // AO of 0.95-0.97 in stripes. Measured from the plane, a sample on it is at the
+                // tangent wherever it lies; one in the slice is where it was.
+                float height = dot(toSample, n) / projectedLength;
+                float along = dot(toSample, side_sign * tangent);
+                float length2 = max(height * height + along * along, 1e-12 * radius * radius);
+                float cosSample = (lowest[side] * along + cosN * height) * inversesqrt(length2);
+                float cosHorizon = mix(lowest[side], cosSample, weight);
                 horizon[side] = max(horizon[side], cosHorizon);
             }
         }
