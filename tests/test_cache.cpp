@@ -70,9 +70,12 @@ TEST_F(CacheTest, AccumulatedAoConvergesTowardsAManySampleImage) {
         std::printf("method %d: AO RMSE to 36 directions at frames 1, 16, 64: %.4f %.4f %.4f\n",
                     method, error[1], error[16], error[64]);
         // After convergence at 36 rotations the screen is settled and computes nothing: frame
-        // 64 holds the converged history.
+        // 64 holds the converged history. Measured: 0.0555 0.0171 0.0177 (thesis rule) and
+        // 0.0555 0.0073 0.0052 (running mean). While each frame's AO was clamped at 1 before it
+        // was accumulated (ao.comp), frame 64 was 0.58 and 0.42 of frame 1: the mean of clamped
+        // frames is darker than the many-direction image.
         EXPECT_LT(error[16], 0.6 * error[1]) << "method " << method;
-        EXPECT_LT(error[64], 0.5 * error[1]) << "method " << method;
+        EXPECT_LT(error[64], (method == 0 ? 0.4 : 0.2) * error[1]) << "method " << method;
     }
 }
 

@@ -53,7 +53,7 @@ bool occludesSky(int role) {
 }
 // What a term does to the sky light, and to the light added to it.
 void occludeSky(int role, vec4 term, inout vec3 sky) {
-    if (role == TERM_SKY_OCCLUSION) sky *= term.r;
+    if (role == TERM_SKY_OCCLUSION) sky *= min(term.r, 1.0); // AO is stored unclamped (ao.comp)
     if (role == TERM_SKY_FILTER) sky *= term.rgb;
     if (role == TERM_SKY_RADIANCE) sky = term.rgb;
 }
@@ -127,7 +127,7 @@ void main() {
         int slot = constants.termSlot;
         vec4 term = slot == 0 ? t0 : slot == 1 ? t1 : slot == 2 ? t2 : slot == 3 ? t3
                   : vec4(occludesSky(role) ? 1.0 : 0.0);
-        if (role == TERM_SKY_OCCLUSION) value = vec3(term.r);
+        if (role == TERM_SKY_OCCLUSION) value = vec3(min(term.r, 1.0));
         if (role == TERM_SKY_FILTER) value = term.rgb;
         if (role == TERM_SKY_RADIANCE) value = term.rgb * unit;
         if (role == TERM_IRRADIANCE) value = albedo * term.rgb * unit;
