@@ -28,8 +28,7 @@ bool lightSeesOpenAbove(vec3 x, vec3 q, vec3 nq) {
     float planeDepth = clip.w * dot(q - frame.lightPosition.xyz, nq) / along;
     if (clip.w >= planeDepth) return false;
     float size = float(textureSize(lightDepthMin, 0).x);
-    float nearest = texelFetch(lightDepthMin, ivec2(min(uv * size, vec2(size - 1.0))), 0).r *
-                    frame.lightFrustum.y; // stored as a fraction of the far plane's distance
+    float nearest = texelFetch(lightDepthMin, ivec2(min(uv * size, vec2(size - 1.0))), 0).r;
     float texelDepth = planeDepth * 2.0 * frame.lightFrustum.z / size;
     float cosine = -along / length(fromLight);
     return nearest > planeDepth - LIGHT_CHECK_TOLERANCE * texelDepth / max(cosine, 0.2);

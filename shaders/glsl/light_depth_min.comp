@@ -1,8 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // The light's depth in blocks of BLOCK x BLOCK RSM texels: each block's nearest surface, as a
-// distance along the light's axis over the far plane's (light_depth_min_pass.cpp). Depth is
-// monotonic in that distance, so the nearest depth is the nearest distance.
+// distance along the light's axis (light_depth_min_pass.cpp). Depth is monotonic in that
+// distance, so the nearest depth is the nearest distance.
 #include "shared.h"
 #include "common.glsl"
 
@@ -11,7 +11,7 @@ layout(constant_id = 0) const int BLOCK = 4;
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
 layout(set = 0, binding = 1) uniform sampler2D rsmDepth;
-layout(set = 0, binding = 2, r16f) uniform writeonly image2D nearestDepth;
+layout(set = 0, binding = 2, r32f) uniform writeonly image2D nearestDepth;
 
 void main() {
     ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
@@ -24,8 +24,6 @@ void main() {
             ivec2 source = min(texel * BLOCK + ivec2(x, y), mapSide - 1);
             nearest = min(nearest, texelFetch(rsmDepth, source, 0).r);
         }
-    // A fraction of the far plane's distance, in any unit of the scene a half float's range,
-    // lowered by a half float's step: its rounding never puts the nearest beyond the true one.
-    float distance = linearDepth(nearest, frame.lightFrustum.x, frame.lightFrustum.y);
-    imageStore(nearestDepth, texel, vec4(distance / frame.lightFrustum.y * (1.0 - 1.0 / 1024.0)));
+    imageStore(nearestDepth, texel,
+               vec4(linearDepth(nearest, frame.lightFrustum.x, frame.lightFrustum.y)));
 }
