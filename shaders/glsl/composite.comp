@@ -51,9 +51,14 @@ vec3 skyLight(vec3 n) {
 bool occludesSky(int role) {
     return role == TERM_SKY_OCCLUSION || role == TERM_SKY_FILTER;
 }
+// The fraction of the sky's light a TERM_SKY_OCCLUSION term lets through: the AO is stored
+// unclamped, for the cache's mean (ao.comp), and used clamped at 1.
+float letThrough(vec4 term) {
+    return min(term.r, 1.0);
+}
 // What a term does to the sky light, and to the light added to it.
 void occludeSky(int role, vec4 term, inout vec3 sky) {
-    if (role == TERM_SKY_OCCLUSION) sky *= min(term.r, 1.0); // AO is stored unclamped (ao.comp)
+    if (role == TERM_SKY_OCCLUSION) sky *= letThrough(term);
     if (role == TERM_SKY_FILTER) sky *= term.rgb;
     if (role == TERM_SKY_RADIANCE) sky = term.rgb;
 }
@@ -127,7 +132,7 @@ void main() {
         int slot = constants.termSlot;
         vec4 term = slot == 0 ? t0 : slot == 1 ? t1 : slot == 2 ? t2 : slot == 3 ? t3
                   : vec4(occludesSky(role) ? 1.0 : 0.0);
-        if (role == TERM_SKY_OCCLUSION) value = vec3(min(term.r, 1.0));
+        if (role == TERM_SKY_OCCLUSION) value = vec3(letThrough(term));
         if (role == TERM_SKY_FILTER) value = term.rgb;
         if (role == TERM_SKY_RADIANCE) value = term.rgb * unit;
         if (role == TERM_IRRADIANCE) value = albedo * term.rgb * unit;
