@@ -2,6 +2,8 @@
 
 #include "stability/runs.h"
 
+#include <algorithm>
+
 namespace ssgi::stability::detail {
 
 namespace {
@@ -27,6 +29,16 @@ size_t countNonFiniteImages(Renderer& r, bool withRsm, std::set<std::string>& of
         total += bad;
     }
     return total;
+}
+
+// The converged AO as the frame uses it: its history holds the mean unclamped (ao.comp), and
+// the composite clamps it at 1, as the reference's visibility is.
+Pixels readAo(Renderer& r) {
+    Pixels ao = r.readImage("ao.history");
+    for (size_t i = 0; i < ao.size(); i += 4)
+        for (size_t c = 0; c < 3; ++c)
+            ao[i + c] = std::min(ao[i + c], 1.0f);
+    return ao;
 }
 
 View readView(Renderer& r, const Camera& camera) {
@@ -91,7 +103,7 @@ TestedRun runTested(vk::Context& ctx, const Scene& scene, const Case& c,
         rec.reused = aoReused(*a, v, i == lastChange ? &t.keptAtChange : nullptr);
         if (i + 1 == o.warmup) {
             t.start = v;
-            if (truthAo) t.startAo = a->readImage("ao.history");
+            if (truthAo) t.startAo = readAo(*a);
         }
         if (i >= lastChange) {
             rec.sinceChange = int(i - lastChange);
@@ -106,7 +118,7 @@ TestedRun runTested(vk::Context& ctx, const Scene& scene, const Case& c,
         previous = std::move(v);
     }
     if (t.before.pixels() == 0) t.before = t.start;
-    if (truthAo) t.endAo = a->readImage("ao.history");
+    if (truthAo) t.endAo = readAo(*a);
     t.end = std::move(previous);
     return t;
 }
@@ -149,7 +161,7 @@ FreshRun runFresh(vk::Context& ctx, const Scene& scene, const Case& c, const Ste
         res.nonFinite += countNonFiniteImages(f, k == 0, res.nonFiniteImages);
         View v = readView(f, last.camera);
         if (k < o.converge) run.frames.push_back(v.hdr);
-        if (k + 1 == o.converge && c.truth == Truth::Ao) run.ao = f.readImage("ao.history");
+        if (k + 1 == o.converge && c.truth == Truth::Ao) run.ao = readAo(f);
         if (k >= o.converge) run.stillFlicker.push_back(flicker(previous, v, {}));
         previous = std::move(v);
     }
