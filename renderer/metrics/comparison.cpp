@@ -3,6 +3,7 @@
 #include "image_io.h"
 #include "metrics/golden.h"
 #include "scene/scene.h"
+#include "scene/warnings.h"
 
 #include <cmath>
 #include <cstdio>
@@ -21,10 +22,8 @@ void warnIfNotOpaque(const Image& image, const std::string& name) {
     for (size_t i = 0; i < image.pixels(); ++i)
         transparent += image.rgba[4 * i + 3] < 1.0f;
     if (transparent > 0)
-        std::fprintf(stderr,
-                     "warning: %s: %zu pixels are not opaque; their colour is compared as stored, "
-                     "alpha is not applied\n",
-                     name.c_str(), transparent);
+        warn(name + ": " + std::to_string(transparent) +
+             " pixels are not opaque; their colour is compared as stored, alpha is not applied");
 }
 
 size_t nonFinitePixels(const Image& image) {

@@ -2,6 +2,7 @@
 
 #include "reference/random.h"
 #include "scene/animation.h"
+#include "scene/warnings.h"
 
 #include "atomic_file.h"
 
@@ -202,10 +203,9 @@ std::string defaultCacheDir() {
     struct stat status {};
     if (::lstat(own.c_str(), &status) != 0 || !S_ISDIR(status.st_mode) ||
         status.st_uid != ::getuid() || (status.st_mode & 077) != 0) {
-        std::fprintf(stderr,
-                     "warning: reference cache %s is not a private folder of this user; "
-                     "nothing is cached (set SSGI_REFERENCE_CACHE or HOME)\n",
-                     own.c_str());
+        warn("reference cache " + own.string() +
+             " is not a private folder of this user; nothing is cached (set "
+             "SSGI_REFERENCE_CACHE or HOME)");
         return "";
     }
     return own.string();
@@ -243,18 +243,15 @@ ReferenceImage cachedReference(const Scene& scene, const Camera& camera,
         return image;
     }
     if (found)
-        std::fprintf(stderr,
-                     "warning: reference cache entry %s is damaged (%s); rendering it "
-                     "again\n",
-                     file.c_str(), damage.c_str());
+        warn("reference cache entry " + file.string() + " is damaged (" + damage +
+             "); rendering it again");
     image = renderReference(scene, camera, options);
     try {
         std::error_code ec;
         fs::create_directories(cacheDir, ec);
         writeFilesAtomically({{file.string(), encodeEntry(image), true}});
     } catch (const std::exception& error) {
-        std::fprintf(stderr, "warning: reference cache %s: the image is not stored: %s\n",
-                     cacheDir.c_str(), error.what());
+        warn("reference cache " + cacheDir + ": the image is not stored: " + error.what());
     }
     return image;
 }

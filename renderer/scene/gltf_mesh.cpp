@@ -1,4 +1,5 @@
 #include "scene/gltf_internal.h"
+#include "scene/warnings.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +10,7 @@
 namespace ssgi {
 
 void GltfWarnings::once(const std::string& message) {
-    if (said_.insert(message).second) std::cerr << "warning: " << file_ << ": " << message << "\n";
+    if (said_.insert(message).second) warn(file_ + ": " + message);
 }
 
 namespace {

@@ -6,6 +6,7 @@
 #include "scene/gltf_internal.h"
 #include "scene/primitives.h"
 #include "scene/scene_json.h"
+#include "scene/warnings.h"
 
 #include <glm/gtx/component_wise.hpp>
 
@@ -68,12 +69,12 @@ void warnIfFarFromTheOrigin(const Aabb& bounds, const std::string& file) {
                   "the scene lies %.3g units from the origin, where 32-bit floats step by %.3g "
                   "units (%.2g%% of its %.3g-unit size)",
                   double(farthest), double(step), 100.0 * step / size, double(size));
-    std::cerr << "warning: " << file << ": " << text
-              << ": its coordinates, camera and light are rounded by up to half that, which "
-                 "moves edges and shadows and can close gaps narrower than the step (the "
-                 "Cornell box stays within relMSE 0.02 of its image at the origin while the step "
-                 "is at most 0.025% of its size, 4096 units away, and not beyond); move it "
-                 "nearer the origin for an exact image\n";
+    warn(file + ": " + text +
+         ": its coordinates, camera and light are rounded by up to half that, which "
+         "moves edges and shadows and can close gaps narrower than the step (the "
+         "Cornell box stays within relMSE 0.02 of its image at the origin while the step "
+         "is at most 0.025% of its size, 4096 units away, and not beyond); move it "
+         "nearer the origin for an exact image");
 }
 
 // A scene file's light when it names none: straight down from just below the top of the bounds (so
