@@ -125,16 +125,26 @@ ReferenceImage renderReference(const Scene& scene, const Camera& camera,
         std::vector<std::thread> workers;
         for (unsigned t = 0; t < threads; ++t)
             workers.emplace_back(work);
-        // Only a visible bar is worth polling for; otherwise the pass ends when its rows do.
-        while (options.progress && rowsDone.load() < options.height) {
-            progress.show(done, last, double(rowsDone.load()) / options.height, noise);
-            std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        // Only a visible bar or a host's callback is worth polling for; otherwise the pass ends
+        // when its rows do.
+        bool stopped = false;
+        while ((options.progress || options.onProgress) && rowsDone.load() < options.height) {
+            const double fraction = double(rowsDone.load()) / options.height;
+            progress.show(done, last, fraction, noise);
+            if (options.onProgress && !options.onProgress(done, last, fraction, noise)) {
+                stopped = true;
+                nextRow = options.height; // the workers take no further row
+                break;
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(options.progress ? 50 : 10));
         }
         for (std::thread& worker : workers)
             worker.join();
+        if (stopped) throw Cancelled();
         done = last;
         noise = noiseOf(pixels);
         progress.show(done, done, 0.0, noise);
+        if (options.onProgress && !options.onProgress(done, done, 0.0, noise)) throw Cancelled();
     }
     progress.finish(done, noise);
 

@@ -4,6 +4,8 @@
 
 #include "reference/integrator.h"
 
+#include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -20,6 +22,17 @@ struct ReferenceOptions {
     bool jitter = false;
     unsigned threads = 0;  // 0: every hardware thread; the image does not depend on it
     bool progress = false; // a progress bar on stderr
+    // Called about every 50 ms while a pass renders, and after each pass, with what show()
+    // is given: samples done, the pass's end, the fraction of its rows done, the noise.
+    // Returning false stops the render: renderReference throws Cancelled. For a host that
+    // shows progress its own way, or stops on a signal (the Python module).
+    std::function<bool(uint32_t done, uint32_t passEnd, double passFraction, double noise)>
+        onProgress;
+};
+
+// Thrown by renderReference when onProgress asked it to stop.
+struct Cancelled : std::runtime_error {
+    Cancelled() : std::runtime_error("the reference render was stopped") {}
 };
 
 struct ReferenceImage {
