@@ -100,6 +100,9 @@ public:
     // (download() says so, naming both).
     void keep(ImageRef ref);
     void keepAll();
+    // Whether download() can read the image after the frame: no later pass of the frame wrote
+    // the memory it shares (kept, persistent, or written last). After the first frame.
+    bool readable(ImageRef ref) const;
     // Places and binds the transient images (planTransientMemory), once every pass is added;
     // the first record() does it if nobody did.
     void allocateTransients();

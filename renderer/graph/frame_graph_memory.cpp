@@ -72,6 +72,13 @@ void FrameGraph::allocateTransients() {
                 resources_[ids[i]].sharesWith.push_back(ids[j]);
 }
 
+bool FrameGraph::readable(ImageRef ref) const {
+    const Resource& r = resources_[resolve(ref)];
+    for (uint32_t q : r.sharesWith)
+        if (resources_[q].firstPass > r.firstPass) return false;
+    return true;
+}
+
 void FrameGraph::checkReadable(const Resource& r) const {
     for (uint32_t q : r.sharesWith)
         if (resources_[q].firstPass > r.firstPass)
