@@ -8,22 +8,38 @@
 #include "metrics/error_map.h"
 #include "metrics/golden.h"
 #include "reference/cache.h"
+#include "reference/render.h"
+#include "scene/warnings.h"
 #include "vk/context.h"
 
 #include <pybind11/stl.h>
 
 #include <filesystem>
+#include <mutex>
+#include <optional>
 
 namespace ssgi::python {
 
 namespace {
 
-// An image given as an array or as a file; `linear` says whether it holds linear radiance (an
-// array unless told otherwise, a file when it is an .exr, as compare reads files).
-metrics::Image imageArg(const py::handle& object, const std::string& what, const py::object& linear,
-                        bool& isLinear, std::string& name) {
+std::mutex warningsMutex;
+std::vector<std::string> pendingWarnings; // said by the library since the last raiseWarnings()
+PyObject* warningCategory = nullptr;      // ssgi.SsgiWarning
+
+// The library's warnings come from any thread, the GIL held or not: kept until the call that
+// caused them hands them to Python.
+void keepWarning(const std::string& text) {
+    std::lock_guard<std::mutex> lock(warningsMutex);
+    pendingWarnings.push_back(text);
+}
+
+// An image given as an array or as a file; `linear` says whether it holds linear radiance (a
+// float array unless told otherwise, an integer array never, a file when it is an .exr, as
+// compare reads files).
+metrics::Image imageArg(const py::handle& object, const std::string& what,
+                        const std::optional<bool>& linear, bool& isLinear, std::string& name) {
     if (isPath(object)) {
-        name = pathFrom(object);
+        name = pathFrom(object, what);
         isLinear = std::filesystem::path(name).extension() == ".exr";
         py::gil_scoped_release release;
         metrics::Image image = metrics::loadImage(name);
@@ -31,24 +47,27 @@ metrics::Image imageArg(const py::handle& object, const std::string& what, const
         return image;
     }
     name = what;
-    isLinear = linear.is_none() || linear.cast<bool>();
+    isLinear = linear.value_or(!holdsIntegers(object));
     return imageFrom(object, what);
 }
 
-py::dict compare(const py::object& a, const py::object& b, const py::object& exposure,
-                 const py::object& ppd, const py::object& maxDiff, const py::object& linear,
-                 bool maps) {
+py::dict compare(const ImageOrPathArg& a, const ImageOrPathArg& b, const FloatArg& exposure,
+                 const FloatArg& ppd, const std::optional<FloatArg>& maxDiff,
+                 const std::optional<BoolArg>& linearArg, const BoolArg& mapsArg) {
+    const std::optional<bool> linear =
+        linearArg ? std::optional(boolArg("linear", linearArg->value)) : std::nullopt;
+    const bool maps = boolArg("maps", mapsArg.value);
     bool aLinear = true, bLinear = true;
     std::string aName, bName;
-    const metrics::Image test = imageArg(a, "a", linear, aLinear, aName);
-    const metrics::Image reference = imageArg(b, "b", linear, bLinear, bName);
+    const metrics::Image test = imageArg(a.value, "a", linear, aLinear, aName);
+    const metrics::Image reference = imageArg(b.value, "b", linear, bLinear, bName);
     metrics::requireSize(reference, bName, test, aName);
     metrics::requireComparable(aName, aLinear, bName, bLinear, reference);
     metrics::ComparisonOptions options;
     options.linear = aLinear;
-    options.exposure = numberArg("exposure", exposure, 1e-6, 1e6);
-    options.ppd = numberArg("ppd", ppd, 1e-3, 1e4);
-    if (!maxDiff.is_none()) options.maxDiff = numberArg("max_diff", maxDiff, 0.0, 255.0);
+    options.exposure = numberArg("exposure", exposure.value, 1e-6, 1e6);
+    options.ppd = numberArg("ppd", ppd.value, 1e-3, 1e4);
+    if (maxDiff) options.maxDiff = numberArg("max_diff", maxDiff->value, 0.0, 255.0);
     metrics::Comparison c;
     std::vector<double> relative;
     std::vector<float> errorColours, flipColours;
@@ -61,6 +80,7 @@ py::dict compare(const py::object& a, const py::object& b, const py::object& exp
             flipColours = metrics::flip::flipErrorMap(c.flip.map);
         }
     }
+    raiseWarnings();
     const metrics::Figures& f = c.regions.front().second;
     py::dict d;
     d["relmse"] = f.relMse;
@@ -84,43 +104,105 @@ py::dict compare(const py::object& a, const py::object& b, const py::object& exp
     return d;
 }
 
-py::array reference(const std::shared_ptr<SceneObject>& scene, const std::string& mode,
-                    const py::object& size, const py::object& spp, const py::object& noise,
-                    const py::object& seed, const py::object& time, bool jitter,
-                    const py::object& lightRadius, const py::object& threads, bool cache,
-                    const py::object& cacheDir) {
+py::array reference(const std::shared_ptr<SceneObject>& sceneObject, const std::string& mode,
+                    const SizeArg& size, const IntArg& spp, const std::optional<FloatArg>& noise,
+                    const IntArg& seed, const std::optional<FloatArg>& time, const BoolArg& jitter,
+                    const std::optional<FloatArg>& lightRadius, const IntArg& threads,
+                    const BoolArg& cache, const std::optional<PathArg>& cacheDir,
+                    const ProgressArg& progress) {
+    SceneObject& scene = sceneArg(sceneObject);
     reference::ReferenceRequest request;
     reference::ReferenceOptions& o = request.options;
     o.mode = reference::parseMode(mode, "mode");
-    sizeArg(size, o.width, o.height, 1, kMaxImageSide); // reference's range (--size)
-    o.spp = countArg("spp", spp, 1, 1u << 24);
-    if (!noise.is_none()) o.noiseTarget = numberArg("noise", noise, 1e-6, 1.0);
-    o.seed = countArg("seed", seed, 0, UINT32_MAX);
-    o.jitter = jitter;
-    o.threads = countArg("threads", threads, 0, 1024);
-    if (!time.is_none()) request.time = float(numberArg("time", time, 0.0, 1e9));
-    if (!lightRadius.is_none())
-        request.lightRadius = float(numberArg("light_radius", lightRadius, 0.0, 1e9));
-    request.useCache = cache;
-    if (!cacheDir.is_none()) request.cacheDir = pathFrom(cacheDir);
-    reference::ReferenceImage image;
-    {
-        py::gil_scoped_release release;
-        image = reference::requestedReference(*scene->scene, scene->path, request);
+    sizeArg(size.value, o.width, o.height, 1, kMaxImageSide); // reference's range (--size)
+    o.spp = countArg("spp", spp.value, 1, 1u << 24);
+    if (noise) o.noiseTarget = numberArg("noise", noise->value, 1e-6, 1.0);
+    o.seed = countArg("seed", seed.value, 0, UINT32_MAX);
+    o.jitter = boolArg("jitter", jitter.value);
+    o.threads = countArg("threads", threads.value, 0, 1024);
+    if (time) request.time = float(numberArg("time", time->value, 0.0, 1e9));
+    if (lightRadius)
+        request.lightRadius = float(numberArg("light_radius", lightRadius->value, 0.0, 1e9));
+    request.useCache = boolArg("cache", cache.value);
+    if (cacheDir) request.cacheDir = pathFrom(cacheDir->value, "cache_dir");
+
+    // Progress: reference's bar on stderr (True; None: when stderr is a terminal), or a
+    // callable given (samples done per pixel, the spp limit, the noise). Either way the
+    // render stops for a signal (Ctrl-C) or an exception the callable raises.
+    py::object callback;
+    const py::object shown = progress.value;
+    if (PyCallable_Check(shown.ptr())) {
+        callback = shown;
+    } else if (shown.is_none()) {
+        const py::object stderrFile = py::module_::import("sys").attr("stderr");
+        o.progress = !stderrFile.is_none() && stderrFile.attr("isatty")().cast<bool>();
+    } else {
+        o.progress = boolArg("progress", shown);
     }
+    std::optional<py::error_already_set> stopped;
+    o.onProgress = [&](uint32_t done, uint32_t passEnd, double passFraction, double noise) {
+        py::gil_scoped_acquire acquire;
+        try {
+            if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+            if (callback)
+                callback(double(done) + (double(passEnd) - done) * passFraction, o.spp, noise);
+        } catch (py::error_already_set& error) {
+            stopped.emplace(std::move(error));
+            return false;
+        }
+        return true;
+    };
+    reference::ReferenceImage image;
+    try {
+        py::gil_scoped_release release;
+        image = reference::requestedReference(*scene.scene, scene.path, request);
+    } catch (const reference::Cancelled&) {
+        if (stopped) throw *stopped;
+        throw;
+    }
+    raiseWarnings();
     if (image.nonFiniteSamples > 0)
         throw std::runtime_error(std::to_string(image.nonFiniteSamples) +
                                  " samples were NaN or infinite and were dropped");
     return rgbArray(std::move(image.rgba), image.width, image.height);
 }
 
+void writeImageFile(const PathArg& path, const ImageArg& array) {
+    const std::string file = pathFrom(path.value, "path");
+    const metrics::Image image = imageFrom(array.value, "image");
+    // A PNG holds display values in [0, 1]: what lies outside is clipped, and said.
+    if (std::filesystem::path(file).extension() == ".png") {
+        size_t outside = 0;
+        for (float v : image.rgba)
+            outside += v < 0.0f || v > 1.0f;
+        if (outside > 0)
+            warn(file + ": " + std::to_string(outside) +
+                 " values outside [0, 1] are clipped to it in the PNG (it stores display values; "
+                 "ssgi.tonemap() makes them of a linear image)");
+    }
+    raiseWarnings();
+    py::gil_scoped_release release;
+    writeImage(file, image.width, image.height, image.rgba);
+}
+
 } // namespace
+
+void raiseWarnings() {
+    std::vector<std::string> texts;
+    {
+        std::lock_guard<std::mutex> lock(warningsMutex);
+        texts.swap(pendingWarnings);
+    }
+    for (const std::string& text : texts)
+        if (PyErr_WarnEx(warningCategory, text.c_str(), 1) != 0) throw py::error_already_set();
+}
 
 void defineImages(py::module_& m) {
     m.def(
         "read_image",
-        [](const py::object& path, bool alpha) {
-            const std::string file = pathFrom(path);
+        [](const PathArg& path, const BoolArg& alphaArg) {
+            const std::string file = pathFrom(path.value, "path");
+            const bool alpha = boolArg("alpha", alphaArg.value);
             metrics::Image image;
             {
                 py::gil_scoped_release release;
@@ -132,22 +214,16 @@ void defineImages(py::module_& m) {
         py::arg("path"), py::arg("alpha") = false,
         "An .exr (linear) or .png (display values in [0, 1]) as float32, height x width x 3 (x 4 "
         "with alpha=True).");
-    m.def(
-        "write_image",
-        [](const py::object& path, const py::object& array) {
-            const std::string file = pathFrom(path);
-            const metrics::Image image = imageFrom(array, "image");
-            py::gil_scoped_release release;
-            writeImage(file, image.width, image.height, image.rgba);
-        },
-        py::arg("path"), py::arg("image"),
-        "Writes an array as render writes its files: .exr linear (half floats where they hold "
-        "every value), .png 8-bit of values already display-encoded; whole or not at all.");
+    m.def("write_image", &writeImageFile, py::arg("path"), py::arg("image"),
+          "Writes an array as render writes its files: .exr linear (half floats where they hold "
+          "every value), .png 8-bit of display values in [0, 1] (outside clipped, with an "
+          "ssgi.SsgiWarning); whole or not at all. The array is (h, w) grey or (h, w, 1, 3 or "
+          "4) of floats, uint8 (scaled by 1/255) or uint16 (by 1/65535).");
     m.def(
         "tonemap",
-        [](const py::object& array, const py::object& exposure) {
-            metrics::Image image = imageFrom(array, "image");
-            const float e = float(numberArg("exposure", exposure, 1e-6, 1e6));
+        [](const ImageArg& array, const FloatArg& exposure) {
+            metrics::Image image = imageFrom(array.value, "image");
+            const float e = float(numberArg("exposure", exposure.value, 1e-6, 1e6));
             for (size_t i = 0; i < image.rgba.size(); ++i)
                 if (i % 4 != 3) image.rgba[i] = metrics::displayValue(image.rgba[i], e);
             return rgbArray(std::move(image.rgba), image.width, image.height);
@@ -157,27 +233,50 @@ void defineImages(py::module_& m) {
     m.def("compare", &compare, py::arg("a"), py::arg("b"), py::arg("exposure") = 1.0,
           py::arg("ppd") = metrics::flip::kDefaultPpd, py::arg("max_diff") = py::none(),
           py::arg("linear") = py::none(), py::arg("maps") = true,
-          "compare's figures of `a` against the reference `b` (arrays or files): relMSE, RMSE, "
-          "MAE, SSIM, mean FLIP, and the per-pixel maps.");
+          "compare's figures of `a` against the reference `b` (arrays or files): relmse, rmse, "
+          "mae, ssim, flip, pixels, non_finite_pixels, diff_fraction (with max_diff) and the "
+          "per-pixel maps. `linear`: whether arrays hold linear radiance (None: float arrays "
+          "do, uint8/uint16 ones hold display values).");
     m.def("reference", &reference, py::arg("scene"), py::kw_only(), py::arg("mode") = "full",
           py::arg("size") = py::make_tuple(256, 256), py::arg("spp") = 256,
           py::arg("noise") = py::none(), py::arg("seed") = 1, py::arg("time") = py::none(),
           py::arg("jitter") = false, py::arg("light_radius") = py::none(), py::arg("threads") = 0,
           py::arg("cache") = true, py::arg("cache_dir") = py::none(),
+          py::arg("progress") = py::none(),
           "The path-traced reference as the reference program renders it (and from the same "
-          "cache), float32, height x width x 3.");
+          "cache), float32, height x width x 3. `progress`: True shows reference's bar on "
+          "stderr (None: when stderr is a terminal); a callable is called about every 50 ms "
+          "with (samples done per pixel, spp, estimated noise). Ctrl-C stops it "
+          "(KeyboardInterrupt).");
 }
 
 } // namespace ssgi::python
 
-PYBIND11_MODULE(ssgi, m) {
+PYBIND11_MODULE(_ssgi, m) {
+    namespace py = pybind11;
+    // The classes and functions say they are ssgi's (ssgi.Scene in signatures and reprs): the
+    // package re-exports this module's names.
+    const py::object name = m.attr("__name__");
+    m.attr("__name__") = "ssgi";
     m.doc() = "The ssgi renderer, its path-traced reference and its error metrics (docs/python.md)";
     // Bad input is a ValueError (ssgi.InputError); a failure of the device a RuntimeError.
-    pybind11::register_exception<ssgi::InputError>(m, "InputError", PyExc_ValueError);
-    pybind11::register_exception<ssgi::vk::VulkanError>(m, "VulkanError", PyExc_RuntimeError);
+    py::register_exception<ssgi::InputError>(m, "InputError", PyExc_ValueError)
+        .attr("__doc__") = "Bad input (a ValueError): a scene file, a setting, a size, a view, an "
+                           "image, a path; the message is the programs' error line.";
+    py::register_exception<ssgi::vk::VulkanError>(m, "VulkanError", PyExc_RuntimeError)
+        .attr("__doc__") = "A failure of the Vulkan device (a RuntimeError), or a device that is "
+                           "not there.";
+    ssgi::python::warningCategory =
+        PyErr_NewExceptionWithDoc("ssgi.SsgiWarning",
+                                  "What the renderer, the scene loader, the reference cache or "
+                                  "the image writer warns about.",
+                                  PyExc_UserWarning, nullptr);
+    m.add_object("SsgiWarning", py::handle(ssgi::python::warningCategory));
     ssgi::python::defineScene(m);
     ssgi::python::defineRenderer(m);
     ssgi::python::defineImages(m);
+    m.attr("__name__") = name;
+    ssgi::setWarningSink(&ssgi::python::keepWarning);
     // The devices close while Python and the driver are both still there.
-    pybind11::module_::import("atexit").attr("register")(m.attr("_release_devices"));
+    py::module_::import("atexit").attr("register")(m.attr("_release_devices"));
 }

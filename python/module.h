@@ -10,12 +10,31 @@
 #include <pybind11/pybind11.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace ssgi::python {
 
 namespace py = pybind11;
+
+// Arguments taken as any Python object and checked by the function with the programs' messages
+// (NumPy scalars included), but shown in signatures and help() as the type they must hold.
+struct ObjectArg {
+    py::object value;
+};
+struct IntArg : ObjectArg {};         // int: a Python or NumPy integer, or a 0-d array of one
+struct FloatArg : ObjectArg {};       // float: any real number, exactly a double
+struct PathArg : ObjectArg {};        // str or os.PathLike
+struct SizeArg : ObjectArg {};        // (width, height)
+struct Vec3Arg : ObjectArg {};        // (x, y, z)
+struct ImageArg : ObjectArg {};       // an array of shape (h, w), (h, w, 1), (h, w, 3) or (h, w, 4)
+struct ImageOrPathArg : ObjectArg {}; // an image, or the path of an image file
+struct ProgressArg : ObjectArg {};    // None, a bool or a callable
+struct SettingsArg : ObjectArg {};    // a mapping of setting names to values
+struct SettingValue : ObjectArg {};   // a setting's value: bool, int or float
+struct NamesArg : ObjectArg {};       // a list of names
+struct BoolArg : ObjectArg {};        // True or False (NumPy's too)
 
 // H x W x 3 float32 over RGBA floats: the vector moves into the array's owner, and the array
 // views its RGB, so the pixels are not copied again.
@@ -25,13 +44,23 @@ py::array rgbaArray(std::vector<float>&& rgba, uint32_t width, uint32_t height);
 // H x W float64 of a per-pixel map.
 py::array mapArray(const std::vector<double>& map, uint32_t width, uint32_t height);
 
-// An H x W x 3 or H x W x 4 array of numbers as RGBA floats (alpha 1 where it has none);
-// InputError naming `what` for anything else.
+// An array of numbers of shape (h, w), (h, w, 1), (h, w, 3) or (h, w, 4) as RGBA floats (grey
+// as R = G = B, alpha 1 where it has none): floats as they are, uint8 scaled by 1/255, uint16
+// by 1/65535. InputError naming `what` for anything else, TypeError for what is not an array.
 metrics::Image imageFrom(const py::handle& array, const std::string& what);
+// Whether `array` holds integers (display values, as an 8- or 16-bit file stores them).
+bool holdsIntegers(const py::handle& array);
 
-// A file path given as str or os.PathLike.
-std::string pathFrom(const py::handle& path);
+// A file path given as str or os.PathLike: TypeError for anything else, ValueError for a NUL
+// character in it, each naming the argument `what`.
+std::string pathFrom(const py::handle& path, const std::string& what);
 bool isPath(const py::handle& object);
+
+// A Python or NumPy scalar, or a 0-d array, as the Python bool, int or float it equals exactly;
+// anything else as it is (for the caller to refuse by its type). ValueError for a number that no
+// double equals (a long double, a Fraction).
+py::object plainNumber(const py::handle& value, const std::string& what);
+std::string typeName(const py::handle& value);
 
 // A number checked as the programs check their options: InputError "<name>: '<value>' is not a
 // number in [lo, hi]" (cli::parseNumber), or "... is not a whole number ..." (cli::parseCount).
@@ -39,6 +68,13 @@ double numberArg(const std::string& name, const py::handle& value, double lo, do
 uint32_t countArg(const std::string& name, const py::handle& value, uint32_t lo, uint32_t hi);
 // (width, height), each in lo..hi.
 void sizeArg(const py::handle& size, uint32_t& width, uint32_t& height, uint32_t lo, uint32_t hi);
+// True, False (or NumPy's), else TypeError naming `name`.
+bool boolArg(const std::string& name, const py::handle& value);
+
+// The library's warnings (warn()) said since the last call, as Python warnings of the category
+// ssgi.SsgiWarning. Call with the GIL held, after the C++ code ran; throws error_already_set
+// when a filter makes a warning an error.
+void raiseWarnings();
 
 // A scene as Python holds it. A renderer made from it shares the loaded scene and keeps it as
 // it was: a later change of a setting copies the scene first (copy on write).
@@ -48,9 +84,49 @@ struct SceneObject {
     std::shared_ptr<Scene> scene;
     Scene& writable();
 };
+// The scene argument of a function: TypeError for None (which pybind11 lets through).
+SceneObject& sceneArg(const std::shared_ptr<SceneObject>& scene);
 
 void defineScene(py::module_& m);
 void defineRenderer(py::module_& m);
 void defineImages(py::module_& m);
 
 } // namespace ssgi::python
+
+namespace pybind11::detail {
+
+// Takes any object; the function checks it. `Name` is what signatures show.
+template <class T> struct object_arg_caster {
+    bool load(handle src, bool) {
+        value.value = reinterpret_borrow<object>(src);
+        return true;
+    }
+    static handle cast(const T& src, return_value_policy, handle) { return src.value.inc_ref(); }
+    T value;
+    operator T*() { return &value; }
+    operator T&() { return value; }
+    operator T&&() && { return std::move(value); }
+    template <typename U> using cast_op_type = movable_cast_op_type<U>;
+};
+
+#define SSGI_OBJECT_ARG(Type, Name)                                                                \
+    template <> struct type_caster<ssgi::python::Type> : object_arg_caster<ssgi::python::Type> {   \
+        static constexpr auto name = const_name(Name);                                             \
+    };
+
+SSGI_OBJECT_ARG(IntArg, "int")
+SSGI_OBJECT_ARG(FloatArg, "float")
+SSGI_OBJECT_ARG(PathArg, "Union[str, os.PathLike]")
+SSGI_OBJECT_ARG(SizeArg, "Tuple[int, int]")
+SSGI_OBJECT_ARG(Vec3Arg, "Sequence[float]")
+SSGI_OBJECT_ARG(ImageArg, "numpy.ndarray")
+SSGI_OBJECT_ARG(ImageOrPathArg, "Union[numpy.ndarray, str, os.PathLike]")
+SSGI_OBJECT_ARG(ProgressArg, "Union[bool, Callable[[float, int, float], object], None]")
+SSGI_OBJECT_ARG(SettingsArg, "Mapping[str, Union[bool, int, float]]")
+SSGI_OBJECT_ARG(SettingValue, "Union[bool, int, float]")
+SSGI_OBJECT_ARG(NamesArg, "Sequence[str]")
+SSGI_OBJECT_ARG(BoolArg, "bool")
+
+#undef SSGI_OBJECT_ARG
+
+} // namespace pybind11::detail

@@ -12,10 +12,12 @@
 
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <map>
 #include <mutex>
+#include <optional>
 
 namespace ssgi::python {
 
@@ -62,11 +64,15 @@ std::shared_ptr<Device> deviceNamed(const std::string& name) {
 
 glm::vec3 vec3Arg(const std::string& name, const py::handle& value) {
     py::tuple t;
-    try {
-        t = py::tuple(py::reinterpret_borrow<py::object>(value));
-    } catch (const py::error_already_set&) {
+    if (!py::isinstance<py::str>(value)) {
+        try {
+            t = py::tuple(py::reinterpret_borrow<py::object>(value));
+        } catch (const py::error_already_set&) {
+        }
     }
-    if (!t || t.size() != 3) throw InputError(name + ": expected three numbers (x, y, z)");
+    if (!t || t.size() != 3)
+        throw InputError(name + ": expected three numbers (x, y, z), got " +
+                         std::string(py::repr(value)));
     glm::vec3 v;
     for (int i = 0; i < 3; ++i)
         v[i] = float(numberArg(name, t[size_t(i)], -1e10, 1e10));
@@ -77,51 +83,112 @@ py::list vec3List(glm::vec3 v) {
     return py::cast(std::vector<float>{v.x, v.y, v.z});
 }
 
+std::string joined(const std::vector<std::string>& names) {
+    std::string text;
+    for (const std::string& name : names)
+        text += (text.empty() ? "" : ", ") + name;
+    return text;
+}
+
+std::vector<std::string> namesOf(const py::handle& keep) {
+    if (py::isinstance<py::str>(keep))
+        throw py::type_error("keep: expected a list of image names, got a str (keep=[" +
+                             std::string(py::repr(keep)) + "] names one)");
+    std::vector<std::string> names;
+    for (const py::handle name : keep) {
+        if (!py::isinstance<py::str>(name))
+            throw py::type_error("keep: an image's name is a str, not " + typeName(name));
+        names.push_back(name.cast<std::string>());
+    }
+    return names;
+}
+
 class RendererObject {
 public:
-    RendererObject(const std::shared_ptr<SceneObject>& scene, const py::object& size,
-                   const py::object& device, const std::string& view,
-                   const std::vector<std::string>& keep)
-        : scene_(scene->scene), sceneName_(scene->path), camera_(scene_->camera) {
+    RendererObject(const std::shared_ptr<SceneObject>& scene, const SizeArg& size,
+                   const std::optional<std::string>& device, const std::string& view,
+                   const NamesArg& keep)
+        : scene_(sceneArg(scene).scene), sceneName_(scene->path), camera_(scene_->camera) {
         RenderOptions options;
         // render's range (--size); the renderer refuses 0 and what the device cannot hold.
-        sizeArg(size, options.width, options.height, 0, 1000000);
+        sizeArg(size.value, options.width, options.height, 0, 1000000);
         options.view = view;
-        options.keep = keep;
-        device_ = deviceNamed(device.is_none() ? "" : py::str(device).cast<std::string>());
-        py::gil_scoped_release release;
-        std::lock_guard<std::mutex> lock(device_->mutex);
-        renderer_ = std::make_unique<Renderer>(*device_->ctx, *scene_, options);
+        options.keep = namesOf(keep.value);
+        device_ = deviceNamed(device.value_or(""));
+        {
+            py::gil_scoped_release release;
+            std::lock_guard<std::mutex> lock(device_->mutex);
+            renderer_ = std::make_unique<Renderer>(*device_->ctx, *scene_, options);
+        }
         view_ = view;
+        // The renderer passes over names its frame lacks; a name a user gave is checked here.
+        for (const std::string& name : options.keep)
+            if (name != "*" && !renderer_->hasImage(name)) {
+                const std::string names = joined(imageNames(true));
+                close();
+                throw InputError("keep: no image named '" + name + "' in this frame; the " +
+                                 "images it can keep: " + names);
+            }
     }
-    ~RendererObject() {
+    ~RendererObject() { close(); }
+
+    void close() {
+        if (!renderer_) return;
         py::gil_scoped_release release;
         std::lock_guard<std::mutex> lock(device_->mutex);
         renderer_.reset();
     }
 
-    py::array render(const py::handle& frames, const std::string& view) {
-        const uint32_t count = countArg("frames", frames, 1, 1000000);
+    py::array render(const IntArg& frames, const std::optional<std::string>& view) {
+        open();
+        const uint32_t count = countArg("frames", frames.value, 1, 1000000);
         std::vector<float> hdr;
+        std::optional<py::error_already_set> interrupt;
         {
             py::gil_scoped_release release;
             std::lock_guard<std::mutex> lock(device_->mutex);
-            if (view != view_) renderer_->setView(view);
-            view_ = view;
-            for (uint32_t f = 0; f < count; ++f)
+            if (view && *view != view_) {
+                renderer_->setView(*view);
+                view_ = *view;
+            }
+            for (uint32_t f = 0; f < count; ++f) {
                 renderer_->renderFrame(camera_);
-            hdr = renderer_->readImage("hdr");
-            frames_ += count;
+                ++frames_;
+                if (f + 1 == count) break;
+                // A signal (Ctrl-C) stops the call between frames; the frames done stay done.
+                py::gil_scoped_acquire acquire;
+                if (PyErr_CheckSignals() != 0) {
+                    interrupt.emplace();
+                    break;
+                }
+            }
+            if (!interrupt) hdr = renderer_->readImage("hdr");
         }
+        if (interrupt) throw *interrupt;
+        raiseWarnings();
         const VkExtent2D size = renderer_->size();
         return rgbArray(std::move(hdr), size.width, size.height);
     }
 
+    // The names read() accepts in this renderer's frame.
+    std::vector<std::string> images() const {
+        open();
+        return imageNames(false);
+    }
+
     py::array read(const std::string& name) {
-        if (frames_ == 0) throw InputError(name + ": no frame rendered yet");
-        if (!renderer_->hasImage(name))
-            throw InputError(name + ": this frame has no such image (an effect's raw output must "
-                                    "be named in keep=)");
+        open();
+        if (frames_ == 0) throw InputError(name + ": no frame rendered yet; call render() first");
+        const std::vector<std::string> names = images();
+        if (std::find(names.begin(), names.end(), name) == names.end()) {
+            if (renderer_->hasImage(name) && overwritten(name))
+                throw InputError("read: '" + name + "' shares its memory with other images of " +
+                                 "the frame, which overwrite it; name it in keep= when making " +
+                                 "the renderer (Renderer(scene, keep=['" + name +
+                                 "'])) to read it");
+            throw InputError("read: no image named '" + name +
+                             "' in this frame; it has: " + joined(names));
+        }
         std::vector<float> rgba;
         VkExtent2D size = renderer_->size();
         {
@@ -139,46 +206,53 @@ public:
         return rgbaArray(std::move(rgba), size.width, size.height);
     }
 
-    void setTime(const py::handle& seconds) {
-        const float t = float(numberArg("time", seconds, 0.0, 1e9));
+    void setTime(const FloatArg& seconds) {
+        open();
+        const float t = float(numberArg("time", seconds.value, 0.0, 1e9));
         camera_ = cameraAtTime(*scene_, t, sceneName_);
         locked([&] { renderer_->setTime(t); });
     }
 
-    void setCamera(const py::object& position, const py::object& target, const py::object& up,
-                   const py::object& fov) {
+    void setCamera(const std::optional<Vec3Arg>& position, const std::optional<Vec3Arg>& target,
+                   const std::optional<Vec3Arg>& up, const std::optional<FloatArg>& fov) {
+        open();
         Camera camera = camera_;
-        if (!position.is_none()) camera.position = vec3Arg("position", position);
-        if (!target.is_none() || !up.is_none()) {
+        if (position) camera.position = vec3Arg("position", position->value);
+        if (target || up) {
             const glm::vec3 forward = camera_.orientation * glm::vec3(0, 0, -1);
             const glm::vec3 to =
-                target.is_none() ? camera.position + forward : vec3Arg("target", target);
+                target ? vec3Arg("target", target->value) : camera.position + forward;
             const glm::vec3 upward =
-                up.is_none() ? camera_.orientation * glm::vec3(0, 1, 0) : vec3Arg("up", up);
+                up ? vec3Arg("up", up->value) : camera_.orientation * glm::vec3(0, 1, 0);
             if (!(glm::length(to - camera.position) > 0.0f))
                 throw InputError("target: the camera's position, so no direction to look in");
             if (!(glm::length(upward) > 0.0f)) throw InputError("up: a zero vector");
             camera.orientation = lookRotation(to - camera.position, upward);
         }
-        if (!fov.is_none())
-            camera.yfov = glm::radians(float(numberArg("fov", fov, kMinFovDegrees, 179.0)));
+        if (fov)
+            camera.yfov = glm::radians(float(numberArg("fov", fov->value, kMinFovDegrees, 179.0)));
         camera_ = camera;
     }
 
     py::dict camera() const {
         py::dict d;
+        const glm::vec3 forward = camera_.orientation * glm::vec3(0, 0, -1);
         d["position"] = vec3List(camera_.position);
-        d["forward"] = vec3List(camera_.orientation * glm::vec3(0, 0, -1));
+        // What set_camera takes: a point looked at (one unit ahead), the up vector and fov.
+        d["target"] = vec3List(camera_.position + forward);
+        d["forward"] = vec3List(forward);
         d["up"] = vec3List(camera_.orientation * glm::vec3(0, 1, 0));
         d["fov"] = glm::degrees(camera_.yfov);
         return d;
     }
 
     void cut() {
+        open();
         locked([&] { renderer_->cut(); });
     }
 
     py::dict profile() const {
+        open();
         FrameProfile p;
         locked([&] { p = renderer_->lastFrameProfile(); });
         py::dict passes;
@@ -192,6 +266,7 @@ public:
     }
 
     py::dict memory() const {
+        open();
         std::vector<graph::FrameGraph::HeldImage> imageMemory;
         graph::FrameGraph::SharedMemory shared;
         VkDeviceSize held = 0;
@@ -213,17 +288,62 @@ public:
     }
 
     py::tuple size() const {
+        open();
         return py::make_tuple(renderer_->size().width, renderer_->size().height);
     }
     const std::string& view() const { return view_; }
-    uint32_t cuts() const { return renderer_->cuts(); }
+    uint32_t cuts() const {
+        open();
+        return renderer_->cuts();
+    }
+    uint64_t frames() const { return frames_; }
+    bool closed() const { return !renderer_; }
     std::string device() const {
         return std::string(device_->ctx->properties.deviceName) + " (" + device_->ctx->driverName +
                ")";
     }
     bool validation() const { return device_->ctx->validationEnabled; }
+    std::string repr() const {
+        std::string text = "<ssgi.Renderer of " + std::string(py::repr(py::str(sceneName_)));
+        if (!renderer_) return text + ", closed>";
+        const VkExtent2D size = renderer_->size();
+        return text + " at " + std::to_string(size.width) + "x" + std::to_string(size.height) +
+               ", view " + std::string(py::repr(py::str(view_))) + ", on " +
+               std::string(py::repr(py::str(device()))) + ", " + std::to_string(frames_) +
+               " frames>";
+    }
 
 private:
+    // The names read() finds in the frame: its graph's images, the cached effects' histories,
+    // and the position the G-buffer's depth gives; with `withOverwritten`, also the transient
+    // images a later pass overwrites, which keep= can name.
+    std::vector<std::string> imageNames(bool withOverwritten) const {
+        std::vector<std::string> names{"gbuffer.position"};
+        for (const auto& image : renderer_->frameGraph().imageMemory())
+            if (image.historyPair.empty()) names.push_back(image.name);
+        for (const std::string& effect : renderer_->cachedEffects())
+            for (const char* part : {".history", ".count", ".meta"})
+                names.push_back(effect + part);
+        if (std::find(names.begin(), names.end(), "gbuffer.view_depth") == names.end() &&
+            renderer_->hasImage("gbuffer.view_depth"))
+            names.push_back("gbuffer.view_depth");
+        std::vector<std::string> readable;
+        for (const std::string& name : names)
+            if (renderer_->hasImage(name) && (withOverwritten || !overwritten(name)) &&
+                std::find(readable.begin(), readable.end(), name) == readable.end())
+                readable.push_back(name);
+        std::sort(readable.begin(), readable.end());
+        return readable;
+    }
+
+    // A transient image whose memory a later pass of the frame wrote (not named in keep=).
+    bool overwritten(const std::string& name) const {
+        const graph::ImageRef ref = renderer_->frameGraph().find(name);
+        return ref.valid() && !renderer_->frameGraph().readable(ref);
+    }
+    void open() const {
+        if (!renderer_) throw InputError("this renderer is closed");
+    }
     // Runs `f` on the renderer with the GIL released and the device held (another thread may be
     // rendering on it).
     template <class F> void locked(F&& f) const {
@@ -238,7 +358,8 @@ private:
     std::unique_ptr<Renderer> renderer_;
     Camera camera_;
     std::string view_;
-    uint32_t frames_ = 0;
+    // Frames rendered so far; read by another thread while render() runs.
+    std::atomic<uint64_t> frames_{0};
 };
 
 } // namespace
@@ -246,33 +367,73 @@ private:
 void defineRenderer(py::module_& m) {
     py::class_<RendererObject>(m, "Renderer",
                                "The real-time renderer of a scene at a size, on a Vulkan device "
-                               "(a substring of its name; None: SSGI_DEVICE, else the first).")
-        .def(py::init<const std::shared_ptr<SceneObject>&, const py::object&, const py::object&,
-                      const std::string&, const std::vector<std::string>&>(),
+                               "(a substring of its name; None: SSGI_DEVICE, else the first). It "
+                               "renders the scene as it was when the renderer was made, at "
+                               "`size`, in `view`, until changed; close() (or a with block) "
+                               "gives its device memory back.")
+        .def(py::init<const std::shared_ptr<SceneObject>&, const SizeArg&,
+                      const std::optional<std::string>&, const std::string&, const NamesArg&>(),
              py::arg("scene"), py::arg("size") = py::make_tuple(512, 512),
              py::arg("device") = py::none(), py::arg("view") = "final",
-             py::arg("keep") = std::vector<std::string>())
-        .def("render", &RendererObject::render, py::arg("frames") = 1, py::arg("view") = "final",
+             py::arg("keep") = py::list(),
+             "A renderer of `scene` at `size` (width, height) showing `view` (view_names()); "
+             "`keep` names images of the frame that read() must find whole (an effect's raw "
+             "output, such as 'ao'; '*' keeps all).")
+        .def("render", &RendererObject::render, py::arg("frames") = 1, py::arg("view") = py::none(),
              "Renders `frames` frames and returns the last one's linear image (the view's linear "
-             "quantity for a debug view) as float32, height x width x 3.")
+             "quantity for a debug view) as float32, height x width x 3. `view` switches the view "
+             "from now on (None: the renderer's). Ctrl-C stops it between frames "
+             "(KeyboardInterrupt); the renderer stays usable.")
         .def("read", &RendererObject::read, py::arg("name"),
-             "An image of the last frame by name (\"gbuffer.normal\", \"ldr\", ...) as float32 "
-             "RGBA, height x width x 4.")
-        .def("set_time", &RendererObject::setTime, py::arg("seconds"))
+             "An image of the last frame by name (one of images(): 'ldr', 'gbuffer.normal', ...) "
+             "as float32 RGBA, height x width x 4.")
+        .def("images", &RendererObject::images,
+             "The names read() accepts in this renderer's frame.")
+        .def("set_time", &RendererObject::setTime, py::arg("seconds"),
+             "Moves the camera along the scene's camera path and its objects along theirs, as "
+             "render --time does.")
         .def("set_camera", &RendererObject::setCamera, py::arg("position") = py::none(),
              py::arg("target") = py::none(), py::arg("up") = py::none(),
-             py::arg("fov") = py::none())
-        .def_property_readonly("camera", &RendererObject::camera)
-        .def("cut", &RendererObject::cut)
-        .def("profile", &RendererObject::profile)
-        .def("memory", &RendererObject::memory)
-        .def_property_readonly("size", &RendererObject::size)
-        .def_property_readonly("view", &RendererObject::view)
-        .def_property_readonly("cuts", &RendererObject::cuts)
-        .def_property_readonly("device", &RendererObject::device)
-        .def_property_readonly("validation", &RendererObject::validation);
+             py::arg("fov") = py::none(),
+             "Places the camera (world coordinates; fov vertical, in degrees); what is not given "
+             "stays.")
+        .def_property_readonly("camera", &RendererObject::camera,
+                               "The camera as a dict: position, target (a point one unit "
+                               "ahead, as set_camera takes it), forward, up and fov (degrees).")
+        .def("cut", &RendererObject::cut, "Starts every cached history afresh at the next frame.")
+        .def("profile", &RendererObject::profile,
+             "The last frame's {'passes': {name: ms}, 'sum_ms', 'host_ms'} (docs/profiling.md).")
+        .def("memory", &RendererObject::memory,
+             "What the frame graph holds: 'images' by name in bytes, 'shared_bytes', "
+             "'shared_images', 'held_bytes'.")
+        .def("close", &RendererObject::close,
+             "Gives the renderer's device memory back; any later call but close() raises "
+             "ValueError.")
+        .def(
+            "__enter__", [](RendererObject& r) -> RendererObject& { return r; },
+            py::return_value_policy::reference, "The renderer itself.")
+        .def(
+            "__exit__",
+            [](RendererObject& r, const py::object&, const py::object&, const py::object&) {
+                r.close();
+                return false;
+            },
+            py::arg("type"), py::arg("value"), py::arg("traceback"), "Closes the renderer.")
+        .def("__repr__", &RendererObject::repr, "The scene, the size, the view and the device.")
+        .def_property_readonly("size", &RendererObject::size, "(width, height) of the images.")
+        .def_property_readonly("view", &RendererObject::view, "The view render() shows.")
+        .def_property_readonly("cuts", &RendererObject::cuts,
+                               "Cuts so far, requested or automatic.")
+        .def_property_readonly("frames", &RendererObject::frames,
+                               "Frames rendered so far (read from another thread too).")
+        .def_property_readonly("closed", &RendererObject::closed, "Whether close() was called.")
+        .def_property_readonly("device", &RendererObject::device, "The device's name and driver.")
+        .def_property_readonly("validation", &RendererObject::validation,
+                               "Whether the validation layer is on.");
 
-    m.def("view_names", [] { return viewNames(); });
+    m.def(
+        "view_names", [] { return viewNames(); },
+        "The views a renderer can show ('final' and the debug views).");
     m.def(
         "validation_messages",
         [] {

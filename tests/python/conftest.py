@@ -10,7 +10,7 @@ import pytest  # noqa: E402
 import ssgi  # noqa: E402
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
-BUILD = pathlib.Path(os.environ.get("SSGI_BUILD_DIR", ROOT / "build"))
+BUILD = pathlib.Path(os.environ.get("SSGI_BUILD_DIR", ROOT / "build")).resolve()
 CORNELL = str(ROOT / "scenes" / "cornell-box.json")
 
 
