@@ -208,6 +208,7 @@ void defineImages(py::module_& m) {
                 py::gil_scoped_release release;
                 image = metrics::loadImage(file);
             }
+            raiseWarnings();
             return alpha ? rgbaArray(std::move(image.rgba), image.width, image.height)
                          : rgbArray(std::move(image.rgba), image.width, image.height);
         },

@@ -120,6 +120,7 @@ public:
             std::lock_guard<std::mutex> lock(device_->mutex);
             renderer_ = std::make_unique<Renderer>(*device_->ctx, *scene_, options);
         }
+        raiseWarnings();
         view_ = view;
         // The renderer passes over names its frame lacks; a name a user gave is checked here.
         for (const std::string& name : options.keep)
