@@ -261,9 +261,9 @@ PYBIND11_MODULE(_ssgi, m) {
     m.attr("__name__") = "ssgi";
     m.doc() = "The ssgi renderer, its path-traced reference and its error metrics (docs/python.md)";
     // Bad input is a ValueError (ssgi.InputError); a failure of the device a RuntimeError.
-    py::register_exception<ssgi::InputError>(m, "InputError", PyExc_ValueError)
-        .attr("__doc__") = "Bad input (a ValueError): a scene file, a setting, a size, a view, an "
-                           "image, a path; the message is the programs' error line.";
+    py::register_exception<ssgi::InputError>(m, "InputError", PyExc_ValueError).attr("__doc__") =
+        "Bad input (a ValueError): a scene file, a setting, a size, a view, an "
+        "image, a path; the message is the programs' error line.";
     py::register_exception<ssgi::vk::VulkanError>(m, "VulkanError", PyExc_RuntimeError)
         .attr("__doc__") = "A failure of the Vulkan device (a RuntimeError), or a device that is "
                            "not there.";
