@@ -14,10 +14,21 @@ from conftest import BUILD, ROOT
 CLONE = BUILD / "pip-clone"
 
 
-def clone_of_the_repository():
+def repository_files():
+    """What a clone holds: the tracked and unignored files (every file but the build folders
+    where the tree is no git checkout)."""
     listed = subprocess.run(["git", "ls-files", "-co", "--exclude-standard"], cwd=ROOT,
-                            capture_output=True, text=True, check=True).stdout.splitlines()
-    files = [f for f in listed if (ROOT / f).is_file() and not f.startswith("build")]
+                            capture_output=True, text=True)
+    if listed.returncode == 0:
+        names = listed.stdout.splitlines()
+    else:
+        names = [str(p.relative_to(ROOT)) for p in ROOT.rglob("*") if p.is_file()]
+    return [f for f in names if (ROOT / f).is_file() and not f.startswith(("build", "."))
+            and "__pycache__" not in f]
+
+
+def clone_of_the_repository():
+    files = repository_files()
     if CLONE.exists():
         for entry in CLONE.iterdir():
             if entry.name != "build-pip":
