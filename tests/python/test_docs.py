@@ -144,6 +144,16 @@ def test_read_names_what_it_accepts():
     assert "ao" in kept.images() and kept.read("ao").shape == (16, 16, 4)
 
 
+def test_the_camera_reads_as_set_camera_takes_it():
+    renderer = ssgi.Renderer(ssgi.Scene(CORNELL), (16, 16))
+    camera = renderer.camera
+    renderer.set_camera(position=(0, 1, 2), target=(0, 1, 0), up=(1, 0, 0), fov=30)
+    assert not np.allclose(renderer.camera["up"], camera["up"])
+    renderer.set_camera(**{k: camera[k] for k in ("position", "target", "up", "fov")})
+    for key in camera:
+        assert np.allclose(renderer.camera[key], camera[key], atol=1e-6), key
+
+
 def test_errors_in_pythons_words(tmp_path):
     scene = ssgi.Scene(CORNELL)
     with pytest.raises(TypeError, match="scene: expected an ssgi.Scene, got None"):
