@@ -14,6 +14,7 @@
 
 #include <pybind11/stl.h>
 
+#include <chrono>
 #include <filesystem>
 #include <mutex>
 #include <optional>
@@ -140,12 +141,18 @@ py::array reference(const std::shared_ptr<SceneObject>& sceneObject, const std::
         o.progress = boolArg("progress", shown);
     }
     std::optional<py::error_already_set> stopped;
+    // Signals are checked at every call (about every 10 ms); the callable is called at most
+    // every 50 ms, and after every pass.
+    auto lastCall = std::chrono::steady_clock::now() - std::chrono::seconds(1);
     o.onProgress = [&](uint32_t done, uint32_t passEnd, double passFraction, double noise) {
         py::gil_scoped_acquire acquire;
         try {
             if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-            if (callback)
+            const auto now = std::chrono::steady_clock::now();
+            if (callback && (done == passEnd || now - lastCall >= std::chrono::milliseconds(50))) {
+                lastCall = now;
                 callback(double(done) + (double(passEnd) - done) * passFraction, o.spp, noise);
+            }
         } catch (py::error_already_set& error) {
             stopped.emplace(std::move(error));
             return false;
@@ -246,9 +253,9 @@ void defineImages(py::module_& m) {
           py::arg("progress") = py::none(),
           "The path-traced reference as the reference program renders it (and from the same "
           "cache), float32, height x width x 3. `progress`: True shows reference's bar on "
-          "stderr (None: when stderr is a terminal); a callable is called about every 50 ms "
-          "with (samples done per pixel, spp, estimated noise). Ctrl-C stops it "
-          "(KeyboardInterrupt).");
+          "stderr (None: when stderr is a terminal); a callable is called at most every 50 ms "
+          "and after each pass with (samples done per pixel, spp, estimated noise). Ctrl-C "
+          "stops it within about 10 ms (KeyboardInterrupt).");
 }
 
 } // namespace ssgi::python

@@ -7,6 +7,7 @@
 #include <pybind11/stl.h>
 
 #include <cmath>
+#include <sstream>
 
 namespace ssgi::python {
 
@@ -35,13 +36,22 @@ double checkedValue(const std::string& name, const py::handle& given) {
         throw py::type_error("settings: setting '" + name + "' must be a number or a bool, not " +
                              std::string(py::repr(given)) + " (" + typeName(given) + ")");
     }
-    double number = 0.0;
-    try {
-        number = value.cast<double>();
-    } catch (const py::cast_error&) { // an int beyond a double's range
-        number = value.attr("__gt__")(0).cast<bool>() ? INFINITY : -INFINITY;
+    if (py::isinstance<py::int_>(value) && !py::isinstance<py::bool_>(value)) {
+        // An int no double equals is beyond every setting's range: said as it was given.
+        const SettingRow* row = rowNamed(name);
+        bool exact = false;
+        try {
+            exact = value.equal(py::float_(value));
+        } catch (const py::error_already_set&) { // beyond a double's range
+        }
+        if (!exact) {
+            std::ostringstream problem; // --set's message, the value as given
+            problem << "settings: setting '" << name << "' is " << std::string(py::str(value))
+                    << ", outside [" << row->min << ", " << row->max << "]";
+            throw InputError(problem.str());
+        }
     }
-    return checkSetting("settings", name, number);
+    return checkSetting("settings", name, value.cast<double>());
 }
 
 Scene load(const std::string& path, const SettingOverrides& overrides) {

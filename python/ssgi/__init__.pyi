@@ -206,8 +206,9 @@ def reference(
 ) -> numpy.ndarray:
     """The path-traced reference as the reference program renders it (and from the same cache),
     float32, height x width x 3. `progress`: True shows reference's bar on stderr (None: when
-    stderr is a terminal); a callable is called about every 50 ms with (samples done per pixel,
-    spp, estimated noise). Ctrl-C stops it (KeyboardInterrupt).
+    stderr is a terminal); a callable is called at most every 50 ms and after each pass with
+    (samples done per pixel, spp, estimated noise). Ctrl-C stops it within about 10 ms
+    (KeyboardInterrupt).
     """
 
 def settings_table() -> list:
