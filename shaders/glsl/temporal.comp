@@ -40,10 +40,10 @@ layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
 layout(set = 0, binding = 2) uniform sampler2D current; // wasSkipped: converged, not computed
 layout(set = 0, binding = 3) uniform sampler2D historyValue;
 layout(set = 0, binding = 4) uniform sampler2D historyViewDepth;
-layout(set = 0, binding = 5) uniform sampler2D reprojection;
+layout(set = 0, binding = 5) uniform usampler2D reprojection;
 layout(set = 0, binding = 6) uniform sampler2D historyCount;
 layout(set = 0, binding = 7) uniform writeonly image2D newValue; // rgba16f or rg16f
-layout(set = 0, binding = 8, rg16f) uniform writeonly image2D newCount; // count, due
+layout(set = 0, binding = 8, r16f) uniform writeonly image2D newCount; // packCount
 layout(push_constant) uniform TemporalBlock { TemporalConstants constants; };
 
 #include "gbuffer_position.glsl"
@@ -86,7 +86,8 @@ vec4 historyAt(Reprojection r, out float spread, out bool agree) {
     for (int i = 0; i < 4; ++i) {
         ivec2 offset = ivec2(i & 1, i >> 1);
         ivec2 q = clamp(base + offset, ivec2(0), last);
-        if ((r.footprint & (1 << i)) == 0 || texelFetch(historyCount, q, 0).r == 0.0) continue;
+        if ((r.footprint & (1 << i)) == 0 || texelFetch(historyCount, q, 0).r == 0.0)
+            continue; // -0 is never stored (packCount)
         float w = (offset.x == 1 ? f.x : 1.0 - f.x) * (offset.y == 1 ? f.y : 1.0 - f.y);
         vec2 d = (vec2(offset) - f) * toPixels;
         vec4 v = historyTexel(q);
@@ -126,7 +127,7 @@ void main() {
     vec4 position = gbufferPosition(pixel);
     if (position.w == 0.0) {
         storeHistory(pixel, texelFetch(current, pixel, 0).rgb, 0.0);
-        imageStore(newCount, pixel, vec4(0.0));
+        imageStore(newCount, pixel, vec4(packCount(0.0, false)));
         return;
     }
     CacheConstants cache = constants.cache;
@@ -264,5 +265,5 @@ void main() {
         count = count < rotations ? 0.0 : blur > REACCUMULATE_BLUR ? EXACT_BLURRED : 1.0;
     else
         count = max(min(count, rotations), 1.0);
-    imageStore(newCount, pixel, vec4(count, due ? 1.0 : 0.0, 0.0, 0.0));
+    imageStore(newCount, pixel, vec4(packCount(count, due)));
 }
