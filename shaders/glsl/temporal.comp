@@ -50,6 +50,14 @@ layout(push_constant) uniform TemporalBlock { TemporalConstants constants; };
 #include "screen_space.glsl"
 #include "temporal.glsl"
 
+// Whether two values are one to resampling: they differ by at most AGREE_TOLERANCE of the
+// larger (or of AGREE_FLOOR, where both are about 0).
+bool agreesWith(vec3 a, vec3 b) {
+    vec3 larger = max(abs(a), abs(b));
+    float largest = max(max(larger.r, larger.g), max(larger.b, AGREE_FLOOR));
+    return all(lessThanEqual(abs(a - b), vec3(AGREE_TOLERANCE * largest)));
+}
+
 // A history texel as value (rgb) and blur (a), whichever layout holds it; and the other way.
 vec4 historyTexel(ivec2 q) {
     vec4 t = texelFetch(historyValue, q, 0);
@@ -98,9 +106,8 @@ vec4 historyAt(Reprojection r, out float spread, out bool agree) {
         high = max(high, v.rgb);
         ++texels;
     }
-    float largest = max(max(abs(high.r), abs(high.g)), max(abs(high.b), AGREE_FLOOR));
     agree = (constants.cache.reprojection & REUSE_AGREEING) != 0 && texels == 4 &&
-            all(lessThanEqual(high - low, vec3(AGREE_TOLERANCE * largest)));
+            agreesWith(low, high);
     vec4 v;
     if (weights > 1e-6) {
         v = sum / weights;
@@ -136,6 +143,11 @@ void main() {
     float spread = 0.0;
     bool agree = false;
     vec4 history = r.valid ? historyAt(r, spread, agree) : vec4(0.0);
+    // Texels that agree say the value is one constant around the point, so that resampling them
+    // loses nothing; a value computed here that differs from theirs shows it is not (a needle's
+    // shadow falling between texel centres that are all lit), and the history is resampled
+    // like any other, blur and all.
+    if (agree && !wasSkipped(now)) agree = agreesWith(history.rgb, now.rgb);
     // The blur this frame's resampling added (the history's blur is its texels' plus that), and
     // what the next frame's will add if the camera moves as it did (or, from a still camera, as
     // far as one frame of motion can).
