@@ -100,7 +100,9 @@ private:
     // cache whose "<effect>.meta" `name` is (composed of two images), or none.
     graph::ImageRef imageNamed(const std::string& name) const;
     const EffectCache* metaOf(const std::string& name) const;
-    std::vector<float> readRsmVpls(graph::ImageRef ref); // readImage's decoding of "rsm.vpls"
+    std::vector<float> readRsmVpls(graph::ImageRef ref);     // readImage's decoding of "rsm.vpls"
+    std::vector<float> readReprojection(graph::ImageRef ref, // and of "reprojection"
+                                        std::optional<VkRect2D> area);
     void updateUniforms(const Camera& camera);
     // What this frame runs and with which patterns (frame_state.h), once the camera is known.
     FrameState decideFrame();

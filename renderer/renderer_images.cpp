@@ -2,6 +2,7 @@
 // the shared positions, the viewer's copy source, the cached effects and their refresh tiles.
 #include "renderer.h"
 
+#include <cmath>
 #include <cstring>
 
 namespace ssgi {
@@ -57,9 +58,11 @@ std::vector<float> Renderer::readImage(const std::string& name) {
     // A screen image is read where the output lies in it: its guard band left out.
     const VkExtent2D e = graph_->image(ref).extent;
     const bool screen = e.width == build_->size.width && e.height == build_->size.height;
+    if (name == "reprojection")
+        return readReprojection(ref, screen ? std::optional(build_->output()) : std::nullopt);
     std::vector<float> texels =
         graph_->download(ref, screen ? std::optional(build_->output()) : std::nullopt);
-    for (const EffectCache& cache : build_->caches.effects)
+    for (const EffectCache& cache : build_->caches.effects) {
         if (cache.effect.scalar &&
             name == cache.name() + ".history") // RG (value, blur) as RGB + blur
             for (size_t i = 0; i < texels.size(); i += 4) {
@@ -67,6 +70,13 @@ std::vector<float> Renderer::readImage(const std::string& name) {
                 texels[i + 1] = texels[i + 2] = value;
                 texels[i + 3] = blur;
             }
+        if (name == cache.name() + ".count") // the count, and whether it is due (1) or not (0)
+            for (size_t i = 0; i < texels.size(); i += 4) {
+                const float stored = texels[i];
+                texels[i] = std::abs(stored);
+                texels[i + 1] = std::signbit(stored) ? 1.0f : 0.0f;
+            }
+    }
     return texels;
 }
 
@@ -86,6 +96,25 @@ std::vector<float> Renderer::readRsmVpls(graph::ImageRef ref) {
             texels[i + c] = root * root * lastLightColor_[c] * share;
         }
         texels[i + 3] = axisDepth;
+    }
+    return texels;
+}
+
+// The reprojection pass's texels (shared.h REPROJECTION_*): where each pixel's surface lay in
+// last frame's image, in its texels (x, y), the offset of the texel that holds it from the
+// nearest one ((dx + 1) + 3 (dy + 1); -1 where none does) and the bilinear footprint's bits.
+std::vector<float> Renderer::readReprojection(graph::ImageRef ref, std::optional<VkRect2D> area) {
+    const std::vector<uint8_t> bytes = graph_->readTexels(ref, area);
+    std::vector<float> texels(bytes.size() / sizeof(uint32_t) * 2);
+    constexpr uint32_t position = (1u << REPROJECTION_POSITION_BITS) - 1u;
+    for (size_t i = 0; i < texels.size(); i += 4) {
+        uint32_t t[2];
+        std::memcpy(t, &bytes[2 * i], sizeof(t));
+        const bool found = (t[0] >> REPROJECTION_FOUND_BIT) & 1u;
+        texels[i] = float(t[0] & position) / float(REPROJECTION_SUBTEXEL);
+        texels[i + 1] = float(t[1] & position) / float(REPROJECTION_SUBTEXEL);
+        texels[i + 2] = found ? float((t[0] >> REPROJECTION_POSITION_BITS) & 15u) : -1.0f;
+        texels[i + 3] = float((t[1] >> REPROJECTION_POSITION_BITS) & 15u);
     }
     return texels;
 }

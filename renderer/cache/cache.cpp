@@ -5,9 +5,19 @@
 #include <glm/gtc/packing.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 namespace ssgi {
+
+uint16_t packCount(CountTexel t) {
+    return glm::packHalf1x16(t.due ? -t.count : t.count);
+}
+
+CountTexel unpackCount(uint16_t bits) {
+    const float n = glm::unpackHalf1x16(bits);
+    return {std::abs(n), std::signbit(n)};
+}
 
 EffectCache* createCache(graph::FrameGraph& graph, CacheSet& caches, const Settings& settings,
                          VkExtent2D size, const CachedEffect& effect) {
@@ -21,8 +31,9 @@ EffectCache* createCache(graph::FrameGraph& graph, CacheSet& caches, const Setti
         name + ".history", effect.scalar ? VK_FORMAT_R16G16_SFLOAT : VK_FORMAT_R16G16B16A16_SFLOAT,
         size, usage);
     // Counts are whole numbers up to cache_rotations, or a blend's effective number of samples:
-    // a half float holds them to 1/1000 of their value.
-    c.countHistory = graph.createHistory(name + ".count", VK_FORMAT_R16G16_SFLOAT, size, usage);
+    // a half float holds them to 1/1000 of their value, and its sign whether the pixel is due
+    // (temporal.glsl packCount).
+    c.countHistory = graph.createHistory(name + ".count", kCountFormat, size, usage);
     if (settings.cache_refresh)
         c.refresh = std::make_unique<TileRefresh>(
             size.width, size.height, uint32_t(settingValue(settings, "cache_tile_" + name)),
@@ -104,12 +115,13 @@ void carryCaches(graph::FrameGraph& from, const CacheSet& fromCaches, VkExtent2D
             // blur, starts over; the others blend the new frames into the resampled image, the
             // first with two thirds of the weight.
             std::vector<uint8_t> count = last(old.countHistory);
-            for (size_t i = 0; i + 4 <= count.size(); i += 4) { // RG16F: count, due
-                uint16_t n[2] = {};
-                std::memcpy(n, &count[i], 4);
-                n[0] = glm::packHalf1x16(std::min(glm::unpackHalf1x16(n[0]), 0.5f));
-                n[1] = 0; // the first frame at the new size computes what its cache lacks
-                std::memcpy(&count[i], n, 4);
+            for (size_t i = 0; i + 2 <= count.size(); i += 2) {
+                uint16_t n = 0;
+                std::memcpy(&n, &count[i], 2);
+                // The first frame at the new size computes what its cache lacks: none is due.
+                const CountTexel t = unpackCount(n);
+                n = packCount({std::min(t.count, 0.5f), false});
+                std::memcpy(&count[i], &n, 2);
             }
             to.carryHistory(cache.countHistory, fromSize, count);
             carried = true;

@@ -53,11 +53,24 @@ struct EffectCache {
     CachedEffect effect;
     uint32_t slot = 0;         // its place in CacheSet::effects and FrameState::effects
     uint32_t valueHistory = 0; // value and blur
-    uint32_t countHistory = 0; // rotation count, and whether it is due (RG16F; temporal.comp)
+    uint32_t countHistory = 0; // rotation count, and whether it is due (kCountFormat)
     std::unique_ptr<TileRefresh> refresh;
     float blurBudget = 0.0f; // squared pixels (cache_blur_<name>)
     const std::string& name() const { return effect.name; }
 };
+
+// A cache's count texel: the rotations accumulated at a pixel (0: it holds nothing; a blend's
+// effective number of samples where the blur budget cut the history's weight), and whether the
+// temporal pass asked for it to be computed next frame (reuse while moving). One half float, the
+// count's magnitude with `due` in its sign: a count that is due is at least 1, so no due pixel
+// is -0 (temporal.glsl packCount, unpackCount).
+constexpr VkFormat kCountFormat = VK_FORMAT_R16_SFLOAT;
+struct CountTexel {
+    float count = 0.0f;
+    bool due = false;
+};
+uint16_t packCount(CountTexel t);
+CountTexel unpackCount(uint16_t bits);
 
 // Every cached effect of a frame, and the history of the G-buffer's view depths they share.
 struct CacheSet {

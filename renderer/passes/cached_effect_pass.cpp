@@ -12,7 +12,7 @@ std::vector<ShaderImage> cacheBindings(const FrameBuild& build, const EffectCach
     using graph::Use;
     if (!cache)
         return {{"historyViewDepth", fallback, Use::Sampled},
-                {"reprojection", fallback, Use::Sampled},
+                {"reprojection", build.caches.reprojection, Use::Sampled},
                 {"historyCount", fallback, Use::Sampled}};
     return {
         {"historyViewDepth", FrameGraph::previous(*build.caches.viewDepthHistory), Use::Sampled},

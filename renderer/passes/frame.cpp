@@ -18,7 +18,7 @@ void addFramePasses(FrameBuild& build) {
         rasterized.shadowMapBack = addShadowMapBackPass(build);
     if (settings.indirect && settings.indirect_visibility && settings.indirect_visibility_light)
         rasterized.lightDepthMin = addLightDepthMinPass(build, rasterized.rsm);
-    if (settings.cache) addReprojectionPass(build, rasterized.gbuffer);
+    addReprojectionPass(build, rasterized.gbuffer);
     // Each cached effect returns its blended history (cached_effect_pass.h), which is what its
     // consumers read; the lighting terms hand theirs to the composite, which adds them up in the
     // order they come here (FrameBuild::addCompositeTerm).

@@ -19,9 +19,9 @@ namespace ssgi {
 // blended history, or the raw value without a cache. A lighting term's pass also hands it to the
 // composite (FrameBuild::addCompositeTerm), under its view's name: "ao", "ssdo", "indirect",
 // "sky-visibility".
-// reprojection: where each pixel's surface lay last frame, for every cached effect; made when
+// reprojection: where each pixel's surface lay last frame, for every cached effect; computed when
 // caching is on, before the first cached effect; its image is CacheSet::reprojection, which
-// cacheBindings hands every cached effect's passes.
+// cacheBindings hands every cached effect's passes (a one-texel stand-in without the cache).
 void addReprojectionPass(FrameBuild& build, const GBuffer& gbuffer);
 // shadow: fraction of the spot light's disk each pixel sees (PCF/PCSS, or a hard test).
 graph::ImageRef addShadowPass(FrameBuild& build, const GBufferAndRsm& inputs);

@@ -3,16 +3,20 @@
 // a settled frame, which computes no effect: the image is persistent and keeps what it held. Before
 // the G-buffer has a history, nothing is found anywhere.
 //   reads:  gbuffer.view_depth, gbuffer.normal, last frame's gbuffer.view_depth
-//   writes: reprojection (RGBA32F: reprojection.glsl packReprojection)
+//   writes: reprojection (RG32UI: reprojection.glsl packReprojection)
+// Without the cache the image is a texel that nothing writes: what the effects' passes bind in
+// its place (an unsigned image, as their shaders declare), which they never read.
 #include "passes/passes.h"
 
 namespace ssgi {
 
 void addReprojectionPass(FrameBuild& build, const GBuffer& gbuffer) {
-    const graph::ImageRef image =
-        build.graph.createImage("reprojection", VK_FORMAT_R32G32B32A32_SFLOAT, build.size,
-                                VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
-                                /*persistent=*/true);
+    const bool cached = build.settings.cache;
+    const graph::ImageRef image = build.graph.createImage(
+        "reprojection", VK_FORMAT_R32G32_UINT, cached ? build.size : VkExtent2D{1, 1},
+        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, /*persistent=*/true);
+    build.caches.reprojection = image;
+    if (!cached) return;
     using graph::FrameGraph;
     using graph::Use;
     const uint32_t history = *build.caches.viewDepthHistory;
@@ -28,7 +32,6 @@ void addReprojectionPass(FrameBuild& build, const GBuffer& gbuffer) {
         const bool settled = r.frame().settled;
         r.dispatch(settled ? 0 : build.size.width, settled ? 0 : build.size.height, constants);
     });
-    build.caches.reprojection = image;
 }
 
 } // namespace ssgi

@@ -77,6 +77,7 @@ uint32_t formatTexelSize(VkFormat format) {
     case VK_FORMAT_D16_UNORM:
         return 2;
     case VK_FORMAT_R16G16B16A16_SFLOAT:
+    case VK_FORMAT_R32G32_UINT:
         return 8;
     case VK_FORMAT_R32G32B32A32_SFLOAT:
     case VK_FORMAT_R32G32B32A32_UINT:

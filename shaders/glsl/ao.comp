@@ -16,7 +16,7 @@ layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; }
 layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
 layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
 layout(set = 0, binding = 3) uniform sampler2D historyViewDepth;
-layout(set = 0, binding = 4) uniform sampler2D reprojection;
+layout(set = 0, binding = 4) uniform usampler2D reprojection;
 layout(set = 0, binding = 5) uniform sampler2D historyCount;
 layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D aoImage;
 layout(push_constant) uniform AoBlock { AoConstants constants; };

@@ -44,7 +44,7 @@ layout(set = 0, binding = 4) uniform sampler2D vplNormal;
 layout(set = 0, binding = 5) uniform sampler2D vplFlux;
 layout(set = 0, binding = 6) uniform sampler2D vplList;
 layout(set = 0, binding = 7) uniform sampler2D historyViewDepth;
-layout(set = 0, binding = 8) uniform sampler2D reprojection;
+layout(set = 0, binding = 8) uniform usampler2D reprojection;
 layout(set = 0, binding = 9) uniform sampler2D historyCount;
 layout(set = 0, binding = 10, rgba16f) uniform writeonly image2D interleavedIndirect;
 layout(set = 0, binding = 11, rgba16f) uniform writeonly image2D interleavedDirectional;

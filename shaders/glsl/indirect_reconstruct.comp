@@ -26,7 +26,7 @@ layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; }
 layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
 layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
 layout(set = 0, binding = 3) uniform sampler2D historyViewDepth;
-layout(set = 0, binding = 4) uniform sampler2D reprojection;
+layout(set = 0, binding = 4) uniform usampler2D reprojection;
 layout(set = 0, binding = 5) uniform sampler2D historyCount;
 layout(set = 0, binding = 6) uniform sampler2D estimates;
 layout(set = 0, binding = 7) uniform sampler2D directionals;
@@ -54,7 +54,7 @@ float directionalAt(vec4 sums, vec3 m) {
 bool skippedEstimate(ivec2 q, out vec3 estimate) {
     estimate = vec3(0.0);
     if (constants.cache.historyValid == 0) return false;
-    SurfaceReprojection s = unpackReprojection(texelFetch(reprojection, q, 0));
+    SurfaceReprojection s = unpackReprojection(texelFetch(reprojection, q, 0).xy);
     if (!s.found || texelFetch(historyCount, s.texel, 0).r == 0.0) return false;
     estimate = texelFetch(historyValue, s.texel, 0).rgb;
     return true;

@@ -71,22 +71,39 @@ SurfaceReprojection reprojectSurface(vec3 world, vec3 normal, float epsilonPixel
     return s;
 }
 
-// The reprojection pass's image packs a SurfaceReprojection per pixel (RGBA32F): uv in xy, and
-// in z, as a whole number, found (bit 0), the texel's offset from the nearest one (bits 1-4:
-// (dx + 1) + 3 (dy + 1)) and the footprint (bits 5-8); w is unused.
-vec4 packReprojection(SurfaceReprojection s) {
-    if (!s.found) return vec4(0.0);
+// The reprojection pass's image packs a SurfaceReprojection per pixel in two 32-bit words
+// (RG32UI; the layout is shared.h's REPROJECTION_*): the point in fixed point, with a history up
+// to 2^26 / REPROJECTION_SUBTEXEL = 16384 texels a side: within half a 4096th of a texel of
+// the float point (a whole 4096th where that would cross into the next texel), so that a still
+// camera's point, a float within rounding of its texel's centre, is the centre exactly. Nothing
+// found is (0, 0).
+const uint REPROJECTION_POSITION_MASK = (1u << REPROJECTION_POSITION_BITS) - 1u;
+uvec2 packReprojection(SurfaceReprojection s) {
+    if (!s.found) return uvec2(0u);
     ivec2 size = textureSize(historyViewDepth, 0);
     ivec2 offset = s.texel - ivec2(s.uv * vec2(size)) + 1;
-    int bits = 1 | ((offset.x + 3 * offset.y) << 1) | (s.footprint << 5);
-    return vec4(s.uv, float(bits), 0.0);
+    vec2 point = s.uv * vec2(size) * float(REPROJECTION_SUBTEXEL);
+    uvec2 position = uvec2(round(point));
+    // Rounded to the nearest step, unless that takes it into the next texel: the offset counts
+    // from the texel the point lies in.
+    bvec2 crossed = notEqual(position / uint(REPROJECTION_SUBTEXEL), uvec2(s.uv * vec2(size)));
+    position = mix(position, uvec2(floor(point)), crossed);
+    position = min(position, uvec2(REPROJECTION_POSITION_MASK));
+    uint x = position.x | (uint(offset.x + 3 * offset.y) << REPROJECTION_POSITION_BITS) |
+             (1u << REPROJECTION_FOUND_BIT);
+    uint y = position.y | (uint(s.footprint) << REPROJECTION_POSITION_BITS);
+    return uvec2(x, y);
 }
-SurfaceReprojection unpackReprojection(vec4 packed) {
-    int bits = int(packed.z);
-    SurfaceReprojection s = SurfaceReprojection((bits & 1) != 0, packed.xy, ivec2(0), bits >> 5);
-    int offset = (bits >> 1) & 15;
-    s.texel = ivec2(packed.xy * vec2(textureSize(historyViewDepth, 0))) +
-              ivec2(offset % 3, offset / 3) - 1;
+SurfaceReprojection unpackReprojection(uvec2 packed) {
+    SurfaceReprojection s = SurfaceReprojection(false, vec2(0.0), ivec2(0), 0);
+    if ((packed.x & (1u << REPROJECTION_FOUND_BIT)) == 0u) return s;
+    vec2 size = vec2(textureSize(historyViewDepth, 0));
+    vec2 texels = vec2(packed & uvec2(REPROJECTION_POSITION_MASK)) / float(REPROJECTION_SUBTEXEL);
+    s.found = true;
+    s.uv = texels / size;
+    s.footprint = int((packed.y >> REPROJECTION_POSITION_BITS) & 15u);
+    int offset = int((packed.x >> REPROJECTION_POSITION_BITS) & 15u);
+    s.texel = ivec2(texels) + ivec2(offset % 3, offset / 3) - 1;
     return s;
 }
 

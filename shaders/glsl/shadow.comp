@@ -24,7 +24,7 @@ layout(set = 0, binding = 3) uniform sampler2D shadowMap; // the light's depth (
 // The depth of the nearest surface facing away from the light (variant 1; else the map again).
 layout(set = 0, binding = 4) uniform sampler2D shadowMapBack;
 layout(set = 0, binding = 5) uniform sampler2D historyViewDepth;
-layout(set = 0, binding = 6) uniform sampler2D reprojection;
+layout(set = 0, binding = 6) uniform usampler2D reprojection;
 layout(set = 0, binding = 7) uniform sampler2D historyCount;
 layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D shadowImage;
 layout(push_constant) uniform ShadowBlock { ShadowConstants constants; };

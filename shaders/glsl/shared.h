@@ -127,6 +127,15 @@ SSGI_INLINE int interleavedFilterReach(int radius, int interleave) {
     return max(radius, interleave / 2);
 }
 
+// The reprojection pass's image (RG32UI; reprojection.glsl packReprojection): each word holds,
+// in its bits 0 to REPROJECTION_POSITION_BITS - 1, where the surface lay in last frame's image
+// along one axis, in history texels times REPROJECTION_SUBTEXEL (rounded down); above them, x
+// holds the texel's offset from the nearest one ((dx + 1) + 3 (dy + 1)) and y the bilinear
+// footprint, 4 bits each, and bit REPROJECTION_FOUND_BIT of x whether a texel holds the surface.
+#define REPROJECTION_SUBTEXEL 4096
+#define REPROJECTION_POSITION_BITS 26
+#define REPROJECTION_FOUND_BIT 30
+
 // CacheConstants.refreshTileCorner packs a pixel's x and y into one int (screens are narrower).
 #define REFRESH_TILE_ROW 65536
 

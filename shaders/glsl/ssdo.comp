@@ -24,7 +24,7 @@ layout(set = 0, binding = 3) uniform sampler2D gbufferAlbedo;
 layout(set = 0, binding = 4) uniform sampler2D directRadiance;
 layout(set = 0, binding = 5) uniform sampler2D secondLayer; // peel.position (PEELING only)
 layout(set = 0, binding = 6) uniform sampler2D historyViewDepth;
-layout(set = 0, binding = 7) uniform sampler2D reprojection;
+layout(set = 0, binding = 7) uniform usampler2D reprojection;
 layout(set = 0, binding = 8) uniform sampler2D historyCount;
 layout(set = 0, binding = 9, rgba16f) uniform writeonly image2D ssdoImage;
 layout(push_constant) uniform SsdoBlock { SsdoConstants constants; };

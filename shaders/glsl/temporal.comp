@@ -40,15 +40,23 @@ layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
 layout(set = 0, binding = 2) uniform sampler2D current; // wasSkipped: converged, not computed
 layout(set = 0, binding = 3) uniform sampler2D historyValue;
 layout(set = 0, binding = 4) uniform sampler2D historyViewDepth;
-layout(set = 0, binding = 5) uniform sampler2D reprojection;
+layout(set = 0, binding = 5) uniform usampler2D reprojection;
 layout(set = 0, binding = 6) uniform sampler2D historyCount;
 layout(set = 0, binding = 7) uniform writeonly image2D newValue; // rgba16f or rg16f
-layout(set = 0, binding = 8, rg16f) uniform writeonly image2D newCount; // count, due
+layout(set = 0, binding = 8, r16f) uniform writeonly image2D newCount; // packCount
 layout(push_constant) uniform TemporalBlock { TemporalConstants constants; };
 
 #include "gbuffer_position.glsl"
 #include "screen_space.glsl"
 #include "temporal.glsl"
+
+// Whether two values are one to resampling: they differ by at most AGREE_TOLERANCE of the
+// larger (or of AGREE_FLOOR, where both are about 0).
+bool agreesWith(vec3 a, vec3 b) {
+    vec3 larger = max(abs(a), abs(b));
+    float largest = max(max(larger.r, larger.g), max(larger.b, AGREE_FLOOR));
+    return all(lessThanEqual(abs(a - b), vec3(AGREE_TOLERANCE * largest)));
+}
 
 // A history texel as value (rgb) and blur (a), whichever layout holds it; and the other way.
 vec4 historyTexel(ivec2 q) {
@@ -86,7 +94,8 @@ vec4 historyAt(Reprojection r, out float spread, out bool agree) {
     for (int i = 0; i < 4; ++i) {
         ivec2 offset = ivec2(i & 1, i >> 1);
         ivec2 q = clamp(base + offset, ivec2(0), last);
-        if ((r.footprint & (1 << i)) == 0 || texelFetch(historyCount, q, 0).r == 0.0) continue;
+        if ((r.footprint & (1 << i)) == 0 || texelFetch(historyCount, q, 0).r == 0.0)
+            continue; // -0 is never stored (packCount)
         float w = (offset.x == 1 ? f.x : 1.0 - f.x) * (offset.y == 1 ? f.y : 1.0 - f.y);
         vec2 d = (vec2(offset) - f) * toPixels;
         vec4 v = historyTexel(q);
@@ -97,9 +106,8 @@ vec4 historyAt(Reprojection r, out float spread, out bool agree) {
         high = max(high, v.rgb);
         ++texels;
     }
-    float largest = max(max(abs(high.r), abs(high.g)), max(abs(high.b), AGREE_FLOOR));
     agree = (constants.cache.reprojection & REUSE_AGREEING) != 0 && texels == 4 &&
-            all(lessThanEqual(high - low, vec3(AGREE_TOLERANCE * largest)));
+            agreesWith(low, high);
     vec4 v;
     if (weights > 1e-6) {
         v = sum / weights;
@@ -126,7 +134,7 @@ void main() {
     vec4 position = gbufferPosition(pixel);
     if (position.w == 0.0) {
         storeHistory(pixel, texelFetch(current, pixel, 0).rgb, 0.0);
-        imageStore(newCount, pixel, vec4(0.0));
+        imageStore(newCount, pixel, vec4(packCount(0.0, false)));
         return;
     }
     CacheConstants cache = constants.cache;
@@ -135,6 +143,11 @@ void main() {
     float spread = 0.0;
     bool agree = false;
     vec4 history = r.valid ? historyAt(r, spread, agree) : vec4(0.0);
+    // Texels that agree say the value is one constant around the point, so that resampling them
+    // loses nothing; a value computed here that differs from theirs shows it is not (a needle's
+    // shadow falling between texel centres that are all lit), and the history is resampled
+    // like any other, blur and all.
+    if (agree && !wasSkipped(now)) agree = agreesWith(history.rgb, now.rgb);
     // The blur this frame's resampling added (the history's blur is its texels' plus that), and
     // what the next frame's will add if the camera moves as it did (or, from a still camera, as
     // far as one frame of motion can).
@@ -264,5 +277,5 @@ void main() {
         count = count < rotations ? 0.0 : blur > REACCUMULATE_BLUR ? EXACT_BLURRED : 1.0;
     else
         count = max(min(count, rotations), 1.0);
-    imageStore(newCount, pixel, vec4(count, due ? 1.0 : 0.0, 0.0, 0.0));
+    imageStore(newCount, pixel, vec4(packCount(count, due)));
 }

@@ -3,7 +3,7 @@
 // Needs: frame, historyViewDepth (last frame's G-buffer view depths, shared by every cached
 // effect), reprojection (the reprojection pass's image of this frame, reproject.comp),
 // historyCount (the effect's rotation counts, 0 where it holds nothing, and whether a pixel is
-// due), screen_space.glsl; loadPixelToWorld() called in main().
+// due: packCount), screen_space.glsl; loadPixelToWorld() called in main().
 #ifndef SSGI_TEMPORAL_GLSL
 #define SSGI_TEMPORAL_GLSL
 
@@ -20,6 +20,19 @@ bool wasSkipped(vec4 value) {
 // An exact effect (CachedEffect::exact: computed without noise) converges in one rotation.
 bool exactEffect(CacheConstants cache) {
     return cache.rotations <= 1;
+}
+
+// A cache's count texel (R16F, EffectCache::countHistory, cache.h CountTexel): the rotations
+// accumulated (0: the pixel holds nothing), negative where the pixel is due. A due pixel's count
+// is at least 1, so -0 never stands for "due, holds nothing".
+float packCount(float count, bool due) {
+    return due ? -count : count;
+}
+float unpackCount(float stored) {
+    return abs(stored);
+}
+bool unpackDue(float stored) {
+    return stored < 0.0;
 }
 
 struct Reprojection {
@@ -102,17 +115,17 @@ bool gatherMeetsEdge(vec3 world, vec4 previousClip, CacheConstants cache) {
 Reprojection reproject(ivec2 pixel, vec3 world, CacheConstants cache) {
     Reprojection r = Reprojection(false, vec2(0.0), ivec2(0), 0.0, 0, false);
     if (cache.historyValid == 0 || movedNearby(world, cache)) return r;
-    SurfaceReprojection s = unpackReprojection(texelFetch(reprojection, pixel, 0));
+    SurfaceReprojection s = unpackReprojection(texelFetch(reprojection, pixel, 0).xy);
     if (!s.found) return r;
-    vec2 count = texelFetch(historyCount, s.texel, 0).rg;
-    if (count.r == 0.0) return r;
+    float stored = texelFetch(historyCount, s.texel, 0).r;
+    if (stored == 0.0) return r;
     if (gatherMeetsEdge(world, frame.previousViewProjection * vec4(world, 1.0), cache)) return r;
     r.valid = true;
     r.uv = s.uv;
     r.texel = s.texel;
-    r.count = count.r;
+    r.count = unpackCount(stored);
     r.footprint = s.footprint;
-    r.due = count.g > 0.5;
+    r.due = unpackDue(stored);
     return r;
 }
 

@@ -20,7 +20,7 @@ layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
 layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
 layout(set = 0, binding = 3) uniform usampler2D rsmVpls; // rsm_vpl.glsl
 layout(set = 0, binding = 4) uniform sampler2D historyViewDepth;
-layout(set = 0, binding = 5) uniform sampler2D reprojection;
+layout(set = 0, binding = 5) uniform usampler2D reprojection;
 layout(set = 0, binding = 6) uniform sampler2D historyCount;
 layout(set = 0, binding = 7) uniform sampler2D halfIndirect;
 layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D indirectImage;

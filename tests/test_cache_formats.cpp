@@ -1,0 +1,132 @@
+// The cache's packed images hold every value the cache writes: a count's half float with its due
+// flag in the sign (cache.h packCount; temporal.glsl), and the reprojection's fixed-point point,
+// texel offset and footprint in two words (shared.h REPROJECTION_*; reprojection.glsl).
+#include "cache/cache.h"
+#include "renderer.h"
+#include "scene/camera.h"
+#include "support.h"
+
+#include <cmath>
+
+using namespace ssgi;
+
+namespace {
+
+// Every count the temporal pass stores: 0 (holds nothing), half a sample (a resize), 1, an exact
+// effect's EXACT_BLURRED (1.5), whole counts up to the rotations (the default 36 and a long 1000),
+// and the effective number of samples where the blur budget cut the history's weight,
+// 1 / ((1 - w)^2 / n + w^2), from a sliver of this frame's weight to nearly all of it.
+std::vector<float> countsTheCacheWrites() {
+    std::vector<float> counts = {0.0f, 0.5f, 1.0f, 1.5f, 2.0f, 35.0f, 36.0f, 1000.0f};
+    for (float n : {1.0f, 2.0f, 35.0f, 36.0f})
+        for (float w : {1e-3f, 0.01f, 0.1f, 0.5f, 0.9f, 0.999f})
+            counts.push_back(1.0f / ((1.0f - w) * (1.0f - w) / n + w * w));
+    return counts;
+}
+
+TEST(CacheFormats, ACountAndItsDueFlagRoundTripEveryValueTheCacheWrites) {
+    for (float count : countsTheCacheWrites())
+        for (bool due : {false, true}) {
+            if (due && count < 1.0f) continue; // a due pixel holds one computation or more
+            const CountTexel back = unpackCount(packCount({count, due}));
+            EXPECT_EQ(back.due, due) << count;
+            // A half float: whole numbers to 2048 exactly, the rest to 11 bits.
+            if (count == std::floor(count) && count <= 2048.0f)
+                EXPECT_EQ(back.count, count) << due;
+            else
+                EXPECT_NEAR(back.count, count, count / 2048.0f) << due;
+        }
+    // Holding nothing is +0, never due.
+    const CountTexel none = unpackCount(packCount({0.0f, false}));
+    EXPECT_EQ(none.count, 0.0f);
+    EXPECT_FALSE(none.due);
+}
+
+class CacheFormatsTest : public test::VulkanTest {
+protected:
+    static constexpr uint32_t kSize = 64;
+    Scene scene = [] {
+        Scene s = loadScene(test::sourcePath("scenes/cornell-box.json"));
+        s.settings.cache_reuse_moving = 1; // pixels fall due while the camera moves
+        return s;
+    }();
+    Camera turned(float degrees) const {
+        Camera c = scene.camera;
+        c.orientation = glm::angleAxis(glm::radians(degrees), glm::vec3(0, 1, 0)) * c.orientation;
+        return c;
+    }
+};
+
+// On the device: the counts a panning camera leaves lie within [0, rotations], and a due pixel
+// (its sign) holds one computation or more; some fall due, so the sign is exercised.
+TEST_F(CacheFormatsTest, TheDevicesCountsStayInRangeAndCarryTheirDueFlag) {
+    Renderer r(test::context(), scene, RenderOptions{kSize, kSize});
+    for (int f = 0; f < 40; ++f)
+        r.renderFrame(turned(0.0f));
+    size_t due = 0, held = 0;
+    for (int f = 1; f <= 8; ++f) {
+        r.renderFrame(turned(0.15f * float(f)));
+        for (const std::string effect : {"shadow", "ao", "indirect"}) {
+            const std::vector<float> count = r.readImage(effect + ".count");
+            for (size_t i = 0; i < count.size(); i += 4) {
+                ASSERT_GE(count[i], 0.0f);
+                ASSERT_LE(count[i], float(scene.settings.cache_rotations));
+                if (count[i + 1] > 0.5f) {
+                    ASSERT_GE(count[i], 1.0f) << effect << " pixel " << i / 4;
+                    ++due;
+                }
+                held += count[i] > 0.0f;
+            }
+        }
+    }
+    EXPECT_GT(held, 0u);
+    EXPECT_GT(due, 0u);
+}
+
+// The reprojection's point, offset and footprint, against the same reprojection done on the CPU:
+// a still camera's pixels land on their own texel centres exactly (the fixed point holds a centre
+// exactly), and a turned camera's within a 4096th of a texel of the float point plus the float
+// arithmetic's rounding; the texel that holds the surface is the nearest on these flat walls.
+TEST_F(CacheFormatsTest, TheReprojectionHoldsItsPointOffsetAndFootprint) {
+    Renderer r(test::context(), scene, RenderOptions{kSize, kSize});
+    for (int f = 0; f < 3; ++f)
+        r.renderFrame(turned(0.0f));
+    std::vector<float> still = r.readImage("reprojection");
+    std::vector<float> position = r.readImage("gbuffer.position");
+    size_t found = 0, whole = 0;
+    for (uint32_t y = 0; y < kSize; ++y)
+        for (uint32_t x = 0; x < kSize; ++x) {
+            const float* t = &still[4 * (y * kSize + x)];
+            if (position[4 * (y * kSize + x) + 3] == 0.0f) continue;
+            ASSERT_EQ(t[2], 4.0f) << x << "," << y; // found, the nearest texel itself
+            EXPECT_EQ(t[0], float(x) + 0.5f);
+            EXPECT_EQ(t[1], float(y) + 0.5f);
+            ++found;
+            whole += t[3] == 15.0f;
+        }
+    EXPECT_GT(found, kSize * kSize / 2);
+    EXPECT_GT(whole, found / 2); // most pixels' four bilinear texels hold their surface
+
+    const Camera before = turned(0.0f), after = turned(0.37f);
+    r.renderFrame(after);
+    const std::vector<float> moved = r.readImage("reprojection");
+    position = r.readImage("gbuffer.position");
+    const glm::mat4 previous = projectionMatrix(before, 1.0f) * viewMatrix(before);
+    size_t compared = 0;
+    for (size_t i = 0; i < moved.size(); i += 4) {
+        if (position[i + 3] == 0.0f || moved[i + 2] < 0.0f) continue;
+        glm::vec3 uvd;
+        ASSERT_TRUE(projectToTexture(
+            previous, glm::vec3(position[i], position[i + 1], position[i + 2]), uvd));
+        const glm::vec2 expected = glm::vec2(uvd) * float(kSize);
+        EXPECT_NEAR(moved[i], expected.x, 2e-3f) << i / 4;
+        EXPECT_NEAR(moved[i + 1], expected.y, 2e-3f) << i / 4;
+        EXPECT_GE(moved[i + 2], 0.0f);
+        EXPECT_LE(moved[i + 2], 8.0f);
+        EXPECT_LE(moved[i + 3], 15.0f);
+        ++compared;
+    }
+    EXPECT_GT(compared, found / 2);
+}
+
+} // namespace
