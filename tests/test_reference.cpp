@@ -375,6 +375,22 @@ TEST(Reference, CacheReturnsTheSameImageAndKeysFollowTheContent) {
     ReferenceOptions more = o;
     more.spp = 8;
     EXPECT_NE(referenceKey(scene, scene.camera, more), key) << "the sample count changed";
+    // An entry copied under another request's key (another seed: same size, same sample count)
+    // is not that request's image: it is reported and rendered again.
+    ReferenceOptions otherSeed = o;
+    otherSeed.seed = 2;
+    const fs::path otherEntry = dir / (referenceKey(scene, scene.camera, otherSeed) + ".ref");
+    fs::copy_file(dir / (key + ".ref"), otherEntry);
+    testing::internal::CaptureStderr();
+    const ReferenceImage other =
+        cachedReference(scene, scene.camera, otherSeed, dir.string(), &hit);
+    const std::string said = testing::internal::GetCapturedStderr();
+    EXPECT_FALSE(hit);
+    EXPECT_NE(other.rgba, first.rgba);
+    EXPECT_NE(said.find("is damaged (its checksum does not match its contents and its name)"),
+              std::string::npos)
+        << said;
+    EXPECT_EQ(other.rgba, renderReference(scene, scene.camera, otherSeed).rgba);
     fs::remove_all(dir);
 }
 
