@@ -355,6 +355,43 @@ TEST(Reference, NoiseTargetStopsEarlyOnAnHonestEstimate) {
     EXPECT_NEAR(actual, image.noise, 0.3 * image.noise);
 }
 
+// A pixel lit by a rare path: a wall outside a narrow spot light's cone, lit only by the patch of
+// floor the spot lights, which about one cosine sample in 80 finds. Its first samples are all 0
+// (no variance, estimate 0): the noise target must not stop on that, whether it is reachable
+// (a black pixel reported at 0% noise, relMSE 1) or not (1e-6 on the Cornell box).
+TEST(Reference, NoiseTargetNeedsSamplesAndAVarianceBeforeItStops) {
+    const Scene wall = testScene("ref-narrow-spot-wall.json");
+    ReferenceOptions o = options(Mode::Full, 1, 65536);
+    o.seed = 2;
+    const double truth = renderReference(wall, wall.camera, o).rgba[0];
+    for (uint64_t seed = 1; seed <= 4; ++seed) {
+        o.seed = seed;
+        o.noiseTarget = 0.2;
+        const ReferenceImage image = renderReference(wall, wall.camera, o);
+        std::printf("seed %llu: %u spp, estimated noise %.3f, value %.4f against %.4f\n",
+                    (unsigned long long)seed, image.samples, image.noise, image.rgba[0], truth);
+        EXPECT_GE(image.samples, kMinSamplesForNoise);
+        EXPECT_GT(image.noise, 0.0);
+        EXPECT_LE(image.noise, 0.2);
+        // Within 4 estimated standard errors of the 65536-sample value (itself within 4%).
+        EXPECT_NEAR(image.rgba[0], truth, 4.0 * image.noise * truth);
+    }
+    const Scene box = loadScene(test::sourcePath("scenes/cornell-box.json"));
+    ReferenceOptions tiny = options(Mode::Full, 1, 512);
+    tiny.noiseTarget = 1e-6;
+    const ReferenceImage unreachable = renderReference(box, box.camera, tiny);
+    EXPECT_EQ(unreachable.samples, 512u) << "a target below the noise runs to the sample cap";
+    EXPECT_GT(unreachable.rgba[0], 0.0f);
+    // The direct light of a point light draws no random number: its first samples are exact.
+    Scene point = box;
+    point.light.radius = 0.0f;
+    ReferenceOptions direct = options(Mode::Direct, 16, 4096);
+    direct.noiseTarget = 0.01;
+    const ReferenceImage exact = renderReference(point, point.camera, direct);
+    EXPECT_EQ(exact.samples, 2u);
+    EXPECT_EQ(exact.noise, 0.0);
+}
+
 TEST(Reference, CacheReturnsTheSameImageAndKeysFollowTheContent) {
     const fs::path dir = fs::temp_directory_path() / ("ssgi-ref-cache-" + std::to_string(getpid()));
     fs::remove_all(dir);

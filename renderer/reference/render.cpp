@@ -1,5 +1,6 @@
 #include "reference/render.h"
 
+#include "metrics/metrics.h"
 #include "reference/progress.h"
 #include "scene/camera.h"
 
@@ -33,7 +34,7 @@ double noiseOf(const std::vector<PixelSums>& pixels) {
     for (const PixelSums& p : pixels) {
         if (p.count < 2) return INFINITY;
         const double varianceOfMean = p.squaredDeviations / double(p.count - 1) / double(p.count);
-        total += varianceOfMean / (p.meanLuminance * p.meanLuminance + 0.01);
+        total += varianceOfMean / (p.meanLuminance * p.meanLuminance + metrics::kRelMseEpsilon);
     }
     return pixels.empty() ? 0.0 : std::sqrt(total / double(pixels.size()));
 }
@@ -67,10 +68,20 @@ void renderRow(const Integrator& integrator, const CameraRays& camera,
     }
 }
 
+// Whether the noise target is met. A pixel whose first samples all missed what lights it (a
+// rare path to a narrow spot light) has no variance yet and looks converged: the estimate is
+// believed only after kMinSamplesForNoise samples of every pixel, and an estimate of exactly 0
+// (no pixel's samples ever differed) only where no sample draws a random number.
+bool noiseTargetMet(const ReferenceOptions& options, uint32_t done, double noise, bool exact) {
+    if (!(options.noiseTarget > 0.0) || !(noise <= options.noiseTarget)) return false;
+    return exact || (done >= kMinSamplesForNoise && noise > 0.0);
+}
+
 // How many samples the next pass takes: doubling, and no more than the stopping rules need.
 uint32_t nextPassSize(const ReferenceOptions& options, uint32_t done, double noise) {
     uint32_t size = std::clamp(done, 2u, kLargestPass);
-    if (options.noiseTarget > 0.0 && std::isfinite(noise) && noise > 0.0) {
+    if (options.noiseTarget > 0.0 && std::isfinite(noise) && noise > 0.0 &&
+        done >= kMinSamplesForNoise) {
         const double needed =
             double(done) * (noise / options.noiseTarget) * (noise / options.noiseTarget);
         size = uint32_t(std::clamp(std::ceil(needed - double(done)), 1.0, double(size)));
@@ -106,6 +117,7 @@ ReferenceImage renderReference(const Scene& scene, const Camera& camera,
     if (options.spp == 0) throw InputError("--spp: must be at least 1");
     const RayScene rays(scene);
     const Integrator integrator(scene, rays, options.mode);
+    const bool exact = integrator.drawsNoRandomNumber() && !options.jitter;
     const CameraRays cameraRays(camera, options.width, options.height);
     const unsigned threads =
         options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
@@ -115,7 +127,7 @@ ReferenceImage renderReference(const Scene& scene, const Camera& camera,
     Progress progress(options.progress, options.spp, options.noiseTarget);
     uint32_t done = 0;
     double noise = INFINITY;
-    while (done < options.spp && !(options.noiseTarget > 0.0 && noise <= options.noiseTarget)) {
+    while (done < options.spp && !noiseTargetMet(options, done, noise, exact)) {
         const uint32_t last = done + nextPassSize(options, done, noise);
         std::atomic<uint32_t> nextRow{0}, rowsDone{0};
         auto work = [&] {
