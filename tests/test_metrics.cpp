@@ -148,12 +148,15 @@ protected:
     void TearDown() override { fs::remove_all(dir); }
     // Runs `program` (compare or reference) with `arguments`; stdout and stderr in `output`.
     int run(const std::string& program, const std::string& arguments, std::string& output) {
-        const fs::path binary =
-            fs::read_symlink("/proc/self/exe").parent_path().parent_path() / program;
-        if (!fs::exists(binary)) ADD_FAILURE() << binary << " is not built";
-        const test::CommandResult r = test::runCommand(binary.string() + " " + arguments);
+        const test::CommandResult r = test::runCommand(binary(program) + " " + arguments);
         output = r.output;
         return r.status;
+    }
+    static std::string binary(const std::string& program) {
+        const fs::path path =
+            fs::read_symlink("/proc/self/exe").parent_path().parent_path() / program;
+        if (!fs::exists(path)) ADD_FAILURE() << path << " is not built";
+        return path.string();
     }
     std::string image(const std::string& name, const Image& image) {
         writeImage((dir / name).string(), image.width, image.height, image.rgba);
@@ -298,6 +301,22 @@ TEST_F(Program, ReferenceNamesBadInput) {
     }
     EXPECT_FALSE(fs::exists(dir / "x.exr"));
     EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+
+// A size whose sums do not fit in memory is refused before anything is allocated, naming the size
+// and the memory, not met with std::bad_alloc (or the process killed) after seconds of allocating.
+// The address space is limited to 4 GB here so that the answer is the same on any machine.
+TEST_F(Program, ReferenceRefusesASizeBeyondMemory) {
+    const test::CommandResult r = test::runCommand(
+        "ulimit -v 4000000 && " + binary("reference") + " " +
+        sourcePath("scenes/cornell-box.json") + " --quiet --no-cache --size 16384x16384 --output " +
+        (dir / "huge.exr").string());
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_NE(r.output.find("error: --size 16384x16384: the reference needs 19.3 GB of memory"),
+              std::string::npos)
+        << r.output;
+    EXPECT_EQ(r.output.find("bad_alloc"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir / "huge.exr"));
 }
 
 } // namespace
