@@ -29,12 +29,14 @@ void writeImages(const std::vector<ImageFile>& images);
 constexpr int kMaxImageSide = 16384;
 
 // Reads an image as RGBA floats, the colour as the file stores it (a PNG's colour is not
-// multiplied by its alpha); a grey image gives R = G = B, and alpha is 1 where the file has none.
-// A .png is read as a PNG only and an .exr as an OpenEXR only (an EXR's header is checked
-// first: no attribute may declare more bytes than the file holds); other names as OpenImageIO
-// finds them. InputError for anything else: a file that is not a regular file or not what its
-// name says, a size beyond kMaxImageSide or beyond memory, channels that are not grey, grey and
-// alpha, RGB or RGBA.
+// multiplied by its alpha). Channels are taken by name: R, G, B (and A) as the colour; a grey
+// image, Y (and A) and nothing else, gives R = G = B; alpha is 1 where the file has none; other
+// channels beside R, G, B (a depth Z) are not read. A .png is read as a PNG only and an .exr as
+// an OpenEXR only (an EXR's header is checked first: no attribute may declare more bytes than
+// the file holds); other names as OpenImageIO finds them. InputError for anything else: a file
+// that is not a regular file or not what its name says, a size beyond kMaxImageSide or beyond
+// memory, channels that are neither R, G, B nor grey (X, Y, Z; R, G; layers such as
+// normal.X), the message naming the channels found.
 std::vector<float> readImage(const std::string& path, uint32_t& width, uint32_t& height);
 
 } // namespace ssgi

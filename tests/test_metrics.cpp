@@ -231,6 +231,48 @@ TEST_F(Program, CompareNamesBadInput) {
     EXPECT_NE(output.find("1 pixels are NaN or infinite"), std::string::npos) << output;
 }
 
+// An EXR's channels are read by name: R, G, B and A wherever they stand (a depth Z beside them
+// is left alone), Y alone as grey; X, Y, Z, a pair R, G, or layers such as normal.X are refused
+// naming what the file holds, never compared as RGB by position.
+TEST_F(Program, CompareReadsChannelsByName) {
+    const auto exr = [&](const std::string& name, const std::vector<std::string>& channels) {
+        const std::string path = (dir / name).string();
+        OIIO::ImageSpec spec(4, 3, int(channels.size()), OIIO::TypeDesc::FLOAT);
+        spec.channelnames = channels;
+        std::vector<float> values(12 * channels.size());
+        for (size_t i = 0; i < values.size(); ++i)
+            values[i] = 0.1f * float(i % channels.size() + 1); // channel k holds 0.1 (k + 1)
+        auto out = OIIO::ImageOutput::create(path);
+        EXPECT_TRUE(out && out->open(path, spec) &&
+                    out->write_image(OIIO::TypeDesc::FLOAT, values.data()) && out->close());
+        return path;
+    };
+    uint32_t w = 0, h = 0;
+    // Written Z, B, R, A, G: R is the file's third channel, G its fifth.
+    const std::vector<float> rgba = readImage(exr("zbrag.exr", {"Z", "B", "R", "A", "G"}), w, h);
+    ASSERT_EQ(rgba.size(), 4u * 12u);
+    EXPECT_FLOAT_EQ(rgba[0], 0.3f);
+    EXPECT_FLOAT_EQ(rgba[1], 0.5f);
+    EXPECT_FLOAT_EQ(rgba[2], 0.2f);
+    EXPECT_FLOAT_EQ(rgba[3], 0.4f);
+    const std::vector<float> grey = readImage(exr("ya.exr", {"Y", "A"}), w, h);
+    EXPECT_EQ(std::vector<float>(grey.begin(), grey.begin() + 4),
+              (std::vector<float>{0.1f, 0.1f, 0.1f, 0.2f}));
+    const std::pair<std::vector<std::string>, std::string> refused[] = {
+        {{"X", "Y", "Z"}, "X, Y, Z"},
+        {{"R", "G"}, "R, G"},
+        {{"Y", "Z"}, "Y, Z"},
+        {{"normal.X", "normal.Y", "normal.Z", "depth.Z"}, "depth.Z, normal.X, normal.Y, normal.Z"}};
+    for (const auto& [channels, named] : refused) {
+        const std::string path = exr("refused.exr", channels);
+        std::string output;
+        EXPECT_EQ(run("compare", path + " " + path, output), 2) << named << "\n" << output;
+        EXPECT_NE(output.find("error: " + path + ": holds the channels " + named + ";"),
+                  std::string::npos)
+            << output;
+    }
+}
+
 // Every scene in scenes/ renders, to an image that is neither black nor NaN.
 TEST_F(Program, ReferenceRendersEveryScene) {
     size_t scenes = 0;
