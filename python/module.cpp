@@ -21,12 +21,12 @@ namespace {
 // An image given as an array or as a file; `linear` says whether it holds linear radiance (an
 // array unless told otherwise, a file when it is an .exr, as compare reads files).
 metrics::Image imageArg(const py::handle& object, const std::string& what, const py::object& linear,
-                        bool& isLinear, std::string& name) {
+                        bool& isLinear, std::string& name, ImageAttributes* attributes = nullptr) {
     if (isPath(object)) {
         name = pathFrom(object);
         isLinear = std::filesystem::path(name).extension() == ".exr";
         py::gil_scoped_release release;
-        metrics::Image image = metrics::loadImage(name);
+        metrics::Image image = metrics::loadImage(name, attributes);
         metrics::warnIfNotOpaque(image, name); // as compare warns
         return image;
     }
@@ -41,7 +41,9 @@ py::dict compare(const py::object& a, const py::object& b, const py::object& exp
     bool aLinear = true, bLinear = true;
     std::string aName, bName;
     const metrics::Image test = imageArg(a, "a", linear, aLinear, aName);
-    const metrics::Image reference = imageArg(b, "b", linear, bLinear, bName);
+    ImageAttributes referenceHeader; // a reference's EXR records its own noise
+    const metrics::Image reference = imageArg(b, "b", linear, bLinear, bName, &referenceHeader);
+    const metrics::RecordedNoise referenceNoise = metrics::recordedNoise(referenceHeader);
     metrics::requireSize(reference, bName, test, aName);
     metrics::requireComparable(aName, aLinear, bName, bLinear, reference);
     metrics::ComparisonOptions options;
@@ -70,6 +72,11 @@ py::dict compare(const py::object& a, const py::object& b, const py::object& exp
     d["flip"] = c.flip.mean;
     d["pixels"] = f.pixels;
     d["non_finite_pixels"] = c.nonFinitePixels;
+    d["reference_noise"] = referenceNoise.estimated() ? py::object(py::float_(referenceNoise.noise))
+                                                      : py::object(py::none());
+    d["reference_samples"] = referenceNoise.recorded()
+                                 ? py::object(py::int_(referenceNoise.samples))
+                                 : py::object(py::none());
     if (options.maxDiff >= 0.0) d["diff_fraction"] = c.diffFraction;
     if (maps) {
         const uint32_t w = test.width, h = test.height;

@@ -67,7 +67,15 @@ std::string encode(const ImageFile& image) {
                          !exr       ? OIIO::TypeDesc::UINT8
                          : fitsHalf ? OIIO::TypeDesc::HALF
                                     : OIIO::TypeDesc::FLOAT);
-    if (exr) spec.attribute("compression", "zip");
+    if (exr) {
+        spec.attribute("compression", "zip");
+        for (const auto& [name, value] : image.attributes.ints)
+            spec.attribute(name, value);
+        for (const auto& [name, value] : image.attributes.floats)
+            spec.attribute(name, value);
+        for (const auto& [name, value] : image.attributes.texts)
+            spec.attribute(name, value);
+    }
     // The values as given: OpenImageIO would otherwise divide a PNG's colour by its alpha, which
     // readImage (the colour as stored) would not undo.
     spec.attribute("oiio:UnassociatedAlpha", 1);
@@ -146,7 +154,8 @@ void writeImage(const std::string& path, uint32_t width, uint32_t height,
     writeImages({{path, width, height, &rgba}});
 }
 
-std::vector<float> readImage(const std::string& path, uint32_t& width, uint32_t& height) {
+std::vector<float> readImage(const std::string& path, uint32_t& width, uint32_t& height,
+                             ImageAttributes* attributes) {
     // Looked at before it is opened: a FIFO would block the reader, a device never end.
     struct stat status {};
     if (::stat(path.c_str(), &status) != 0)
@@ -236,6 +245,17 @@ std::vector<float> readImage(const std::string& path, uint32_t& width, uint32_t&
         const size_t offset = together ? size_t(source[size_t(c)] - first) : 0;
         for (size_t i = 0; i < pixelCount; ++i)
             rgba[4 * i + size_t(c)] = pixels[stride * i + offset];
+    }
+    if (attributes) {
+        for (const OIIO::ParamValue& p : spec.extra_attribs) {
+            if (p.nvalues() != 1) continue;
+            if (p.type() == OIIO::TypeDesc::INT)
+                attributes->ints[p.name().string()] = p.get_int();
+            else if (p.type() == OIIO::TypeDesc::FLOAT)
+                attributes->floats[p.name().string()] = p.get_float();
+            else if (p.type() == OIIO::TypeDesc::STRING)
+                attributes->texts[p.name().string()] = p.get_string();
+        }
     }
     return rgba;
 }

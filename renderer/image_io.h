@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -16,10 +17,19 @@ namespace ssgi {
 void writeImage(const std::string& path, uint32_t width, uint32_t height,
                 const std::vector<float>& rgba);
 
+// Attributes an .exr's header carries beside its pixels, by OpenImageIO name (e.g. "ssgi:noise"):
+// typed as the header stores them. A .png carries none.
+struct ImageAttributes {
+    std::map<std::string, int> ints;
+    std::map<std::string, float> floats;
+    std::map<std::string, std::string> texts;
+};
+
 struct ImageFile {
     std::string path;
     uint32_t width = 0, height = 0;
     const std::vector<float>* rgba = nullptr;
+    ImageAttributes attributes; // written into an .exr's header
 };
 // Writes several images as one: all of them land, or none does (what was at their paths before
 // stays), as writeImage says for each.
@@ -36,7 +46,9 @@ constexpr int kMaxImageSide = 16384;
 // the file holds); other names as OpenImageIO finds them. InputError for anything else: a file
 // that is not a regular file or not what its name says, a size beyond kMaxImageSide or beyond
 // memory, channels that are neither R, G, B nor grey (X, Y, Z; R, G; layers such as
-// normal.X), the message naming the channels found.
-std::vector<float> readImage(const std::string& path, uint32_t& width, uint32_t& height);
+// normal.X), the message naming the channels found. `attributes`, when given, gets the header's
+// int, float and string attributes.
+std::vector<float> readImage(const std::string& path, uint32_t& width, uint32_t& height,
+                             ImageAttributes* attributes = nullptr);
 
 } // namespace ssgi

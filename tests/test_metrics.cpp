@@ -1,6 +1,7 @@
 // The error metrics on synthetic images whose answers are known, and the two programs of the
 // ground truth, `compare` and `reference`, as a user runs them.
 #include "image_io.h"
+#include "metrics/comparison.h"
 #include "metrics/error_map.h"
 #include "support.h"
 
@@ -271,6 +272,56 @@ TEST_F(Program, CompareReadsChannelsByName) {
                   std::string::npos)
             << output;
     }
+}
+
+// A reference's EXR records its samples and estimated noise in its header; compare prints the
+// relMSE that noise accounts for beside each figure, warns when a figure is within 10x of it (two
+// seeds of one reference differ by their noise alone), and says when a reference records none.
+TEST_F(Program, ComparePrintsTheReferencesOwnNoise) {
+    const std::string common = sourcePath("scenes/cornell-box.json") +
+                               " --mode ao --size 24x24 --noise 0.05 --quiet --no-cache";
+    const std::string one = (dir / "one.exr").string(), two = (dir / "two.exr").string();
+    std::string output;
+    ASSERT_EQ(run("reference", common + " --seed 1 --output " + one, output), 0) << output;
+    ASSERT_EQ(run("reference", common + " --seed 2 --output " + two, output), 0) << output;
+    ImageAttributes header;
+    uint32_t w = 0, h = 0;
+    readImage(two, w, h, &header);
+    ASSERT_EQ(header.ints.count("ssgi:samples"), 1u);
+    ASSERT_EQ(header.floats.count("ssgi:noise"), 1u);
+    const int samples = header.ints["ssgi:samples"];
+    const float noise = header.floats["ssgi:noise"];
+    EXPECT_GE(samples, 16);
+    EXPECT_GT(noise, 0.0f);
+    EXPECT_LE(noise, 0.05f);
+    EXPECT_EQ(header.texts["ssgi:mode"], "ao");
+    EXPECT_NE(output.find(std::to_string(samples) + " spp"), std::string::npos) << output;
+
+    const std::string json = (dir / "two.json").string();
+    EXPECT_EQ(run("compare", one + " " + two + " --json " + json, output), 0);
+    char line[128];
+    std::snprintf(line, sizeof line, "%s: a reference of %d spp, noise %.2f%%", two.c_str(),
+                  samples, 100.0 * noise);
+    EXPECT_NE(output.find(line), std::string::npos) << output;
+    EXPECT_NE(output.find("warning: image: relMSE"), std::string::npos) << output;
+    EXPECT_NE(output.find("within 10x of the references' own noise"), std::string::npos) << output;
+    nlohmann::json j;
+    std::ifstream(json) >> j;
+    EXPECT_EQ(j["reference_noise"]["samples"], samples);
+    EXPECT_NEAR(j["reference_noise"]["noise"].get<double>(), noise, 1e-6);
+    // Noise floor: both references' noise^2; two seeds differ by about that much.
+    const double floor = j["regions"][0]["relmse_noise"].get<double>();
+    const double relMse = j["regions"][0]["relmse"].get<double>();
+    std::printf("two seeds: relMSE %.3g, the references' noise^2 summed %.3g\n", relMse, floor);
+    EXPECT_TRUE(j["regions"][0]["within_noise_margin"].get<bool>());
+    EXPECT_GT(relMse, 0.3 * floor);
+    EXPECT_LT(relMse, 3.0 * floor);
+
+    // A reference that records nothing: said so, and nothing to warn about.
+    const std::string plain = image("plain.exr", loadImage(two));
+    EXPECT_EQ(run("compare", one + " " + plain, output), 0);
+    EXPECT_NE(output.find(plain + " records no noise of its own"), std::string::npos) << output;
+    EXPECT_EQ(output.find("warning: image"), std::string::npos) << output;
 }
 
 // Every scene in scenes/ renders, to an image that is neither black nor NaN.

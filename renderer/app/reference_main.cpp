@@ -2,6 +2,7 @@
 // the real-time effects, progressively, and writes it as linear EXR (cached by content).
 #include "app/cli.h"
 #include "image_io.h"
+#include "metrics/comparison.h"
 #include "metrics/golden.h"
 #include "reference/cache.h"
 #include "scene/animation.h"
@@ -149,7 +150,10 @@ int run(int argc, char** argv) {
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    std::vector<ImageFile> files = {{args.output, image.width, image.height, &image.rgba}};
+    // The EXR's header records the samples and the noise, which compare prints beside its figures.
+    std::vector<ImageFile> files = {
+        {args.output, image.width, image.height, &image.rgba,
+         metrics::noiseAttributes({image.samples, image.noise}, modeName(args.options.mode))}};
     std::vector<float> shown;
     if (!args.png.empty()) {
         shown = image.rgba;
