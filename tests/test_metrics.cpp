@@ -382,6 +382,7 @@ TEST_F(Program, ReferenceNamesBadInput) {
         {scene + out + " --spp 0", "--spp"},
         {scene + out + " --size 0x8", "--size"},
         {scene + out + " --noise 2", "--noise"},
+        {scene + out + " --noise 1e-9", "--noise"},
         {sourcePath("tests/scenes/empty-box.json") + out + " --time 1", "camera_path"},
         {scene + out + " --frobnicate", "--frobnicate"},
         {scene + " --quiet --output " + (dir / "x.png").string(), "--output"},
