@@ -38,12 +38,13 @@ void keepWarning(const std::string& text) {
 // float array unless told otherwise, an integer array never, a file when it is an .exr, as
 // compare reads files).
 metrics::Image imageArg(const py::handle& object, const std::string& what,
-                        const std::optional<bool>& linear, bool& isLinear, std::string& name) {
+                        const std::optional<bool>& linear, bool& isLinear, std::string& name,
+                        ImageAttributes* attributes = nullptr) {
     if (isPath(object)) {
         name = pathFrom(object, what);
         isLinear = std::filesystem::path(name).extension() == ".exr";
         py::gil_scoped_release release;
-        metrics::Image image = metrics::loadImage(name);
+        metrics::Image image = metrics::loadImage(name, attributes);
         metrics::warnIfNotOpaque(image, name); // as compare warns
         return image;
     }
@@ -61,7 +62,10 @@ py::dict compare(const ImageOrPathArg& a, const ImageOrPathArg& b, const FloatAr
     bool aLinear = true, bLinear = true;
     std::string aName, bName;
     const metrics::Image test = imageArg(a.value, "a", linear, aLinear, aName);
-    const metrics::Image reference = imageArg(b.value, "b", linear, bLinear, bName);
+    ImageAttributes referenceHeader; // a reference's EXR records its own noise
+    const metrics::Image reference =
+        imageArg(b.value, "b", linear, bLinear, bName, &referenceHeader);
+    const metrics::RecordedNoise referenceNoise = metrics::recordedNoise(referenceHeader);
     metrics::requireSize(reference, bName, test, aName);
     metrics::requireComparable(aName, aLinear, bName, bLinear, reference);
     metrics::ComparisonOptions options;
@@ -91,6 +95,11 @@ py::dict compare(const ImageOrPathArg& a, const ImageOrPathArg& b, const FloatAr
     d["flip"] = c.flip.mean;
     d["pixels"] = f.pixels;
     d["non_finite_pixels"] = c.nonFinitePixels;
+    d["reference_noise"] = referenceNoise.estimated() ? py::object(py::float_(referenceNoise.noise))
+                                                      : py::object(py::none());
+    d["reference_samples"] = referenceNoise.recorded()
+                                 ? py::object(py::int_(referenceNoise.samples))
+                                 : py::object(py::none());
     if (options.maxDiff >= 0.0) d["diff_fraction"] = c.diffFraction;
     if (maps) {
         const uint32_t w = test.width, h = test.height;

@@ -7,6 +7,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -66,7 +67,15 @@ std::string encode(const ImageFile& image) {
                          !exr       ? OIIO::TypeDesc::UINT8
                          : fitsHalf ? OIIO::TypeDesc::HALF
                                     : OIIO::TypeDesc::FLOAT);
-    if (exr) spec.attribute("compression", "zip");
+    if (exr) {
+        spec.attribute("compression", "zip");
+        for (const auto& [name, value] : image.attributes.ints)
+            spec.attribute(name, value);
+        for (const auto& [name, value] : image.attributes.floats)
+            spec.attribute(name, value);
+        for (const auto& [name, value] : image.attributes.texts)
+            spec.attribute(name, value);
+    }
     // The values as given: OpenImageIO would otherwise divide a PNG's colour by its alpha, which
     // readImage (the colour as stored) would not undo.
     spec.attribute("oiio:UnassociatedAlpha", 1);
@@ -145,7 +154,8 @@ void writeImage(const std::string& path, uint32_t width, uint32_t height,
     writeImages({{path, width, height, &rgba}});
 }
 
-std::vector<float> readImage(const std::string& path, uint32_t& width, uint32_t& height) {
+std::vector<float> readImage(const std::string& path, uint32_t& width, uint32_t& height,
+                             ImageAttributes* attributes) {
     // Looked at before it is opened: a FIFO would block the reader, a device never end.
     struct stat status {};
     if (::stat(path.c_str(), &status) != 0)
@@ -184,34 +194,68 @@ std::vector<float> readImage(const std::string& path, uint32_t& width, uint32_t&
         throw InputError(path + ": declares " + std::to_string(spec.width) + "x" +
                          std::to_string(spec.height) + " pixels; images of 1.." +
                          std::to_string(kMaxImageSide) + " pixels a side are read");
+    // Which of the file's channels holds R, G, B and A (-1: none; alpha is then 1). By name, never
+    // by position: X, Y, Z or a layer's normal.X read as RGB would pass any comparison with
+    // another file of the same kind.
     const int n = spec.nchannels;
-    const bool rgb = n >= 3 && spec.channelnames.size() >= 3 && spec.channelnames[0] == "R" &&
-                     spec.channelnames[1] == "G" && spec.channelnames[2] == "B";
-    if (n < 1 || (n > 2 && n != 3 && n != 4 && !rgb))
-        throw InputError(path + ": holds " + std::to_string(n) +
-                         " channels; grey, grey and alpha, RGB and RGBA images are read");
-    // Grey (one channel, or two with alpha) stands for the same value in R, G and B.
-    const bool grey = n <= 2;
-    const int alpha = grey ? (n == 2 ? 1 : -1) : (n >= 4 ? 3 : -1);
-    const int read = std::min(n, 4);
+    const auto& names = spec.channelnames;
+    const auto channel = [&](const char* name) {
+        const auto it = std::find(names.begin(), names.end(), name);
+        return it == names.end() ? -1 : int(it - names.begin());
+    };
+    const int r = channel("R"), g = channel("G"), b = channel("B"), a = channel("A"),
+              y = channel("Y");
+    std::array<int, 4> source{};
+    if (r >= 0 && g >= 0 && b >= 0)
+        source = {r, g, b, a};
+    else if (r < 0 && g < 0 && b < 0 && y >= 0 && n == (a >= 0 ? 2 : 1))
+        source = {y, y, y, a}; // grey stands for the same value in R, G and B
+    else {
+        std::string found;
+        for (const std::string& name : names)
+            found += (found.empty() ? "" : ", ") + name;
+        throw InputError(path + ": holds the channels " + (found.empty() ? "(none)" : found) +
+                         "; an image with channels R, G, B (and A), or Y (and A) alone, is read");
+    }
     width = uint32_t(spec.width);
     height = uint32_t(spec.height);
     const size_t pixelCount = size_t(width) * height;
+    const int used = source[3] >= 0 ? 4 : 3;
+    const int first = *std::min_element(source.begin(), source.begin() + used);
+    const int last = *std::max_element(source.begin(), source.begin() + used);
+    // The channels from the first to the last needed at once where that is at most four (the
+    // usual order), else each on its own, so that memory never grows with unneeded channels.
+    const bool together = last - first < 4;
+    const size_t stride = together ? size_t(last - first + 1) : 1;
     std::vector<float> pixels, rgba;
     try {
-        pixels.resize(pixelCount * read);
+        pixels.resize(pixelCount * stride);
         rgba.assign(pixelCount * 4, 1.0f);
     } catch (const std::bad_alloc&) {
         throw InputError(path + ": " + std::to_string(width) + "x" + std::to_string(height) +
                          " pixels do not fit in memory");
     }
-    if (!in->read_image(0, 0, 0, read, OIIO::TypeDesc::FLOAT, pixels.data()))
-        throw InputError(path + ": " + in->geterror());
-    for (size_t i = 0; i < pixelCount; ++i) {
-        const float* p = &pixels[read * i];
-        for (int c = 0; c < 3; ++c)
-            rgba[4 * i + c] = grey ? p[0] : p[c];
-        if (alpha >= 0) rgba[4 * i + 3] = p[alpha];
+    const auto read = [&](int begin, int end) {
+        if (!in->read_image(0, 0, begin, end, OIIO::TypeDesc::FLOAT, pixels.data()))
+            throw InputError(path + ": " + in->geterror());
+    };
+    if (together) read(first, last + 1);
+    for (int c = 0; c < used; ++c) {
+        if (!together) read(source[size_t(c)], source[size_t(c)] + 1);
+        const size_t offset = together ? size_t(source[size_t(c)] - first) : 0;
+        for (size_t i = 0; i < pixelCount; ++i)
+            rgba[4 * i + size_t(c)] = pixels[stride * i + offset];
+    }
+    if (attributes) {
+        for (const OIIO::ParamValue& p : spec.extra_attribs) {
+            if (p.nvalues() != 1) continue;
+            if (p.type() == OIIO::TypeDesc::INT)
+                attributes->ints[p.name().string()] = p.get_int();
+            else if (p.type() == OIIO::TypeDesc::FLOAT)
+                attributes->floats[p.name().string()] = p.get_float();
+            else if (p.type() == OIIO::TypeDesc::STRING)
+                attributes->texts[p.name().string()] = p.get_string();
+        }
     }
     return rgba;
 }

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -16,10 +17,19 @@ namespace ssgi {
 void writeImage(const std::string& path, uint32_t width, uint32_t height,
                 const std::vector<float>& rgba);
 
+// Attributes an .exr's header carries beside its pixels, by OpenImageIO name (e.g. "ssgi:noise"):
+// typed as the header stores them. A .png carries none.
+struct ImageAttributes {
+    std::map<std::string, int> ints;
+    std::map<std::string, float> floats;
+    std::map<std::string, std::string> texts;
+};
+
 struct ImageFile {
     std::string path;
     uint32_t width = 0, height = 0;
     const std::vector<float>* rgba = nullptr;
+    ImageAttributes attributes; // written into an .exr's header
 };
 // Writes several images as one: all of them land, or none does (what was at their paths before
 // stays), as writeImage says for each.
@@ -29,12 +39,16 @@ void writeImages(const std::vector<ImageFile>& images);
 constexpr int kMaxImageSide = 16384;
 
 // Reads an image as RGBA floats, the colour as the file stores it (a PNG's colour is not
-// multiplied by its alpha); a grey image gives R = G = B, and alpha is 1 where the file has none.
-// A .png is read as a PNG only and an .exr as an OpenEXR only (an EXR's header is checked
-// first: no attribute may declare more bytes than the file holds); other names as OpenImageIO
-// finds them. InputError for anything else: a file that is not a regular file or not what its
-// name says, a size beyond kMaxImageSide or beyond memory, channels that are not grey, grey and
-// alpha, RGB or RGBA.
-std::vector<float> readImage(const std::string& path, uint32_t& width, uint32_t& height);
+// multiplied by its alpha). Channels are taken by name: R, G, B (and A) as the colour; a grey
+// image, Y (and A) and nothing else, gives R = G = B; alpha is 1 where the file has none; other
+// channels beside R, G, B (a depth Z) are not read. A .png is read as a PNG only and an .exr as
+// an OpenEXR only (an EXR's header is checked first: no attribute may declare more bytes than
+// the file holds); other names as OpenImageIO finds them. InputError for anything else: a file
+// that is not a regular file or not what its name says, a size beyond kMaxImageSide or beyond
+// memory, channels that are neither R, G, B nor grey (X, Y, Z; R, G; layers such as
+// normal.X), the message naming the channels found. `attributes`, when given, gets the header's
+// int, float and string attributes.
+std::vector<float> readImage(const std::string& path, uint32_t& width, uint32_t& height,
+                             ImageAttributes* attributes = nullptr);
 
 } // namespace ssgi

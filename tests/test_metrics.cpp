@@ -1,6 +1,7 @@
 // The error metrics on synthetic images whose answers are known, and the two programs of the
 // ground truth, `compare` and `reference`, as a user runs them.
 #include "image_io.h"
+#include "metrics/comparison.h"
 #include "metrics/error_map.h"
 #include "support.h"
 
@@ -148,12 +149,15 @@ protected:
     void TearDown() override { fs::remove_all(dir); }
     // Runs `program` (compare or reference) with `arguments`; stdout and stderr in `output`.
     int run(const std::string& program, const std::string& arguments, std::string& output) {
-        const fs::path binary =
-            fs::read_symlink("/proc/self/exe").parent_path().parent_path() / program;
-        if (!fs::exists(binary)) ADD_FAILURE() << binary << " is not built";
-        const test::CommandResult r = test::runCommand(binary.string() + " " + arguments);
+        const test::CommandResult r = test::runCommand(binary(program) + " " + arguments);
         output = r.output;
         return r.status;
+    }
+    static std::string binary(const std::string& program) {
+        const fs::path path =
+            fs::read_symlink("/proc/self/exe").parent_path().parent_path() / program;
+        if (!fs::exists(path)) ADD_FAILURE() << path << " is not built";
+        return path.string();
     }
     std::string image(const std::string& name, const Image& image) {
         writeImage((dir / name).string(), image.width, image.height, image.rgba);
@@ -228,6 +232,98 @@ TEST_F(Program, CompareNamesBadInput) {
     EXPECT_NE(output.find("1 pixels are NaN or infinite"), std::string::npos) << output;
 }
 
+// An EXR's channels are read by name: R, G, B and A wherever they stand (a depth Z beside them
+// is left alone), Y alone as grey; X, Y, Z, a pair R, G, or layers such as normal.X are refused
+// naming what the file holds, never compared as RGB by position.
+TEST_F(Program, CompareReadsChannelsByName) {
+    const auto exr = [&](const std::string& name, const std::vector<std::string>& channels) {
+        const std::string path = (dir / name).string();
+        OIIO::ImageSpec spec(4, 3, int(channels.size()), OIIO::TypeDesc::FLOAT);
+        spec.channelnames = channels;
+        std::vector<float> values(12 * channels.size());
+        for (size_t i = 0; i < values.size(); ++i)
+            values[i] = 0.1f * float(i % channels.size() + 1); // channel k holds 0.1 (k + 1)
+        auto out = OIIO::ImageOutput::create(path);
+        EXPECT_TRUE(out && out->open(path, spec) &&
+                    out->write_image(OIIO::TypeDesc::FLOAT, values.data()) && out->close());
+        return path;
+    };
+    uint32_t w = 0, h = 0;
+    // Written Z, B, R, A, G: R is the file's third channel, G its fifth.
+    const std::vector<float> rgba = readImage(exr("zbrag.exr", {"Z", "B", "R", "A", "G"}), w, h);
+    ASSERT_EQ(rgba.size(), 4u * 12u);
+    EXPECT_FLOAT_EQ(rgba[0], 0.3f);
+    EXPECT_FLOAT_EQ(rgba[1], 0.5f);
+    EXPECT_FLOAT_EQ(rgba[2], 0.2f);
+    EXPECT_FLOAT_EQ(rgba[3], 0.4f);
+    const std::vector<float> grey = readImage(exr("ya.exr", {"Y", "A"}), w, h);
+    EXPECT_EQ(std::vector<float>(grey.begin(), grey.begin() + 4),
+              (std::vector<float>{0.1f, 0.1f, 0.1f, 0.2f}));
+    const std::pair<std::vector<std::string>, std::string> refused[] = {
+        {{"X", "Y", "Z"}, "X, Y, Z"},
+        {{"R", "G"}, "R, G"},
+        {{"Y", "Z"}, "Y, Z"},
+        {{"normal.X", "normal.Y", "normal.Z", "depth.Z"}, "depth.Z, normal.X, normal.Y, normal.Z"}};
+    for (const auto& [channels, named] : refused) {
+        const std::string path = exr("refused.exr", channels);
+        std::string output;
+        EXPECT_EQ(run("compare", path + " " + path, output), 2) << named << "\n" << output;
+        EXPECT_NE(output.find("error: " + path + ": holds the channels " + named + ";"),
+                  std::string::npos)
+            << output;
+    }
+}
+
+// A reference's EXR records its samples and estimated noise in its header; compare prints the
+// relMSE that noise accounts for beside each figure, warns when a figure is within 10x of it (two
+// seeds of one reference differ by their noise alone), and says when a reference records none.
+TEST_F(Program, ComparePrintsTheReferencesOwnNoise) {
+    const std::string common = sourcePath("scenes/cornell-box.json") +
+                               " --mode ao --size 24x24 --noise 0.05 --quiet --no-cache";
+    const std::string one = (dir / "one.exr").string(), two = (dir / "two.exr").string();
+    std::string output;
+    ASSERT_EQ(run("reference", common + " --seed 1 --output " + one, output), 0) << output;
+    ASSERT_EQ(run("reference", common + " --seed 2 --output " + two, output), 0) << output;
+    ImageAttributes header;
+    uint32_t w = 0, h = 0;
+    readImage(two, w, h, &header);
+    ASSERT_EQ(header.ints.count("ssgi:samples"), 1u);
+    ASSERT_EQ(header.floats.count("ssgi:noise"), 1u);
+    const int samples = header.ints["ssgi:samples"];
+    const float noise = header.floats["ssgi:noise"];
+    EXPECT_GE(samples, 16);
+    EXPECT_GT(noise, 0.0f);
+    EXPECT_LE(noise, 0.05f);
+    EXPECT_EQ(header.texts["ssgi:mode"], "ao");
+    EXPECT_NE(output.find(std::to_string(samples) + " spp"), std::string::npos) << output;
+
+    const std::string json = (dir / "two.json").string();
+    EXPECT_EQ(run("compare", one + " " + two + " --json " + json, output), 0);
+    char line[128];
+    std::snprintf(line, sizeof line, "%s: a reference of %d spp, noise %.2f%%", two.c_str(),
+                  samples, 100.0 * noise);
+    EXPECT_NE(output.find(line), std::string::npos) << output;
+    EXPECT_NE(output.find("warning: image: relMSE"), std::string::npos) << output;
+    EXPECT_NE(output.find("within 10x of the references' own noise"), std::string::npos) << output;
+    nlohmann::json j;
+    std::ifstream(json) >> j;
+    EXPECT_EQ(j["reference_noise"]["samples"], samples);
+    EXPECT_NEAR(j["reference_noise"]["noise"].get<double>(), noise, 1e-6);
+    // Noise floor: both references' noise^2; two seeds differ by about that much.
+    const double floor = j["regions"][0]["relmse_noise"].get<double>();
+    const double relMse = j["regions"][0]["relmse"].get<double>();
+    std::printf("two seeds: relMSE %.3g, the references' noise^2 summed %.3g\n", relMse, floor);
+    EXPECT_TRUE(j["regions"][0]["within_noise_margin"].get<bool>());
+    EXPECT_GT(relMse, 0.3 * floor);
+    EXPECT_LT(relMse, 3.0 * floor);
+
+    // A reference that records nothing: said so, and nothing to warn about.
+    const std::string plain = image("plain.exr", loadImage(two));
+    EXPECT_EQ(run("compare", one + " " + plain, output), 0);
+    EXPECT_NE(output.find(plain + " records no noise of its own"), std::string::npos) << output;
+    EXPECT_EQ(output.find("warning: image"), std::string::npos) << output;
+}
+
 // Every scene in scenes/ renders, to an image that is neither black nor NaN.
 TEST_F(Program, ReferenceRendersEveryScene) {
     size_t scenes = 0;
@@ -286,6 +382,7 @@ TEST_F(Program, ReferenceNamesBadInput) {
         {scene + out + " --spp 0", "--spp"},
         {scene + out + " --size 0x8", "--size"},
         {scene + out + " --noise 2", "--noise"},
+        {scene + out + " --noise 1e-9", "--noise"},
         {sourcePath("tests/scenes/empty-box.json") + out + " --time 1", "camera_path"},
         {scene + out + " --frobnicate", "--frobnicate"},
         {scene + " --quiet --output " + (dir / "x.png").string(), "--output"},
@@ -298,6 +395,22 @@ TEST_F(Program, ReferenceNamesBadInput) {
     }
     EXPECT_FALSE(fs::exists(dir / "x.exr"));
     EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+
+// A size whose sums do not fit in memory is refused before anything is allocated, naming the size
+// and the memory, not met with std::bad_alloc (or the process killed) after seconds of allocating.
+// The address space is limited to 4 GB here so that the answer is the same on any machine.
+TEST_F(Program, ReferenceRefusesASizeBeyondMemory) {
+    const test::CommandResult r = test::runCommand(
+        "ulimit -v 4000000 && " + binary("reference") + " " +
+        sourcePath("scenes/cornell-box.json") + " --quiet --no-cache --size 16384x16384 --output " +
+        (dir / "huge.exr").string());
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_NE(r.output.find("error: --size 16384x16384: the reference needs 19.3 GB of memory"),
+              std::string::npos)
+        << r.output;
+    EXPECT_EQ(r.output.find("bad_alloc"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir / "huge.exr"));
 }
 
 } // namespace

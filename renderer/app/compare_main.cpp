@@ -27,7 +27,8 @@ namespace {
 
 const char* kUsage = R"(usage: compare A B [options]
   A                     the image to judge (e.g. the real-time render), .exr or .png
-  B                     the reference it is measured against (relMSE divides by B)
+  B                     the reference it is measured against (relMSE divides by B); an .exr
+                        written by reference records its own noise, printed beside the relMSE
   --mask M.png          also measure inside the pixels where M is above 0.5 (repeatable)
   --edge-band K         also measure inside the K pixels along the image border
   --json FILE           write every figure as JSON
@@ -43,6 +44,11 @@ Display images (what --max-diff, FLIP and --flip-map look at): a .png as stored,
 sRGB-encoded values; a .exr holds linear radiance and is tonemapped as the composite pass does
 it (times --exposure, ACES fit, sRGB encoding), then rounded to 8 bits. relMSE, RMSE, MAE and
 SSIM use the values as read (linear for .exr). FLIP is LDR-FLIP (Andersson et al. 2020).
+
+The reference's own noise: relMSE against a noisy reference is the image's error plus the
+reference's noise^2 (plus A's, where A is a reference too). The column "noise" is that part, as
+the EXRs' headers record it; a relMSE within 10x of it gets a warning (it measures the references
+as much as the image), and a reference that records no noise is said to.
 
 Thresholds: each one exceeded prints a FAIL line and makes the exit status 1; 0 when all pass
 (2 for bad input). NaN never passes.
@@ -135,8 +141,8 @@ Args parseArgs(int argc, char** argv) {
 }
 
 // An image file; a warning on stderr when it has pixels that are not opaque.
-Image load(const std::string& path) {
-    Image image = loadImage(path);
+Image load(const std::string& path, ImageAttributes* attributes = nullptr) {
+    Image image = loadImage(path, attributes);
     warnIfNotOpaque(image, path);
     return image;
 }
@@ -145,13 +151,34 @@ nlohmann::json number(double v) {
     return std::isfinite(v) ? nlohmann::json(v) : nullptr;
 }
 
+nlohmann::json noiseJson(const RecordedNoise& r) {
+    if (!r.recorded()) return nullptr;
+    return {{"samples", r.samples}, {"noise", number(r.noise)}};
+}
+
+// What a file records of its own noise, as one line: "a reference of 20964 spp, noise 1.00%".
+std::string describe(const RecordedNoise& r) {
+    char text[96];
+    if (r.estimated())
+        std::snprintf(text, sizeof text, "a reference of %u spp, noise %.2f%% (relMSE %.1e)",
+                      r.samples, 100.0 * r.noise, r.noise * r.noise);
+    else
+        std::snprintf(text, sizeof text, "a reference of %u spp, its noise not estimated",
+                      r.samples);
+    return text;
+}
+
 bool isLinear(const std::string& path) {
     return fs::path(path).extension() == ".exr";
 }
 
 int run(int argc, char** argv) {
     const Args args = parseArgs(argc, argv);
-    const Image test = load(args.test), reference = load(args.reference);
+    ImageAttributes testHeader, referenceHeader;
+    const Image test = load(args.test, &testHeader),
+                reference = load(args.reference, &referenceHeader);
+    const RecordedNoise testNoise = recordedNoise(testHeader),
+                        referenceNoise = recordedNoise(referenceHeader);
     requireSize(reference, args.reference, test, args.test);
     requireComparable(args.test, isLinear(args.test), args.reference, isLinear(args.reference),
                       reference);
@@ -175,20 +202,52 @@ int run(int argc, char** argv) {
     nlohmann::json jsonRegions = nlohmann::json::array();
     std::printf("%s against %s (%ux%u)\n", args.test.c_str(), args.reference.c_str(), test.width,
                 test.height);
-    std::printf("%-28s %8s %11s %11s %11s %8s\n", "region", "pixels", "relMSE", "RMSE", "MAE",
-                "SSIM");
+    // The part of each relMSE that is the references' own noise: B's, and A's where A is a
+    // reference too (two seeds of one reference differ by the sum).
+    double noiseFloor = std::numeric_limits<double>::quiet_NaN();
+    if (referenceNoise.recorded()) {
+        std::printf("%s: %s\n", args.reference.c_str(), describe(referenceNoise).c_str());
+        noiseFloor = referenceNoise.noise * referenceNoise.noise;
+    } else {
+        std::printf("%s records no noise of its own (not an EXR written by reference): every "
+                    "figure below holds the reference's noise, of unknown size\n",
+                    args.reference.c_str());
+    }
+    if (testNoise.recorded()) {
+        std::printf("%s: %s\n", args.test.c_str(), describe(testNoise).c_str());
+        noiseFloor += testNoise.noise * testNoise.noise;
+    }
+    std::printf("%-28s %8s %11s %9s %11s %11s %8s\n", "region", "pixels", "relMSE", "noise", "RMSE",
+                "MAE", "SSIM");
+    std::vector<std::string> nearNoise;
     for (const auto& [name, f] : comparison.regions) {
         if (name == "image" && args.maxRelMse >= 0.0)
             checks.push_back({"relMSE", f.relMse, args.maxRelMse});
-        std::printf("%-28s %8zu %11.4e %11.4e %11.4e %8.4f\n", name.c_str(), f.pixels, f.relMse,
-                    f.rmse, f.mae, f.ssim);
+        char floor[16] = "?";
+        if (std::isfinite(noiseFloor)) std::snprintf(floor, sizeof floor, "%.1e", noiseFloor);
+        std::printf("%-28s %8zu %11.4e %9s %11.4e %11.4e %8.4f\n", name.c_str(), f.pixels, f.relMse,
+                    floor, f.rmse, f.mae, f.ssim);
+        const bool near = f.relMse < kNoiseMargin * noiseFloor; // false for NaN
+        if (near) {
+            char line[256];
+            std::snprintf(line, sizeof line,
+                          "warning: %s: relMSE %.2e is within %gx of the references' own noise "
+                          "(%.1e): it measures the reference as much as the image; render the "
+                          "reference to a lower --noise",
+                          name.c_str(), f.relMse, kNoiseMargin, noiseFloor);
+            nearNoise.push_back(line);
+        }
         jsonRegions.push_back({{"name", name},
                                {"pixels", f.pixels},
                                {"relmse", number(f.relMse)},
+                               {"relmse_noise", number(noiseFloor)},
+                               {"within_noise_margin", near},
                                {"rmse", number(f.rmse)},
                                {"mae", number(f.mae)},
                                {"ssim", number(f.ssim)}});
     }
+    for (const std::string& line : nearNoise)
+        std::fprintf(stderr, "%s\n", line.c_str());
     const size_t nonFinite = comparison.nonFinitePixels;
     if (nonFinite > 0)
         std::printf("%zu pixels of %s are NaN or infinite\n", nonFinite, args.test.c_str());
@@ -230,6 +289,8 @@ int run(int argc, char** argv) {
                                   {"width", test.width},
                                   {"height", test.height},
                                   {"non_finite_pixels", nonFinite},
+                                  {"reference_noise", noiseJson(referenceNoise)},
+                                  {"test_noise", noiseJson(testNoise)},
                                   {"regions", jsonRegions},
                                   {"flip", number(flipResult.mean)},
                                   {"ppd", args.ppd},

@@ -2,6 +2,7 @@
 // the real-time effects, progressively, and writes it as linear EXR (cached by content).
 #include "app/cli.h"
 #include "image_io.h"
+#include "metrics/comparison.h"
 #include "metrics/golden.h"
 #include "reference/cache.h"
 #include "scene/animation.h"
@@ -26,8 +27,9 @@ const char* kUsage = R"(usage: reference [SCENE] [options]
   SCENE                 scene file (.json) or glTF (.gltf/.glb); default scenes/cornell-box.json
   --mode M              direct, ao, indirect, full, multi or sky (default full)
   --size WxH            image size (default 256x256)
-  --spp N               samples per pixel, at most (default 256)
-  --noise T             stop sooner once the estimated relative error is at most T (e.g. 0.01)
+  --noise T             stop once the estimated noise (relative error against the converged
+                        image) is at most T (default 0.01, after 16 samples); 0: no target
+  --spp N               samples per pixel, at most (default 65536)
   --seed S              random seed (default 1); same seed and options, same image
   --threads N           worker threads (default: every hardware thread); the image is the same
   --time T              time in seconds along the scene's camera path and object paths
@@ -70,7 +72,8 @@ double parseNumber(const std::string& option, const std::string& text, double lo
 Args parseArgs(int argc, char** argv) {
     Args a;
     a.options.width = a.options.height = 256;
-    a.options.spp = 256;
+    a.options.spp = kDefaultSampleCap;
+    a.options.noiseTarget = kDefaultNoiseTarget;
     a.options.progress = true;
     auto value = [&](int& i) -> std::string {
         if (i + 1 >= argc) throw InputError(std::string(argv[i]) + " needs a value");
@@ -92,7 +95,10 @@ Args parseArgs(int argc, char** argv) {
         } else if (arg == "--spp") {
             a.options.spp = uint32_t(parseWhole(arg, value(i), 1, 1u << 24));
         } else if (arg == "--noise") {
-            a.options.noiseTarget = parseNumber(arg, value(i), 1e-6, 1.0);
+            const std::string v = value(i);
+            a.options.noiseTarget = parseNumber(arg, v, 0.0, 1.0);
+            if (a.options.noiseTarget > 0.0 && a.options.noiseTarget < 1e-6)
+                throw InputError("--noise: '" + v + "' is below 1e-6 (0: no noise target)");
         } else if (arg == "--seed") {
             a.options.seed = parseWhole(arg, value(i), 0, UINT64_MAX);
         } else if (arg == "--threads") {
@@ -149,7 +155,10 @@ int run(int argc, char** argv) {
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    std::vector<ImageFile> files = {{args.output, image.width, image.height, &image.rgba}};
+    // The EXR's header records the samples and the noise, which compare prints beside its figures.
+    std::vector<ImageFile> files = {
+        {args.output, image.width, image.height, &image.rgba,
+         metrics::noiseAttributes({image.samples, image.noise}, modeName(args.options.mode))}};
     std::vector<float> shown;
     if (!args.png.empty()) {
         shown = image.rgba;

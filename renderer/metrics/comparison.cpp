@@ -10,10 +10,35 @@
 
 namespace ssgi::metrics {
 
-Image loadImage(const std::string& path) {
+Image loadImage(const std::string& path, ImageAttributes* attributes) {
     Image image;
-    image.rgba = readImage(path, image.width, image.height);
+    image.rgba = readImage(path, image.width, image.height, attributes);
     return image;
+}
+
+namespace {
+const char* const kSamplesAttribute = "ssgi:samples";
+const char* const kNoiseAttribute = "ssgi:noise";
+const char* const kModeAttribute = "ssgi:mode";
+} // namespace
+
+ImageAttributes noiseAttributes(const RecordedNoise& noise, const std::string& mode) {
+    ImageAttributes a;
+    a.ints[kSamplesAttribute] = int(noise.samples);
+    if (noise.estimated()) a.floats[kNoiseAttribute] = float(noise.noise);
+    a.texts[kModeAttribute] = mode;
+    return a;
+}
+
+RecordedNoise recordedNoise(const ImageAttributes& attributes) {
+    RecordedNoise r;
+    const auto samples = attributes.ints.find(kSamplesAttribute);
+    if (samples == attributes.ints.end() || samples->second < 1) return r;
+    r.samples = uint32_t(samples->second);
+    const auto noise = attributes.floats.find(kNoiseAttribute);
+    if (noise != attributes.floats.end() && std::isfinite(noise->second) && noise->second >= 0.0f)
+        r.noise = noise->second;
+    return r;
 }
 
 void warnIfNotOpaque(const Image& image, const std::string& name) {

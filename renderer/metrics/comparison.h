@@ -4,6 +4,7 @@
 // (same size, the same kind of values, a finite reference) are here too, with their messages.
 #pragma once
 
+#include "image_io.h"
 #include "metrics/flip.h"
 #include "metrics/metrics.h"
 
@@ -16,7 +17,24 @@ namespace ssgi::metrics {
 
 // An image file as RGBA floats, as readImage reads it (the colour as stored, grey as R = G = B);
 // InputError naming the file when it is missing, unreadable, not a regular file or too large.
-Image loadImage(const std::string& path);
+// `attributes`, when given, gets its header's attributes.
+Image loadImage(const std::string& path, ImageAttributes* attributes = nullptr);
+
+// A path-traced reference's own noise, as `reference` records it in its EXR's header: its samples
+// per pixel and its estimated noise, the expected relative error against the converged image, so
+// that noise^2 is about the relMSE the reference alone adds to every comparison against it.
+struct RecordedNoise {
+    uint32_t samples = 0; // 0: the file records nothing (it was not written by `reference`)
+    double noise = std::numeric_limits<double>::quiet_NaN(); // NaN: too few samples to estimate
+    bool recorded() const { return samples > 0; }
+    bool estimated() const { return recorded() && noise >= 0.0; }
+};
+// The header attributes that record it (ssgi:samples, ssgi:noise; ssgi:mode names the mode).
+ImageAttributes noiseAttributes(const RecordedNoise& noise, const std::string& mode);
+// What a file's header records; nothing when it lacks ssgi:samples or holds impossible values.
+RecordedNoise recordedNoise(const ImageAttributes& attributes);
+// A figure is no better than this many times the noise it carries: compare warns below it.
+constexpr double kNoiseMargin = 10.0;
 
 // A warning on stderr naming `name` when pixels of `image` are not opaque: their colour is
 // compared as stored, alpha is not applied.

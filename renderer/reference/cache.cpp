@@ -24,9 +24,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Bump whenever an estimator changes what it computes: every cached image becomes stale.
-constexpr uint64_t kVersion = 1;
-constexpr char kMagic[8] = {'S', 'S', 'G', 'I', 'R', 'E', 'F', '2'};
+// Bump whenever an estimator or a stopping rule changes what it computes: every cached image
+// becomes stale.
+constexpr uint64_t kVersion = 2;
+constexpr char kMagic[8] = {'S', 'S', 'G', 'I', 'R', 'E', 'F', '3'};
 
 // Two independent 64-bit lanes over the bytes; not cryptographic, which a cache of our own
 // renders does not need, but 128 bits make an accidental collision out of the question.
@@ -103,8 +104,10 @@ void hashScene(Hasher& h, const Scene& scene) {
     h.value(aoRadius(scene)); // the one setting the reference reads
 }
 
-// An entry: the header, the pixels, then the checksum of both (32 hex digits), so that a
-// damaged entry (bytes overwritten, cut short, values that cannot be) is never served.
+// An entry: the header, the pixels, then the checksum of its key and both (32 hex digits), so
+// that a damaged entry (bytes overwritten, cut short, values that cannot be) is never served,
+// nor an entry copied under another request's key (its name): the key is not in the file, so
+// the checksum only matches under the name it was written for.
 constexpr size_t kHeaderBytes = 8 + 4 + 4 + 4 + 8 + 8, kChecksumBytes = 32;
 
 template <class T> void put(std::string& out, const T& v) {
@@ -117,13 +120,14 @@ template <class T> T take(const std::string& in, size_t& at) {
     return v;
 }
 
-std::string checksum(const char* data, size_t size) {
+std::string checksum(const std::string& key, const char* data, size_t size) {
     Hasher h;
+    h.bytes(key.data(), key.size());
     h.bytes(data, size);
     return h.hex();
 }
 
-std::string encodeEntry(const ReferenceImage& image) {
+std::string encodeEntry(const std::string& key, const ReferenceImage& image) {
     std::string out(kMagic, 8);
     put(out, image.width);
     put(out, image.height);
@@ -131,13 +135,14 @@ std::string encodeEntry(const ReferenceImage& image) {
     put(out, image.noise);
     put(out, image.nonFiniteSamples);
     out.append(reinterpret_cast<const char*>(image.rgba.data()), image.rgba.size() * 4);
-    out += checksum(out.data(), out.size());
+    out += checksum(key, out.data(), out.size());
     return out;
 }
 
-// What is wrong with the entry at `file`, or "" when `image` holds it. A missing entry is "".
-std::string readCached(const fs::path& file, const ReferenceOptions& options, ReferenceImage& image,
-                       bool& found) {
+// What is wrong with the entry at `file` (named by `key`), or "" when `image` holds it. A missing
+// entry is "".
+std::string readCached(const fs::path& file, const std::string& key,
+                       const ReferenceOptions& options, ReferenceImage& image, bool& found) {
     found = false;
     struct stat status {};
     if (::lstat(file.c_str(), &status) != 0) return "";
@@ -152,10 +157,11 @@ std::string readCached(const fs::path& file, const ReferenceOptions& options, Re
     std::ifstream in(file, std::ios::binary);
     std::string bytes(expected, '\0');
     if (!in.read(bytes.data(), std::streamsize(expected))) return "cannot be read";
+    if (std::memcmp(bytes.data(), kMagic, 8) != 0)
+        return "not a reference cache entry of this version";
     const size_t body = expected - kChecksumBytes;
-    if (bytes.compare(body, kChecksumBytes, checksum(bytes.data(), body)) != 0)
-        return "its checksum does not match its contents";
-    if (std::memcmp(bytes.data(), kMagic, 8) != 0) return "not a reference cache entry";
+    if (bytes.compare(body, kChecksumBytes, checksum(key, bytes.data(), body)) != 0)
+        return "its checksum does not match its contents and its name";
     size_t at = 8;
     image.width = take<uint32_t>(bytes, at);
     image.height = take<uint32_t>(bytes, at);
@@ -234,10 +240,11 @@ ReferenceImage cachedReference(const Scene& scene, const Camera& camera,
                                bool* fromCache) {
     if (fromCache) *fromCache = false;
     if (cacheDir.empty()) return renderReference(scene, camera, options);
-    const fs::path file = fs::path(cacheDir) / (referenceKey(scene, camera, options) + ".ref");
+    const std::string key = referenceKey(scene, camera, options);
+    const fs::path file = fs::path(cacheDir) / (key + ".ref");
     ReferenceImage image;
     bool found = false;
-    const std::string damage = readCached(file, options, image, found);
+    const std::string damage = readCached(file, key, options, image, found);
     if (found && damage.empty()) {
         if (fromCache) *fromCache = true;
         return image;
@@ -249,7 +256,7 @@ ReferenceImage cachedReference(const Scene& scene, const Camera& camera,
     try {
         std::error_code ec;
         fs::create_directories(cacheDir, ec);
-        writeFilesAtomically({{file.string(), encodeEntry(image), true}});
+        writeFilesAtomically({{file.string(), encodeEntry(key, image), true}});
     } catch (const std::exception& error) {
         warn("reference cache " + cacheDir + ": the image is not stored: " + error.what());
     }

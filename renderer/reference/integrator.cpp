@@ -80,6 +80,10 @@ glm::vec3 Integrator::irradianceSample(const Surface& surface, Rng& rng) const {
     return kPi * outgoing(white, rng);
 }
 
+bool Integrator::drawsNoRandomNumber() const {
+    return mode_ == Mode::Direct && !(scene_.light.radius > 0.0f);
+}
+
 glm::vec3 Integrator::outgoing(Surface surface, Rng& rng) const {
     glm::vec3 radiance(0.0f), throughput(1.0f);
     for (int vertex = 0;; ++vertex) {

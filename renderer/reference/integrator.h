@@ -36,6 +36,10 @@ public:
     // mode counts, as if it were a white diffuse surface; AO mode: the visibility.
     glm::vec3 irradianceSample(const Surface& surface, Rng& rng) const;
 
+    // Whether every sample of a camera ray gives the same value: the direct light of a point
+    // light, which draws no random number.
+    bool drawsNoRandomNumber() const;
+
 private:
     // Radiance leaving `surface` toward where the ray came from, from the light this mode
     // counts.

@@ -1,5 +1,6 @@
 #include "reference/render.h"
 
+#include "metrics/metrics.h"
 #include "reference/progress.h"
 #include "scene/camera.h"
 
@@ -7,7 +8,12 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <sys/resource.h>
 #include <thread>
+#include <unistd.h>
 
 namespace ssgi::reference {
 namespace {
@@ -15,6 +21,11 @@ namespace {
 // Most samples in one pass: passes stay short enough for the bar and the noise estimate to
 // move, long enough that starting threads costs nothing.
 constexpr uint32_t kLargestPass = 32;
+
+// What one pixel costs while it renders: its running sums and its value in the image returned.
+constexpr double kBytesPerPixel = 56.0 + 16.0;
+// The most of the available memory a render may take.
+constexpr double kUsableMemory = 0.8;
 
 // Running sums of one pixel, in double so that thousands of samples add without drift.
 struct PixelSums {
@@ -33,7 +44,7 @@ double noiseOf(const std::vector<PixelSums>& pixels) {
     for (const PixelSums& p : pixels) {
         if (p.count < 2) return INFINITY;
         const double varianceOfMean = p.squaredDeviations / double(p.count - 1) / double(p.count);
-        total += varianceOfMean / (p.meanLuminance * p.meanLuminance + 0.01);
+        total += varianceOfMean / (p.meanLuminance * p.meanLuminance + metrics::kRelMseEpsilon);
     }
     return pixels.empty() ? 0.0 : std::sqrt(total / double(pixels.size()));
 }
@@ -67,15 +78,57 @@ void renderRow(const Integrator& integrator, const CameraRays& camera,
     }
 }
 
+// Whether the noise target is met. A pixel whose first samples all missed what lights it (a
+// rare path to a narrow spot light) has no variance yet and looks converged: the estimate is
+// believed only after kMinSamplesForNoise samples of every pixel, and an estimate of exactly 0
+// (no pixel's samples ever differed) only where no sample draws a random number.
+bool noiseTargetMet(const ReferenceOptions& options, uint32_t done, double noise, bool exact) {
+    if (!(options.noiseTarget > 0.0) || !(noise <= options.noiseTarget)) return false;
+    return exact || (done >= kMinSamplesForNoise && noise > 0.0);
+}
+
 // How many samples the next pass takes: doubling, and no more than the stopping rules need.
 uint32_t nextPassSize(const ReferenceOptions& options, uint32_t done, double noise) {
     uint32_t size = std::clamp(done, 2u, kLargestPass);
-    if (options.noiseTarget > 0.0 && std::isfinite(noise) && noise > 0.0) {
+    if (options.noiseTarget > 0.0 && std::isfinite(noise) && noise > 0.0 &&
+        done >= kMinSamplesForNoise) {
         const double needed =
             double(done) * (noise / options.noiseTarget) * (noise / options.noiseTarget);
         size = uint32_t(std::clamp(std::ceil(needed - double(done)), 1.0, double(size)));
     }
     return std::min(size, options.spp - done);
+}
+
+// Memory this process may take: the least of the memory available (MemAvailable, else the
+// physical memory), its cgroup's room (memory.max - memory.current, cgroup v2) and its limits on
+// address space and data (ulimit -v, -d).
+double availableBytes() {
+    double bytes = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGESIZE));
+    {
+        std::ifstream meminfo("/proc/meminfo");
+        std::string name;
+        double kib = 0.0;
+        while (meminfo >> name >> kib) {
+            if (name == "MemAvailable:") bytes = kib * 1024.0;
+            meminfo.ignore(256, '\n');
+        }
+    }
+    double limit = 0.0, current = 0.0;
+    if ((std::ifstream("/sys/fs/cgroup/memory.max") >> limit) &&
+        (std::ifstream("/sys/fs/cgroup/memory.current") >> current))
+        bytes = std::min(bytes, std::max(limit - current, 0.0)); // "max" reads as no number
+    for (int resource : {RLIMIT_AS, RLIMIT_DATA}) {
+        rlimit r{};
+        if (getrlimit(resource, &r) == 0 && r.rlim_cur != RLIM_INFINITY)
+            bytes = std::min(bytes, double(r.rlim_cur));
+    }
+    return bytes;
+}
+
+std::string gigabytes(double bytes) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f GB", bytes / 1e9);
+    return text;
 }
 
 } // namespace
@@ -104,8 +157,22 @@ ReferenceImage renderReference(const Scene& scene, const Camera& camera,
     if (options.width == 0 || options.height == 0)
         throw InputError("--size: the image must be at least 1x1");
     if (options.spp == 0) throw InputError("--spp: must be at least 1");
+    // Refused before anything is allocated: an allocation the machine cannot back either throws
+    // after seconds of paging or gets the process killed. A fifth of what is available is left
+    // to the rest of the program and to everything else on the machine.
+    const double pixelCount = double(options.width) * double(options.height);
+    const double needed = pixelCount * kBytesPerPixel, available = availableBytes();
+    if (needed > kUsableMemory * available)
+        throw InputError("--size " + std::to_string(options.width) + "x" +
+                         std::to_string(options.height) + ": the reference needs " +
+                         gigabytes(needed) + " of memory for its " +
+                         std::to_string(uint64_t(pixelCount)) + " pixels (" +
+                         std::to_string(int(kBytesPerPixel)) + " bytes each), more than " +
+                         gigabytes(kUsableMemory * available) + " (80% of the " +
+                         gigabytes(available) + " available); render it smaller");
     const RayScene rays(scene);
     const Integrator integrator(scene, rays, options.mode);
+    const bool exact = integrator.drawsNoRandomNumber() && !options.jitter;
     const CameraRays cameraRays(camera, options.width, options.height);
     const unsigned threads =
         options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
@@ -115,7 +182,7 @@ ReferenceImage renderReference(const Scene& scene, const Camera& camera,
     Progress progress(options.progress, options.spp, options.noiseTarget);
     uint32_t done = 0;
     double noise = INFINITY;
-    while (done < options.spp && !(options.noiseTarget > 0.0 && noise <= options.noiseTarget)) {
+    while (done < options.spp && !noiseTargetMet(options, done, noise, exact)) {
         const uint32_t last = done + nextPassSize(options, done, noise);
         std::atomic<uint32_t> nextRow{0}, rowsDone{0};
         auto work = [&] {

@@ -11,11 +11,22 @@
 
 namespace ssgi::reference {
 
+// The noise target stops no render before every pixel has this many samples.
+constexpr uint32_t kMinSamplesForNoise = 16;
+
+// What the reference program renders when not told otherwise: samples until the estimated noise
+// is 1% (its own relMSE about 1e-4), at most 65536 a pixel: the Cornell box, the slowest of the
+// shipped scenes to converge, needs about 21000.
+constexpr double kDefaultNoiseTarget = 0.01;
+constexpr uint32_t kDefaultSampleCap = 65536;
+
 struct ReferenceOptions {
     Mode mode = Mode::Full;
     uint32_t width = 128, height = 128;
-    uint32_t spp = 64;        // stop after this many samples per pixel
-    double noiseTarget = 0.0; // also stop once the estimated noise is this low (0: never)
+    uint32_t spp = 64; // stop after this many samples per pixel
+    // Also stop once the estimated noise is this low (0: never), after kMinSamplesForNoise samples
+    // and on an estimate above 0 (unless no sample draws a random number).
+    double noiseTarget = 0.0;
     uint64_t seed = 1;
     // Random sub-pixel positions (anti-aliased edges). Off, every sample goes through the
     // pixel centre, as the real-time G-buffer samples, so edges match pixel for pixel.

@@ -121,8 +121,11 @@ bool hasGround(const Scene& scene, const Aabb& model) {
 
 void addGroundPlane(Scene& scene, const Aabb& model) {
     const float reach = 25.0f * boundingRadius(model);
-    // Just below the lowest point, so a flat base does not fight the plane for depth.
-    const float y = model.min.y - 1e-3f * boundingRadius(model);
+    // At the lowest point, not below it: a closed model stands on the plane. Any gap is a slot
+    // under its base that a pixel-centre ray along its lower edge can look into, where the path
+    // tracer (rightly) finds no light and the real-time image does. A flat base lies in the
+    // plane, facing down; no camera or light above the plane sees it, so nothing fights for depth.
+    const float y = model.min.y;
     const glm::vec3 c = model.center();
     Material ground;
     ground.name = "ground";

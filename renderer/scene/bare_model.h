@@ -31,9 +31,9 @@ Sky daylightSky();
 // x-z area). The flat base of a closed object faces down, so it does not count.
 bool hasGround(const Scene& scene, const Aabb& model);
 
-// Adds a grey quad facing up, a little below the model's lowest point, reaching 25 bounding-
-// sphere radii from its centre (far enough to fill the view of bareModelCamera), as its own
-// material and an instance named "ground". Does not touch the scene's bounds.
+// Adds a grey quad facing up at the model's lowest point (a closed model stands on it), reaching 25
+// bounding- sphere radii from its centre (far enough to fill the view of bareModelCamera), as its
+// own material and an instance named "ground". Does not touch the scene's bounds.
 void addGroundPlane(Scene& scene, const Aabb& model);
 constexpr float kGroundAlbedo = 0.5f;
 

@@ -32,8 +32,10 @@ def test_render_is_the_render_programs_image(tmp_path):
 
 def test_reference_is_the_reference_programs_image(tmp_path):
     cache = tmp_path / "cache"
+    # --noise 0: the program's default noise target is not the module's (none).
     status, output = program("reference", CORNELL, "--mode", "ao", "--size", "24x16", "--spp", 8,
-                             "--cache", cache, "--output", tmp_path / "r.exr", "--quiet")
+                             "--noise", 0, "--cache", cache, "--output", tmp_path / "r.exr",
+                             "--quiet")
     assert status == 0, output
     cached = list(cache.iterdir())
     scene = ssgi.Scene(CORNELL)
@@ -43,8 +45,11 @@ def test_reference_is_the_reference_programs_image(tmp_path):
     assert list(cache.iterdir()) == cached
     assert from_cache.shape == (16, 24, 3)
     assert np.array_equal(from_cache, rendered)
+    # The same pixels; the program's header also records the samples and the noise.
     ssgi.write_image(tmp_path / "p.exr", rendered)
-    assert file_bytes(tmp_path / "p.exr") == file_bytes(tmp_path / "r.exr")
+    assert np.array_equal(ssgi.read_image(tmp_path / "p.exr"), ssgi.read_image(tmp_path / "r.exr"))
+    assert ssgi.compare(rendered, tmp_path / "r.exr", maps=False)["reference_samples"] == 8
+    assert ssgi.compare(rendered, tmp_path / "p.exr", maps=False)["reference_noise"] is None
     assert 0.2 < rendered.mean() < 1.0  # AO: most of the box is open
 
 
