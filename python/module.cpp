@@ -126,7 +126,11 @@ py::array reference(const std::shared_ptr<SceneObject>& sceneObject, const std::
     o.mode = reference::parseMode(mode, "mode");
     sizeArg(size.value, o.width, o.height, 1, kMaxImageSide); // reference's range (--size)
     o.spp = countArg("spp", spp.value, 1, 1u << 24);
-    if (noise) o.noiseTarget = numberArg("noise", noise->value, 1e-6, 1.0);
+    // The noise target as the reference program reads --noise: 0 or None renders every sample.
+    o.noiseTarget = noise ? numberArg("noise", noise->value, 0.0, 1.0) : 0.0;
+    if (o.noiseTarget > 0.0 && o.noiseTarget < 1e-6)
+        throw py::value_error("noise: " + std::to_string(o.noiseTarget) +
+                              " is below 1e-6 (0 or None: no noise target)");
     o.seed = countArg("seed", seed.value, 0, UINT32_MAX);
     o.jitter = boolArg("jitter", jitter.value);
     o.threads = countArg("threads", threads.value, 0, 1024);
@@ -247,21 +251,25 @@ void defineImages(py::module_& m) {
         },
         py::arg("image"), py::arg("exposure") = 1.0,
         "The composite pass's display transform: times exposure, the ACES fit, sRGB encoding.");
-    m.def("compare", &compare, py::arg("a"), py::arg("b"), py::arg("exposure") = 1.0,
-          py::arg("ppd") = metrics::flip::kDefaultPpd, py::arg("max_diff") = py::none(),
-          py::arg("linear") = py::none(), py::arg("maps") = true,
-          "compare's figures of `a` against the reference `b` (arrays or files): relmse, rmse, "
-          "mae, ssim, flip, pixels, non_finite_pixels, diff_fraction (with max_diff) and the "
-          "per-pixel maps. `linear`: whether arrays hold linear radiance (None: float arrays "
-          "do, uint8/uint16 ones hold display values).");
+    m.def(
+        "compare", &compare, py::arg("a"), py::arg("b"), py::arg("exposure") = 1.0,
+        py::arg("ppd") = metrics::flip::kDefaultPpd, py::arg("max_diff") = py::none(),
+        py::arg("linear") = py::none(), py::arg("maps") = true,
+        "compare's figures of `a` against the reference `b` (arrays or files): relmse, rmse, "
+        "mae, ssim, flip, pixels, non_finite_pixels, reference_noise and reference_samples "
+        "(what a reference's EXR records of itself, else None), diff_fraction (with max_diff) "
+        "and the per-pixel maps. `linear`: whether arrays hold linear radiance (None: float arrays "
+        "do, uint8/uint16 ones hold display values).");
     m.def("reference", &reference, py::arg("scene"), py::kw_only(), py::arg("mode") = "full",
-          py::arg("size") = py::make_tuple(256, 256), py::arg("spp") = 256,
-          py::arg("noise") = py::none(), py::arg("seed") = 1, py::arg("time") = py::none(),
-          py::arg("jitter") = false, py::arg("light_radius") = py::none(), py::arg("threads") = 0,
-          py::arg("cache") = true, py::arg("cache_dir") = py::none(),
-          py::arg("progress") = py::none(),
+          py::arg("size") = py::make_tuple(256, 256), py::arg("spp") = reference::kDefaultSampleCap,
+          py::arg("noise") = reference::kDefaultNoiseTarget, py::arg("seed") = 1,
+          py::arg("time") = py::none(), py::arg("jitter") = false,
+          py::arg("light_radius") = py::none(), py::arg("threads") = 0, py::arg("cache") = true,
+          py::arg("cache_dir") = py::none(), py::arg("progress") = py::none(),
           "The path-traced reference as the reference program renders it (and from the same "
-          "cache), float32, height x width x 3. `progress`: True shows reference's bar on "
+          "cache), float32, height x width x 3, by default as the program's: until its estimated "
+          "noise is 1% (`noise`; 0 or None: no target), at most `spp` samples per pixel. "
+          "`progress`: True shows reference's bar on "
           "stderr (None: when stderr is a terminal); a callable is called at most every 50 ms "
           "and after each pass with (samples done per pixel, spp, estimated noise). Ctrl-C "
           "stops it within about 10 ms (KeyboardInterrupt).");

@@ -178,7 +178,9 @@ def compare(
     maps: bool = True,
 ) -> dict:
     """compare's figures of `a` against the reference `b` (arrays or files): relmse, rmse, mae,
-    ssim, flip, pixels, non_finite_pixels, diff_fraction (with max_diff) and the per-pixel maps.
+    ssim, flip, pixels, non_finite_pixels, reference_noise and reference_samples (what a
+    reference's EXR records of itself, else None), diff_fraction (with max_diff) and the per-pixel
+    maps.
     `linear`: whether arrays hold linear radiance (None: float arrays do, uint8/uint16 ones hold
     display values).
     """
@@ -193,8 +195,8 @@ def reference(
     *,
     mode: str = 'full',
     size: Tuple[int, int] = (256, 256),
-    spp: int = 256,
-    noise: Optional[float] = None,
+    spp: int = 65536,
+    noise: Optional[float] = 0.01,
     seed: int = 1,
     time: Optional[float] = None,
     jitter: bool = False,
@@ -205,7 +207,8 @@ def reference(
     progress: Union[bool, Callable[[float, int, float], object], None] = None,
 ) -> numpy.ndarray:
     """The path-traced reference as the reference program renders it (and from the same cache),
-    float32, height x width x 3. `progress`: True shows reference's bar on stderr (None: when
+    float32, height x width x 3, by default as the program's: until its estimated noise is 1%
+    (`noise`; 0 or None: no target), at most `spp` samples per pixel. `progress`: True shows reference's bar on stderr (None: when
     stderr is a terminal); a callable is called at most every 50 ms and after each pass with
     (samples done per pixel, spp, estimated noise). Ctrl-C stops it within about 10 ms
     (KeyboardInterrupt).
