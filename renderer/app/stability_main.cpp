@@ -79,6 +79,7 @@ Args parseArgs(int argc, char** argv) {
         a.run.warmup = a.run.hold = a.run.converge = 37; // one frame past 36 rotations
     }
     a.run.truthSpp = truthSpp >= 0 ? uint32_t(truthSpp) : quick ? 0 : 64;
+    // 0 stands for "not given": --size refuses a side of 0.
     if (a.common.width != 0) a.run.width = a.common.width, a.run.height = a.common.height;
     if (a.run.width < 16 || a.run.height < 16)
         throw InputError("--size: at least 16x16 (the regions need a few pixels)");
