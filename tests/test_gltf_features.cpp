@@ -281,6 +281,10 @@ TEST_F(GltfFeatures, BadColoursAndSamplersAreRefused) {
          "material 0 baseColorTexture: index -2 is not an index"},
         {"alpha-mode", [](Gltf& g) { g.doc["materials"][0]["alphaMode"] = "bogus"; },
          "material 0: alphaMode \"bogus\" is not OPAQUE, MASK or BLEND"},
+        {"negative-mesh", [](Gltf& g) { g.doc["nodes"][0]["mesh"] = -1; },
+         "node 0: mesh -1 is not an index (0 or more)"},
+        {"fractional-mode", [](Gltf& g) { g.primitive()["mode"] = 4.5; },
+         "mesh 0 primitive 0: mode 4.5 is not a glTF primitive mode"},
     };
     for (const Case& c : cases) {
         Gltf g = floorGltf();

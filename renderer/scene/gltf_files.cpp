@@ -245,6 +245,63 @@ void checkGltfJson(const std::string& path, const std::string& bytes, bool binar
                 }
         }
     }
+    // The other references between objects, and the primitives' modes.
+    index(root, "scene", "the file");
+    const auto indexList = [&](const nlohmann::json& object, const char* key,
+                               const std::string& what) {
+        if (!object.is_object() || !object.contains(key) || !object[key].is_array()) return;
+        for (const nlohmann::json& v : object[key])
+            if (!(v.is_number_integer() || v.is_number_unsigned()) || v.get<double>() < 0 ||
+                v.get<double>() > 2147483647.0)
+                fail(path, what + ": " + key + " holds " + v.dump() + ", not an index (0 or more)");
+    };
+    i = 0;
+    for (const nlohmann::json& scene : array("scenes"))
+        indexList(scene, "nodes", "scene " + std::to_string(i++));
+    i = 0;
+    for (const nlohmann::json& node : array("nodes")) {
+        const std::string what = "node " + std::to_string(i++);
+        for (const char* key : {"mesh", "camera", "skin"})
+            index(node, key, what);
+        indexList(node, "children", what);
+    }
+    i = 0;
+    for (const nlohmann::json& mesh : array("meshes")) {
+        const std::string what = "mesh " + std::to_string(i++);
+        if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array())
+            continue;
+        size_t p = 0;
+        for (const nlohmann::json& primitive : mesh["primitives"]) {
+            const std::string where = what + " primitive " + std::to_string(p++);
+            index(primitive, "indices", where);
+            index(primitive, "material", where);
+            integer(primitive, "mode", where, "primitive mode");
+            if (primitive.is_object() && primitive.contains("attributes") &&
+                primitive["attributes"].is_object())
+                for (const auto& [name, accessor] : primitive["attributes"].items())
+                    if (!(accessor.is_number_integer() || accessor.is_number_unsigned()) ||
+                        accessor.get<double>() < 0 || accessor.get<double>() > 2147483647.0)
+                        fail(path, where + ": attribute " + name + " " + accessor.dump() +
+                                       " is not an accessor index (0 or more)");
+        }
+    }
+    i = 0;
+    for (const nlohmann::json& accessor : array("accessors")) {
+        const std::string what = "accessor " + std::to_string(i++);
+        index(accessor, "bufferView", what);
+        if (accessor.is_object() && accessor.contains("sparse") && accessor["sparse"].is_object())
+            for (const char* part : {"indices", "values"})
+                if (accessor["sparse"].contains(part))
+                    index(accessor["sparse"][part], "bufferView",
+                          what + " sparse " + std::string(part));
+    }
+    i = 0;
+    for (const nlohmann::json& view : array("bufferViews"))
+        index(view, "buffer", "buffer view " + std::to_string(i++));
+    i = 0;
+    for (const nlohmann::json& image : array("images"))
+        index(image, "bufferView", "image " + std::to_string(i++));
+
     // Every extension named anywhere (extensionsUsed, and the objects' "extensions").
     std::set<std::string> used;
     for (const nlohmann::json& name : array("extensionsUsed"))
