@@ -30,7 +30,27 @@ char gPendingPaths[kSlots][PATH_MAX];
 std::atomic<bool> gPending[kSlots];
 std::mutex gSlotsMutex;
 
+// While files move into place a signal is only noted (any thread may receive it: lavapipe's
+// threads do not block it), and the process dies of it once every file has moved.
+std::atomic<bool> gDeferring{false};
+std::atomic<int> gDeferredSignal{0};
+
+extern "C" void removePendingAndDie(int signal);
+
+void installCleanup(int signal) {
+    struct sigaction cleanup {};
+    cleanup.sa_handler = removePendingAndDie;
+    cleanup.sa_flags = SA_RESETHAND | SA_NODEFER;
+    sigemptyset(&cleanup.sa_mask);
+    ::sigaction(signal, &cleanup, nullptr);
+}
+
 extern "C" void removePendingAndDie(int signal) {
+    if (gDeferring.load()) {
+        gDeferredSignal.store(signal);
+        installCleanup(signal); // SA_RESETHAND removed it; a second signal is deferred too
+        return;
+    }
     for (int i = 0; i < kSlots; ++i)
         if (gPending[i].load()) ::unlink(gPendingPaths[i]);
     // SA_RESETHAND restored the default action and SA_NODEFER lets it happen now.
@@ -45,11 +65,7 @@ void installSignalCleanup() {
             struct sigaction current {};
             if (::sigaction(signal, nullptr, &current) != 0 || current.sa_handler != SIG_DFL)
                 continue;
-            struct sigaction cleanup {};
-            cleanup.sa_handler = removePendingAndDie;
-            cleanup.sa_flags = SA_RESETHAND | SA_NODEFER;
-            sigemptyset(&cleanup.sa_mask);
-            ::sigaction(signal, &cleanup, nullptr);
+            installCleanup(signal);
         }
     });
 }
@@ -99,18 +115,23 @@ private:
     }, oldPipe_{};
 };
 
-// Holds SIGINT, SIGTERM, SIGHUP and SIGQUIT while it lasts; one that arrived is delivered when
-// it ends.
+// Holds SIGINT, SIGTERM, SIGHUP and SIGQUIT while it lasts: blocked in this thread, noted by
+// the clean-up handler in any other; one that arrived ends the process when it ends.
 class HeldSignals {
 public:
     HeldSignals() {
+        gDeferring.store(true);
         sigset_t hold;
         sigemptyset(&hold);
         for (int signal : {SIGINT, SIGTERM, SIGHUP, SIGQUIT})
             sigaddset(&hold, signal);
         ::pthread_sigmask(SIG_BLOCK, &hold, &old_);
     }
-    ~HeldSignals() { ::pthread_sigmask(SIG_SETMASK, &old_, nullptr); }
+    ~HeldSignals() {
+        gDeferring.store(false);
+        ::pthread_sigmask(SIG_SETMASK, &old_, nullptr); // one sent to this thread arrives now
+        if (const int signal = gDeferredSignal.exchange(0)) removePendingAndDie(signal);
+    }
     HeldSignals(const HeldSignals&) = delete;
     HeldSignals& operator=(const HeldSignals&) = delete;
 

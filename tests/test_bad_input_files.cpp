@@ -210,6 +210,28 @@ TEST_F(BadInput, ASignalNeverSplitsAnOutputPair) {
     EXPECT_EQ(readAll(png), "new");
     EXPECT_EQ(readAll(exr), "new");
     EXPECT_EQ(hiddenFiles(dir_), "");
+
+    // The same with the signal taken by another thread, as the renderer's driver threads may
+    // take it: the process still dies only once both files have moved.
+    writeFilesAtomically({{png.string(), "old"}, {exr.string(), "old"}});
+    const pid_t threaded = fork();
+    ASSERT_GE(threaded, 0);
+    if (threaded == 0) {
+        static pthread_t other;
+        std::thread sleeper([] { std::this_thread::sleep_for(std::chrono::seconds(30)); });
+        other = sleeper.native_handle();
+        setAfterRenameHook([](size_t moved) {
+            if (moved != 1) return;
+            ::pthread_kill(other, SIGTERM);
+            std::this_thread::sleep_for(std::chrono::milliseconds(200)); // let it be handled
+        });
+        writeFilesAtomically({{png.string(), "new"}, {exr.string(), "new"}});
+        _exit(0);
+    }
+    ::waitpid(threaded, &status, 0);
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << status;
+    EXPECT_EQ(readAll(png), "new");
+    EXPECT_EQ(readAll(exr), "new");
 }
 
 } // namespace
