@@ -74,8 +74,6 @@ bool parseCommonArg(int argc, char** argv, int& i, CommonArgs& a) {
         if (x == std::string::npos) throw InputError("--size: expected WxH, got '" + v + "'");
         a.width = parseCount("--size", v.substr(0, x));
         a.height = parseCount("--size", v.substr(x + 1));
-        if (a.width == 0 || a.height == 0)
-            throw InputError("--size: '" + v + "' has a side of 0 pixels; each side is at least 1");
     } else if (arg == "--set") {
         a.settings.push_back(parseSetting("--set", optionValue(argc, argv, i)));
     } else if (arg == "--device") {
