@@ -6,12 +6,14 @@
 #include <cerrno>
 #include <climits>
 #include <csignal>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
 #include <filesystem>
 #include <memory>
 #include <mutex>
+#include <pthread.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -28,7 +30,27 @@ char gPendingPaths[kSlots][PATH_MAX];
 std::atomic<bool> gPending[kSlots];
 std::mutex gSlotsMutex;
 
+// While files move into place a signal is only noted (any thread may receive it: lavapipe's
+// threads do not block it), and the process dies of it once every file has moved.
+std::atomic<bool> gDeferring{false};
+std::atomic<int> gDeferredSignal{0};
+
+extern "C" void removePendingAndDie(int signal);
+
+void installCleanup(int signal) {
+    struct sigaction cleanup {};
+    cleanup.sa_handler = removePendingAndDie;
+    cleanup.sa_flags = SA_RESETHAND | SA_NODEFER;
+    sigemptyset(&cleanup.sa_mask);
+    ::sigaction(signal, &cleanup, nullptr);
+}
+
 extern "C" void removePendingAndDie(int signal) {
+    if (gDeferring.load()) {
+        gDeferredSignal.store(signal);
+        installCleanup(signal); // SA_RESETHAND removed it; a second signal is deferred too
+        return;
+    }
     for (int i = 0; i < kSlots; ++i)
         if (gPending[i].load()) ::unlink(gPendingPaths[i]);
     // SA_RESETHAND restored the default action and SA_NODEFER lets it happen now.
@@ -43,11 +65,7 @@ void installSignalCleanup() {
             struct sigaction current {};
             if (::sigaction(signal, nullptr, &current) != 0 || current.sa_handler != SIG_DFL)
                 continue;
-            struct sigaction cleanup {};
-            cleanup.sa_handler = removePendingAndDie;
-            cleanup.sa_flags = SA_RESETHAND | SA_NODEFER;
-            sigemptyset(&cleanup.sa_mask);
-            ::sigaction(signal, &cleanup, nullptr);
+            installCleanup(signal);
         }
     });
 }
@@ -97,6 +115,32 @@ private:
     }, oldPipe_{};
 };
 
+// Holds SIGINT, SIGTERM, SIGHUP and SIGQUIT while it lasts: blocked in this thread, noted by
+// the clean-up handler in any other; one that arrived ends the process when it ends.
+class HeldSignals {
+public:
+    HeldSignals() {
+        gDeferring.store(true);
+        sigset_t hold;
+        sigemptyset(&hold);
+        for (int signal : {SIGINT, SIGTERM, SIGHUP, SIGQUIT})
+            sigaddset(&hold, signal);
+        ::pthread_sigmask(SIG_BLOCK, &hold, &old_);
+    }
+    ~HeldSignals() {
+        gDeferring.store(false);
+        ::pthread_sigmask(SIG_SETMASK, &old_, nullptr); // one sent to this thread arrives now
+        if (const int signal = gDeferredSignal.exchange(0)) removePendingAndDie(signal);
+    }
+    HeldSignals(const HeldSignals&) = delete;
+    HeldSignals& operator=(const HeldSignals&) = delete;
+
+private:
+    sigset_t old_{};
+};
+
+void (*gAfterRename)(size_t) = nullptr;
+
 std::string reason(int error) {
     return std::strerror(error);
 }
@@ -119,14 +163,62 @@ struct Destination {
     bool direct = false; // not a regular file (a device, a pipe): written to as it is
     bool exists = false; // a regular file is there
     mode_t mode = 0;     // its permissions, kept
+    int stream = -1;     // a descriptor of this process the path names (/dev/stdout): written to
+    dev_t device = 0;    // the file's identity, to find two outputs that are one file
+    ino_t inode = 0;
 };
+
+// The descriptor a path names when it is one of this process's own (/dev/stdout, /dev/stderr,
+// /dev/fd/N, /proc/self/fd/N, or a link to one of them), else -1. Such a path is written to as
+// a stream at the descriptor's position: opened again, a file behind it would be replaced whole
+// or written over from its start, and what the process wrote there before would be lost.
+int ownDescriptor(const std::string& path) {
+    fs::path at(path);
+    for (int hops = 0; hops < 40; ++hops) {
+        const std::string text = at.lexically_normal().string();
+        if (text == "/dev/stdin") return 0;
+        if (text == "/dev/stdout") return 1;
+        if (text == "/dev/stderr") return 2;
+        for (const std::string& prefix : std::initializer_list<std::string>{
+                 "/dev/fd/", "/proc/self/fd/", "/proc/" + std::to_string(getpid()) + "/fd/"})
+            if (text.rfind(prefix, 0) == 0) {
+                const std::string number = text.substr(prefix.size());
+                if (!number.empty() && number.size() < 9 &&
+                    number.find_first_not_of("0123456789") == std::string::npos)
+                    return std::stoi(number);
+            }
+        struct stat link {};
+        if (::lstat(at.c_str(), &link) != 0 || !S_ISLNK(link.st_mode)) return -1;
+        std::error_code ec;
+        const fs::path target = fs::read_symlink(at, ec);
+        if (ec) return -1;
+        at = target.is_absolute() ? target : at.parent_path() / target;
+    }
+    return -1;
+}
 
 Destination resolve(const std::string& path, bool writeThrough) {
     Destination d{fs::path(path)};
+    // One check for every path any program writes: a NUL cuts a path short (the file at the cut
+    // name would be replaced), and a name must be there.
+    if (path.empty()) throw InputError("an output path is empty");
+    if (path.find('\0') != std::string::npos)
+        throw InputError("output path '" + path.substr(0, path.find('\0')) +
+                         "\\0...' holds a NUL character: it names no file");
     if (!writeThrough) return d;
+    if ((d.stream = ownDescriptor(path)) >= 0) {
+        d.direct = true;
+        return d;
+    }
     struct stat status {};
     if (::stat(path.c_str(), &status) == 0) {
+        d.device = status.st_dev;
+        d.inode = status.st_ino;
         if (S_ISREG(status.st_mode)) {
+            // A file nobody may write is not replaced (renaming over it would work in a
+            // writable folder, and its owner's protection would be lost without a word).
+            if ((status.st_mode & 0222) == 0 || ::access(path.c_str(), W_OK) != 0)
+                throw InputError(path + ": the file is read-only; it is not replaced");
             // The file itself, wherever links lead (realpath also reads /proc's fd links).
             if (char* real = ::realpath(path.c_str(), nullptr)) {
                 d.path = real;
@@ -158,8 +250,22 @@ fs::path uniqueBeside(const fs::path& target, const char* kind) {
 }
 
 void writeDirect(const std::string& path, const Destination& d, const std::string& bytes) {
-    const int fd = ::open(d.path.c_str(), O_WRONLY | O_CLOEXEC | O_NOCTTY);
+    if (d.stream >= 0) {      // this process's own descriptor, at its position
+        std::fflush(nullptr); // what the program printed before comes first
+        if (::fcntl(d.stream, F_GETFL) < 0)
+            throw InputError(path + ": cannot write: descriptor " + std::to_string(d.stream) +
+                             " is not open");
+        if (const int error = writeAll(d.stream, bytes))
+            throw InputError(path + ": writing failed: " + reason(error));
+        return;
+    }
+    // Non-blocking: a FIFO that no process reads would block the open forever.
+    const int fd = ::open(d.path.c_str(), O_WRONLY | O_CLOEXEC | O_NOCTTY | O_NONBLOCK);
+    if (fd < 0 && errno == ENXIO)
+        throw InputError(path + ": a FIFO (named pipe) that no process is reading; nothing "
+                                "written");
     if (fd < 0) throw InputError(path + ": cannot open for writing: " + reason(errno));
+    ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
     const int error = writeAll(fd, bytes);
     if (::close(fd) != 0 && error == 0 && errno != EINTR)
         throw InputError(path + ": writing failed: " + reason(errno));
@@ -174,6 +280,18 @@ void writeFilesAtomically(const std::vector<FileBytes>& files) {
     std::vector<Destination> destinations;
     for (const FileBytes& file : files)
         destinations.push_back(resolve(file.path, !file.replace));
+    // Two outputs that are one file (a.png a link to a.exr) would leave one of them.
+    for (size_t i = 0; i < files.size(); ++i)
+        for (size_t j = 0; j < i; ++j) {
+            const Destination &a = destinations[i], &b = destinations[j];
+            const bool sameFile = a.inode != 0 && a.device == b.device && a.inode == b.inode;
+            const bool samePath =
+                !a.direct && !b.direct &&
+                fs::absolute(a.path).lexically_normal() == fs::absolute(b.path).lexically_normal();
+            if (sameFile || samePath || (a.stream >= 0 && a.stream == b.stream))
+                throw InputError(files[i].path + " and " + files[j].path +
+                                 " are the same file: both outputs cannot be written");
+        }
 
     // Every temporary complete and on the disk before anything moves.
     std::vector<fs::path> temporaries(files.size());
@@ -225,7 +343,10 @@ void writeFilesAtomically(const std::vector<FileBytes>& files) {
     }
 
     // Move them into place. A file already at a target is kept under a second name (a hard
-    // link) until all have moved, so a failure puts back what was there.
+    // link) until all have moved, so a failure puts back what was there. The signals that end
+    // a process wait until every file has moved: one arriving between two renames would leave
+    // a new PNG beside an old EXR.
+    const HeldSignals held;
     std::vector<fs::path> backups(files.size());
     for (size_t i = 0; i < files.size(); ++i) {
         const Destination& d = destinations[i];
@@ -255,9 +376,14 @@ void writeFilesAtomically(const std::vector<FileBytes>& files) {
                              (others.empty() ? "" : " (so " + others + " was not written either)"));
         }
         temporaries[i].clear();
+        if (gAfterRename) gAfterRename(i + 1);
     }
     for (const fs::path& backup : backups)
         if (!backup.empty()) ::unlink(backup.c_str());
+}
+
+void setAfterRenameHook(void (*hook)(size_t moved)) {
+    gAfterRename = hook;
 }
 
 void writeFileAtomically(const std::string& path, const std::string& bytes) {

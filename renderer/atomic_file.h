@@ -17,12 +17,23 @@ struct FileBytes {
     bool replace = false;
 };
 
-// Writes every file, all of them or none (what was at their paths before stays). A path that is
-// a symbolic link is written through: a link to a regular file has the file it points at
-// replaced, a link to something else (/dev/stdout, a pipe, a terminal) is written to directly,
-// as is such a file named itself. Throws InputError naming the target path and the system's
-// reason; never leaves a temporary.
+// Writes every file, all of them or none (what was at their paths before stays). Every path is
+// checked first: an empty path or one holding a NUL, a regular file without write permission
+// (not replaced), and two outputs that are one file (a link from one to the other) are
+// refused. A path that is a symbolic link is written through: a link to a regular file has the
+// file it points at replaced, a link to something else (a pipe, a terminal, a device) is
+// written to directly, as is such a file named itself; a FIFO that no process reads is refused
+// instead of waited on. A path naming one of this process's descriptors (/dev/stdout,
+// /dev/stderr, /dev/fd/N, /proc/self/fd/N, or a link to one) is written to that descriptor as a
+// stream, after what the program printed, and never replaced, whatever is behind it. The
+// signals that end a process (SIGINT, SIGTERM, SIGHUP, SIGQUIT) are held while the files move
+// into place, so none leaves some moved and some not. Throws InputError naming the target path
+// and the system's reason; never leaves a temporary.
 void writeFilesAtomically(const std::vector<FileBytes>& files);
 void writeFileAtomically(const std::string& path, const std::string& bytes);
+
+// For the tests: called after each file has moved into place, with how many have, so that a
+// test can send a signal between two renames.
+void setAfterRenameHook(void (*hook)(size_t moved));
 
 } // namespace ssgi

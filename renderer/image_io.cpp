@@ -143,6 +143,17 @@ void writeImages(const std::vector<ImageFile>& images) {
         const std::string ext = fs::path(image.path).extension().string();
         if (ext != ".exr" && ext != ".png")
             throw InputError(image.path + ": output must end in .png or .exr");
+        // What readImage reads, nothing larger: a file written here is one it takes back.
+        if (image.width < 1 || image.height < 1 || image.width > uint32_t(kMaxImageSide) ||
+            image.height > uint32_t(kMaxImageSide))
+            throw InputError(image.path + ": " + std::to_string(image.width) + "x" +
+                             std::to_string(image.height) + " pixels; images of 1.." +
+                             std::to_string(kMaxImageSide) + " pixels a side are written");
+        if (!image.rgba || image.rgba->size() != size_t(image.width) * image.height * 4)
+            throw InputError(image.path + ": " +
+                             std::to_string(image.rgba ? image.rgba->size() : 0) +
+                             " values given for " + std::to_string(image.width) + "x" +
+                             std::to_string(image.height) + " RGBA pixels");
     }
     for (const ImageFile& image : images)
         files.push_back({image.path, encode(image)});

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <thread>
 
@@ -122,6 +123,115 @@ TEST_F(BadInput, EveryProgramWritesWholeOrNothing) {
     EXPECT_EQ(WTERMSIG(status), SIGTERM);
     EXPECT_FALSE(fs::exists(big));
     EXPECT_EQ(hiddenFiles(dir_), "");
+}
+
+std::string readAll(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// One check for every path a program writes: what it cannot write as asked is refused with
+// `error:` naming the path, exit 2, before anything is replaced; what names this process's own
+// output is written to it as a stream.
+TEST_F(BadInput, EveryOutputPathIsCheckedBeforeAnythingIsWritten) {
+    const std::string box = test::sourcePath("tests/scenes/empty-box.json") + " --size 16x16";
+    const std::string render = program("render");
+    // A NUL cuts a path short: the file at the cut name must not be written.
+    write("cut", "kept");
+    try {
+        writeFileAtomically((dir_ / "cut").string() + std::string(1, '\0') + ".png", "new");
+        ADD_FAILURE() << "a path holding a NUL was written";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("NUL"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(readAll(dir_ / "cut"), "kept");
+
+    // A read-only file is not replaced.
+    const std::string readOnly = write("ro.png", "kept");
+    ::chmod(readOnly.c_str(), 0444);
+    test::CommandResult run = test::runCommand(render + " " + box + " --output " + readOnly);
+    EXPECT_EQ(run.status, 2) << run.output;
+    EXPECT_NE(run.output.find("error: " + readOnly + ": the file is read-only"), std::string::npos)
+        << run.output;
+    EXPECT_EQ(readAll(readOnly), "kept");
+    EXPECT_FALSE(fs::exists(dir_ / "ro.exr"));
+
+    // A link from one output to the other: both cannot be written, so neither is.
+    fs::create_symlink("pair.exr", dir_ / "pair.png");
+    run = test::runCommand(render + " " + box + " --output " + (dir_ / "pair.png").string());
+    EXPECT_EQ(run.status, 2) << run.output;
+    EXPECT_NE(run.output.find("are the same file"), std::string::npos) << run.output;
+    EXPECT_FALSE(fs::exists(dir_ / "pair.exr"));
+
+    // A FIFO nobody reads: refused at once (it blocked forever).
+    const fs::path fifo = dir_ / "fifo.png";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    const auto start = std::chrono::steady_clock::now();
+    run = test::runCommand("timeout 60 " + render + " " + box + " --output " + fifo.string());
+    EXPECT_EQ(run.status, 2) << run.output;
+    EXPECT_NE(run.output.find("no process is reading"), std::string::npos) << run.output;
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(30));
+    EXPECT_FALSE(fs::exists(dir_ / "fifo.exr"));
+
+    // /dev/stdout, and a link to it, with standard output redirected to a file: the JSON is
+    // added to what the log holds, after the program's own lines; the log is not replaced.
+    fs::create_symlink("/dev/stdout", dir_ / "stdout.json");
+    for (const std::string json : {std::string("/dev/stdout"), (dir_ / "stdout.json").string()}) {
+        const fs::path log = dir_ / "log.txt";
+        run = test::runCommand("(echo 'the log so far'; " + render + " " + box + " --output " +
+                               (dir_ / "o.png").string() + " --profile-json " + json + ") > " +
+                               log.string());
+        EXPECT_EQ(run.status, 0) << run.output;
+        const std::string text = readAll(log);
+        EXPECT_EQ(text.rfind("the log so far\nwrote ", 0), 0u) << text;
+        EXPECT_NE(text.find("\"passes\""), std::string::npos) << text;
+        EXPECT_TRUE(fs::is_symlink(dir_ / "stdout.json"));
+    }
+}
+
+// An output pair lands together: a signal that arrives between the two renames (sent there by
+// the hook) is held until both files have moved, so the pair is the new one, never a new PNG
+// beside an old EXR; the process still dies of it.
+TEST_F(BadInput, ASignalNeverSplitsAnOutputPair) {
+    const fs::path png = dir_ / "pair.png", exr = dir_ / "pair.exr";
+    writeFilesAtomically({{png.string(), "old"}, {exr.string(), "old"}});
+    const pid_t child = fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+        setAfterRenameHook([](size_t moved) {
+            if (moved == 1) ::kill(::getpid(), SIGTERM);
+        });
+        writeFilesAtomically({{png.string(), "new"}, {exr.string(), "new"}});
+        _exit(0);
+    }
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << status;
+    EXPECT_EQ(readAll(png), "new");
+    EXPECT_EQ(readAll(exr), "new");
+    EXPECT_EQ(hiddenFiles(dir_), "");
+
+    // The same with the signal taken by another thread, as the renderer's driver threads may
+    // take it: the process still dies only once both files have moved.
+    writeFilesAtomically({{png.string(), "old"}, {exr.string(), "old"}});
+    const pid_t threaded = fork();
+    ASSERT_GE(threaded, 0);
+    if (threaded == 0) {
+        static pthread_t other;
+        std::thread sleeper([] { std::this_thread::sleep_for(std::chrono::seconds(30)); });
+        other = sleeper.native_handle();
+        setAfterRenameHook([](size_t moved) {
+            if (moved != 1) return;
+            ::pthread_kill(other, SIGTERM);
+            std::this_thread::sleep_for(std::chrono::milliseconds(200)); // let it be handled
+        });
+        writeFilesAtomically({{png.string(), "new"}, {exr.string(), "new"}});
+        _exit(0);
+    }
+    ::waitpid(threaded, &status, 0);
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << status;
+    EXPECT_EQ(readAll(png), "new");
+    EXPECT_EQ(readAll(exr), "new");
 }
 
 } // namespace

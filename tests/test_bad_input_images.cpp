@@ -112,4 +112,32 @@ TEST_F(BadInput, CompareReadsWhatTheFileHolds) {
     }
 }
 
+// What the writer writes the reader reads: a side beyond kMaxImageSide is refused by both (a
+// 20000x1 PNG was written and then refused by readImage), and the largest side round-trips.
+TEST_F(BadInput, ImagesWrittenAreImagesRead) {
+    const std::vector<float> wide(size_t(20000) * 4, 0.5f);
+    for (const char* name : {"wide.png", "wide.exr"}) {
+        const std::string path = (dir_ / name).string();
+        try {
+            writeImage(path, 20000, 1, wide);
+            ADD_FAILURE() << name << " was written";
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("images of 1..16384 pixels a side are written"),
+                      std::string::npos)
+                << e.what();
+        }
+        EXPECT_FALSE(fs::exists(path));
+    }
+    const std::vector<float> largest(size_t(kMaxImageSide) * 4, 0.5f);
+    const std::string path = (dir_ / "largest.png").string();
+    writeImage(path, kMaxImageSide, 1, largest);
+    uint32_t width = 0, height = 0;
+    readImage(path, width, height);
+    EXPECT_EQ(width, uint32_t(kMaxImageSide));
+    EXPECT_EQ(height, 1u);
+    // Fewer values than the size needs: refused, not read past.
+    EXPECT_THROW(writeImage((dir_ / "short.png").string(), 4, 4, std::vector<float>(12)),
+                 InputError);
+}
+
 } // namespace

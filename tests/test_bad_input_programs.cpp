@@ -1,5 +1,6 @@
 // The programs as a user runs them: exit statuses, no partial output, images that stay finite
 // however bright the scene, a PNG and its EXR landing together.
+#include "app/cli.h"
 #include "bad_input.h"
 #include "image_io.h"
 #include "renderer.h"
@@ -181,6 +182,52 @@ TEST_F(BadInput, PngAndExrLandTogetherOrNotAtAll) {
     EXPECT_EQ(std::string(std::istreambuf_iterator<char>(old), {}), "what was there before");
     for (const auto& entry : fs::directory_iterator(dir_)) // no temporary, no backup left
         EXPECT_NE(entry.path().filename().string()[0], '.') << entry.path();
+}
+
+// Every program's arguments are checked as render's are, and what reaches the user is an
+// `error:` line saying what failed: never a raw std::bad_alloc or std::filesystem message.
+TEST_F(BadInput, EveryProgramChecksItsArgumentsAndSaysWhatFailed) {
+    const fs::path build = fs::read_symlink("/proc/self/exe").parent_path().parent_path();
+    const std::string box = test::sourcePath("tests/scenes/empty-box.json");
+    // A loop of symbolic links is one, not a missing file.
+    fs::create_symlink("loop-b.json", dir_ / "loop-a.json");
+    fs::create_symlink("loop-a.json", dir_ / "loop-b.json");
+    struct Case {
+        std::string program, arguments, expected;
+    };
+    const Case cases[] = {
+        {"render", box + " --size 0x16", "image size 0x16 is outside 1.."},
+        {"stability", "--quick --size 0x16", "--size: at least 16x16"},
+        {"walkthrough", box + " --still --size 16x0", "image size 16x0 is outside 1.."},
+        {"viewer", "--effect bogus", "--effect: unknown effect 'bogus'"},
+        {"render", (dir_ / "loop-a.json").string() + " --size 16x16",
+         "loop-a.json: a loop of symbolic links"},
+    };
+    for (const Case& c : cases) {
+        const fs::path program = build / c.program;
+        if (!fs::exists(program)) continue; // the viewer and stability are optional builds
+        SCOPED_TRACE(c.program + " " + c.arguments);
+        const test::CommandResult run = test::runCommand(program.string() + " " + c.arguments);
+        EXPECT_EQ(run.status, 2) << run.output;
+        EXPECT_NE(run.output.find("error: "), std::string::npos) << run.output;
+        EXPECT_NE(run.output.find(c.expected), std::string::npos) << run.output;
+    }
+
+    // What guardedMain makes of the exceptions that carry no words for a user.
+    const auto said = [](int (*run)(int, char**)) {
+        testing::internal::CaptureStderr();
+        const int status = cli::guardedMain(0, nullptr, run);
+        return std::pair{status, testing::internal::GetCapturedStderr()};
+    };
+    auto [status, text] = said([](int, char**) -> int { throw std::bad_alloc(); });
+    EXPECT_EQ(status, 2);
+    EXPECT_EQ(text.rfind("error: out of memory: ", 0), 0u) << text;
+    std::tie(status, text) = said([](int, char**) -> int {
+        fs::file_size("/nonexistent/ssgi-test");
+        return 0;
+    });
+    EXPECT_EQ(status, 2);
+    EXPECT_EQ(text, "error: /nonexistent/ssgi-test: No such file or directory\n");
 }
 
 } // namespace

@@ -190,6 +190,24 @@ TEST_F(GltfFeatures, MorphTargetsWarnAboutTheirDefaultWeights) {
     EXPECT_EQ(scene.meshes.at(0).vertices.at(2).position, glm::vec3(1, 0, 1)); // the base shape
 }
 
+// Extensions the loader does not read are named in a warning, each once: the picture differs
+// from what the file means (a texture's scale, a compressed mesh).
+TEST_F(GltfFeatures, IgnoredExtensionsAreNamed) {
+    Gltf g = floorGltf();
+    g.doc["extensionsUsed"] = {"KHR_texture_transform", "KHR_draco_mesh_compression"};
+    g.doc["materials"][0]["pbrMetallicRoughness"]["extensions"] = {
+        {"KHR_texture_transform", {{"scale", {2, 2}}}}};
+    g.primitive()["extensions"] = {{"EXT_unknown_thing", json::object()}};
+    std::ostringstream said;
+    std::streambuf* saved = std::cerr.rdbuf(said.rdbuf());
+    loadScene(writeScene("extensions", g));
+    std::cerr.rdbuf(saved);
+    for (const char* expected : {"extension KHR_texture_transform is ignored",
+                                 "extension KHR_draco_mesh_compression is ignored",
+                                 "extension EXT_unknown_thing is ignored"})
+        EXPECT_NE(said.str().find(expected), std::string::npos) << said.str();
+}
+
 // Colours and samplers glTF does not define are bad input, named with their problem.
 TEST_F(GltfFeatures, BadColoursAndSamplersAreRefused) {
     struct Case {
@@ -233,6 +251,40 @@ TEST_F(GltfFeatures, BadColoursAndSamplersAreRefused) {
              g.doc["textures"][0]["sampler"] = 3;
          },
          "texture 0 refers to sampler 3, which does not exist"},
+        // tinygltf took these as REPEAT, as the int they were cut to, or as "none".
+        {"wrap-as-string",
+         [&](Gltf& g) {
+             textured(g, {{"wrapS", "CLAMP_TO_EDGE"}});
+         },
+         "sampler 0: wrapS \"CLAMP_TO_EDGE\" is not a glTF wrap mode (a whole number)"},
+        {"wrap-fraction",
+         [&](Gltf& g) {
+             textured(g, {{"wrapT", 33071.5}});
+         },
+         "sampler 0: wrapT 33071.5 is not a glTF wrap mode"},
+        {"wrap-beyond-32-bits",
+         [&](Gltf& g) {
+             textured(g, {{"wrapS", 33071 + 4294967296}});
+         },
+         "sampler 0: wrapS 4295000367 is not a glTF wrap mode"},
+        {"negative-sampler",
+         [&](Gltf& g) {
+             textured(g, json::object());
+             g.doc["textures"][0]["sampler"] = -1;
+         },
+         "texture 0: sampler -1 is not an index (0 or more)"},
+        {"negative-texture",
+         [&](Gltf& g) {
+             textured(g, json::object());
+             g.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["index"] = -2;
+         },
+         "material 0 baseColorTexture: index -2 is not an index"},
+        {"alpha-mode", [](Gltf& g) { g.doc["materials"][0]["alphaMode"] = "bogus"; },
+         "material 0: alphaMode \"bogus\" is not OPAQUE, MASK or BLEND"},
+        {"negative-mesh", [](Gltf& g) { g.doc["nodes"][0]["mesh"] = -1; },
+         "node 0: mesh -1 is not an index (0 or more)"},
+        {"fractional-mode", [](Gltf& g) { g.primitive()["mode"] = 4.5; },
+         "mesh 0 primitive 0: mode 4.5 is not a glTF primitive mode"},
     };
     for (const Case& c : cases) {
         Gltf g = floorGltf();

@@ -4,6 +4,8 @@
 // their indices or values do not fit.
 #include "gltf_files.h"
 
+#include <chrono>
+
 #include <cstring>
 
 using namespace ssgi;
@@ -84,6 +86,7 @@ TEST_F(GltfSparse, BadSparseAccessorsAreRefused) {
     const int byteIndices = base.view(std::vector<uint8_t>{0, 7});
     const int shortIndices = base.view(std::vector<uint16_t>{0, 1});
     const int values = base.view(std::vector<float>{0, 0, 0, 1, 1, 1});
+    const int twiceIndices = base.view(std::vector<uint8_t>{1, 1});
     auto sparse = [](int count, int indices, int type, int valueView, int valueOffset = 0) {
         return json{{"count", count},
                     {"indices", {{"bufferView", indices}, {"componentType", type}}},
@@ -100,6 +103,9 @@ TEST_F(GltfSparse, BadSparseAccessorsAreRefused) {
          "sparse accessor indices: buffer view 99 does not exist"},
         {"float-indices", sparse(2, shortIndices, kFloat, values),
          "index component type 5126 is not an unsigned integer type"},
+        // The later value won without a word.
+        {"index-twice", sparse(2, twiceIndices, kUnsignedByte, values),
+         "sparse accessor: index 1 appears twice (entries 0 and 1)"},
     };
     for (const Case& c : cases) {
         Gltf g = base;
@@ -107,6 +113,24 @@ TEST_F(GltfSparse, BadSparseAccessorsAreRefused) {
         const std::string path = write(std::string(c.name) + ".glb", g.glb());
         expectRefused(path, c.name, c.message);
     }
+}
+
+// An accessor without a buffer view holds zeros: its count is bounded by the data the file
+// holds, refused at once (a small file asked for gigabytes, and ended in std::bad_alloc).
+TEST_F(GltfSparse, ACountTheFileCannotHoldIsRefusedAtOnce) {
+    Gltf g = floorGltf();
+    const int indices = g.view(std::vector<uint32_t>{0, 1});
+    const int values = g.view(std::vector<float>{0, 0, 0, 1, 1, 1});
+    json& positions = g.doc["accessors"][0];
+    positions.erase("bufferView");
+    positions["count"] = 1000000000;
+    positions["sparse"] = {{"count", 2},
+                           {"indices", {{"bufferView", indices}, {"componentType", kUnsignedInt}}},
+                           {"values", {{"bufferView", values}}}};
+    const auto start = std::chrono::steady_clock::now();
+    expectRefused(write("huge-count.glb", g.glb()), "huge-count",
+                  "declares 1000000000 elements without a buffer view, more than the");
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
 }
 
 } // namespace

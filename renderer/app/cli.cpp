@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <new>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
@@ -126,6 +127,18 @@ int guardedMain(int argc, char** argv, int (*run)(int, char**)) {
         return run(argc, argv);
     } catch (const InputError& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
+        return 2;
+    } catch (const std::bad_alloc&) {
+        // What asked for it is not known here; what it means is.
+        std::fprintf(stderr, "error: out of memory: the input or the sizes asked for need more "
+                             "memory than this machine can give (std::bad_alloc); try a smaller "
+                             "--size, fewer samples or a smaller scene\n");
+        return 2;
+    } catch (const fs::filesystem_error& e) {
+        // Its own text ("filesystem error: status: ... [path]") said what failed in C++ terms.
+        const std::string path = e.path1().string();
+        std::fprintf(stderr, "error: %s%s\n", path.empty() ? "" : (path + ": ").c_str(),
+                     e.code().message().c_str());
         return 2;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "error: %s\n", e.what());

@@ -45,8 +45,7 @@ struct Args {
 
 Args parseArgs(int argc, char** argv) {
     Args a;
-    a.common.width = 0;
-    bool quick = false;
+    bool quick = false, sizeGiven = false;
     int truthSpp = -1;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
@@ -66,6 +65,7 @@ Args parseArgs(int argc, char** argv) {
         } else if (arg == "--no-plot") {
             a.plot = false;
         } else if (arg.rfind("--", 0) == 0) {
+            sizeGiven = sizeGiven || arg == "--size";
             if (!cli::parseCommonArg(argc, argv, i, a.common))
                 throw InputError("unknown option " + arg + " (see stability --help)");
         } else {
@@ -79,7 +79,8 @@ Args parseArgs(int argc, char** argv) {
         a.run.warmup = a.run.hold = a.run.converge = 37; // one frame past 36 rotations
     }
     a.run.truthSpp = truthSpp >= 0 ? uint32_t(truthSpp) : quick ? 0 : 64;
-    if (a.common.width != 0) a.run.width = a.common.width, a.run.height = a.common.height;
+    // A size of 0 given is checked as any other (it was taken for "not given").
+    if (sizeGiven) a.run.width = a.common.width, a.run.height = a.common.height;
     if (a.run.width < 16 || a.run.height < 16)
         throw InputError("--size: at least 16x16 (the regions need a few pixels)");
     for (const auto& [key, value] : a.common.settings)

@@ -97,6 +97,9 @@ std::shared_ptr<std::vector<uint8_t>> densify(const tinygltf::Model& model,
                   elementSize, valueStride, file, where + " values");
 
     auto dense = std::make_shared<std::vector<uint8_t>>(base.count * elementSize, uint8_t(0));
+    // Each element is replaced once at most: with an index twice, which value holds would be
+    // the reader's choice (the later one won, without a word).
+    std::vector<uint32_t> entryOf(base.count, UINT32_MAX);
     if (base.data)
         for (size_t i = 0; i < base.count; ++i)
             std::memcpy(dense->data() + i * elementSize, base.data + i * base.stride, elementSize);
@@ -109,6 +112,11 @@ std::shared_ptr<std::vector<uint8_t>> densify(const tinygltf::Model& model,
             fail(file, where + ": index " + std::to_string(target) + " (entry " +
                            std::to_string(i) + ") is out of range for " +
                            std::to_string(base.count) + " elements");
+        if (entryOf[target] != UINT32_MAX)
+            fail(file, where + ": index " + std::to_string(target) + " appears twice (entries " +
+                           std::to_string(entryOf[target]) + " and " + std::to_string(i) +
+                           "); each element may be replaced once");
+        entryOf[target] = uint32_t(i);
         std::memcpy(dense->data() + size_t(target) * elementSize, values + i * elementSize,
                     elementSize);
     }
@@ -177,7 +185,19 @@ AccessorView viewAccessor(const tinygltf::Model& model, int index, int type,
     view.normalized = accessor.normalized;
     const size_t elementSize =
         size_t(view.componentSize) * size_t(tinygltf::GetNumComponentsInType(uint32_t(type)));
-    if (accessor.bufferView >= 0) {
+    if (accessor.bufferView < 0) {
+        // Without a buffer view the elements are zeros (a sparse accessor replaces some): their
+        // number is bounded by no data, so it is bounded by the data the file holds, or a small
+        // file could ask for gigabytes.
+        size_t held = 0;
+        for (const tinygltf::Buffer& buffer : model.buffers)
+            held += buffer.data.size();
+        if (view.count > held)
+            fail(file, what + ": accessor " + std::to_string(index) + " declares " +
+                           std::to_string(view.count) +
+                           " elements without a buffer view, more than the " +
+                           std::to_string(held) + " bytes of data the file holds");
+    } else {
         view.data = viewBytes(model, accessor.bufferView, accessor.byteOffset, view.count,
                               elementSize, view.stride, file, what);
         // The specification requires both; read anyway, the bytes would be other numbers (a

@@ -4,6 +4,9 @@
 
 #include <tiny_gltf.h>
 
+#include <nlohmann/json.hpp>
+
+#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <fcntl.h>
@@ -21,10 +24,18 @@ std::string readInputFile(const std::string& path) {
     if (const size_t nul = path.find('\0'); nul != std::string::npos)
         throw InputError(path.substr(0, nul) + "\\0" + path.substr(nul + 1) +
                          ": a path with a NUL character in it names no file");
-    std::error_code error;
-    if (!std::filesystem::exists(path, error)) throw InputError(path + ": file not found");
-    if (!std::filesystem::is_regular_file(path, error))
-        throw InputError(path + ": not a regular file");
+    // The system's reason: a loop of symbolic links or a folder that may not be searched is not
+    // a missing file.
+    struct stat status {};
+    if (::stat(path.c_str(), &status) != 0) {
+        const int error = errno;
+        if (error == ENOENT) throw InputError(path + ": file not found");
+        if (error == ELOOP)
+            throw InputError(path + ": a loop of symbolic links (or more than 40 of them) leads "
+                                    "nowhere");
+        throw InputError(path + ": cannot read: " + std::strerror(error));
+    }
+    if (!S_ISREG(status.st_mode)) throw InputError(path + ": not a regular file");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(path + ": cannot open file for reading");
     std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -164,6 +175,168 @@ struct ExternalFiles {
     }
 };
 
+// What tinygltf reads without a word: a value of the wrong kind is taken as its default (a wrap
+// mode written as "CLAMP_TO_EDGE" became REPEAT), a fraction or a number beyond 32 bits is cut
+// to an int, and an index below zero means "none". The file's JSON is checked here for those,
+// and every extension it uses that the loader does not read is named once.
+void checkGltfJson(const std::string& path, const std::string& bytes, bool binary,
+                   GltfWarnings& warnings) {
+    std::string text = bytes;
+    if (binary) { // the JSON chunk: tinygltf has checked the container
+        uint32_t length = 0;
+        std::memcpy(&length, bytes.data() + 12, 4);
+        text = bytes.substr(20, length);
+    }
+    const nlohmann::json root = nlohmann::json::parse(text, nullptr, false);
+    if (!root.is_object()) return; // tinygltf read it; nothing more to say here
+    const auto index = [&](const nlohmann::json& object, const char* key, const std::string& what) {
+        if (!object.is_object() || !object.contains(key)) return;
+        const nlohmann::json& v = object[key];
+        if (!(v.is_number_integer() || v.is_number_unsigned()) || v.get<double>() < 0 ||
+            v.get<double>() > 2147483647.0)
+            fail(path, what + ": " + key + " " + v.dump() + " is not an index (0 or more)");
+    };
+    const auto integer = [&](const nlohmann::json& object, const char* key, const std::string& what,
+                             const char* kind) {
+        if (!object.is_object() || !object.contains(key)) return;
+        const nlohmann::json& v = object[key];
+        if (!(v.is_number_integer() || v.is_number_unsigned()) ||
+            std::fabs(v.get<double>()) > 2147483647.0)
+            fail(path, what + ": " + key + " " + v.dump() + " is not a glTF " + kind +
+                           " (a whole number)");
+    };
+    const auto array = [&](const char* key) {
+        static const nlohmann::json empty = nlohmann::json::array();
+        return root.contains(key) && root[key].is_array() ? root[key] : empty;
+    };
+    size_t i = 0;
+    for (const nlohmann::json& sampler : array("samplers")) {
+        const std::string what = "sampler " + std::to_string(i++);
+        integer(sampler, "wrapS", what, "wrap mode");
+        integer(sampler, "wrapT", what, "wrap mode");
+        integer(sampler, "magFilter", what, "magnification filter");
+        integer(sampler, "minFilter", what, "minification filter");
+    }
+    i = 0;
+    for (const nlohmann::json& texture : array("textures")) {
+        const std::string what = "texture " + std::to_string(i++);
+        index(texture, "sampler", what);
+        index(texture, "source", what);
+    }
+    i = 0;
+    for (const nlohmann::json& material : array("materials")) {
+        const std::string what = "material " + std::to_string(i++);
+        if (!material.is_object()) continue;
+        if (material.contains("alphaMode")) {
+            const nlohmann::json& mode = material["alphaMode"];
+            if (!mode.is_string() || (mode != "OPAQUE" && mode != "MASK" && mode != "BLEND"))
+                fail(path, what + ": alphaMode " + mode.dump() + " is not OPAQUE, MASK or BLEND");
+        }
+        // Its texture references: baseColorTexture (in pbrMetallicRoughness), normalTexture, ...
+        std::vector<const nlohmann::json*> holders = {&material};
+        if (material.contains("pbrMetallicRoughness"))
+            holders.push_back(&material["pbrMetallicRoughness"]);
+        for (const nlohmann::json* holder : holders) {
+            if (!holder->is_object()) continue;
+            for (const auto& [key, info] : holder->items())
+                if (key.size() > 7 && key.compare(key.size() - 7, 7, "Texture") == 0) {
+                    index(info, "index", what + " " + key);
+                    index(info, "texCoord", what + " " + key);
+                }
+        }
+    }
+    // The other references between objects, and the primitives' modes.
+    index(root, "scene", "the file");
+    const auto indexList = [&](const nlohmann::json& object, const char* key,
+                               const std::string& what) {
+        if (!object.is_object() || !object.contains(key) || !object[key].is_array()) return;
+        for (const nlohmann::json& v : object[key])
+            if (!(v.is_number_integer() || v.is_number_unsigned()) || v.get<double>() < 0 ||
+                v.get<double>() > 2147483647.0)
+                fail(path, what + ": " + key + " holds " + v.dump() + ", not an index (0 or more)");
+    };
+    i = 0;
+    for (const nlohmann::json& scene : array("scenes"))
+        indexList(scene, "nodes", "scene " + std::to_string(i++));
+    i = 0;
+    for (const nlohmann::json& node : array("nodes")) {
+        const std::string what = "node " + std::to_string(i++);
+        for (const char* key : {"mesh", "camera", "skin"})
+            index(node, key, what);
+        indexList(node, "children", what);
+    }
+    i = 0;
+    for (const nlohmann::json& mesh : array("meshes")) {
+        const std::string what = "mesh " + std::to_string(i++);
+        if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array())
+            continue;
+        size_t p = 0;
+        for (const nlohmann::json& primitive : mesh["primitives"]) {
+            const std::string where = what + " primitive " + std::to_string(p++);
+            index(primitive, "indices", where);
+            index(primitive, "material", where);
+            integer(primitive, "mode", where, "primitive mode");
+            if (primitive.is_object() && primitive.contains("attributes") &&
+                primitive["attributes"].is_object())
+                for (const auto& [name, accessor] : primitive["attributes"].items())
+                    if (!(accessor.is_number_integer() || accessor.is_number_unsigned()) ||
+                        accessor.get<double>() < 0 || accessor.get<double>() > 2147483647.0)
+                        fail(path, where + ": attribute " + name + " " + accessor.dump() +
+                                       " is not an accessor index (0 or more)");
+        }
+    }
+    i = 0;
+    for (const nlohmann::json& accessor : array("accessors")) {
+        const std::string what = "accessor " + std::to_string(i++);
+        index(accessor, "bufferView", what);
+        if (accessor.is_object() && accessor.contains("sparse") && accessor["sparse"].is_object())
+            for (const char* part : {"indices", "values"})
+                if (accessor["sparse"].contains(part))
+                    index(accessor["sparse"][part], "bufferView",
+                          what + " sparse " + std::string(part));
+    }
+    i = 0;
+    for (const nlohmann::json& view : array("bufferViews"))
+        index(view, "buffer", "buffer view " + std::to_string(i++));
+    i = 0;
+    for (const nlohmann::json& image : array("images"))
+        index(image, "bufferView", "image " + std::to_string(i++));
+
+    // Every extension named anywhere (extensionsUsed, and the objects' "extensions").
+    std::set<std::string> used;
+    for (const nlohmann::json& name : array("extensionsUsed"))
+        if (name.is_string()) used.insert(name.get<std::string>());
+    std::vector<const nlohmann::json*> stack = {&root};
+    for (size_t visited = 0; !stack.empty() && visited < 1000000; ++visited) {
+        const nlohmann::json* node = stack.back();
+        stack.pop_back();
+        if (node->is_object()) {
+            for (const auto& [key, value] : node->items()) {
+                if (key == "extensions" && value.is_object())
+                    for (const auto& [name, body] : value.items())
+                        used.insert(name);
+                if (value.is_structured()) stack.push_back(&value);
+            }
+        } else if (node->is_array()) {
+            for (const nlohmann::json& value : *node)
+                if (value.is_structured()) stack.push_back(&value);
+        }
+    }
+    for (const std::string& name : used) {
+        if (name == "KHR_lights_punctual" || name == "KHR_materials_emissive_strength") continue;
+        if (name.rfind("KHR_materials_", 0) == 0) continue; // named with the materials
+        if (name == "KHR_draco_mesh_compression")
+            warnings.once("glTF extension KHR_draco_mesh_compression is ignored: compressed "
+                          "primitives are read from their plain accessors (an accessor without "
+                          "a buffer view is zeros)");
+        else if (name == "KHR_texture_transform")
+            warnings.once("glTF extension KHR_texture_transform is ignored: textures are drawn "
+                          "without their offset, rotation and scale");
+        else
+            warnings.once("glTF extension " + name + " is ignored");
+    }
+}
+
 } // namespace
 
 tinygltf::Model readGltfModel(const std::string& path) {
@@ -197,10 +370,12 @@ tinygltf::Model readGltfModel(const std::string& path) {
         if (!warning.empty()) message += " (" + warning + ")";
         fail(path, message);
     }
-    if (!warning.empty()) GltfWarnings(path).once(warning);
+    GltfWarnings warnings(path);
+    if (!warning.empty()) warnings.once(warning);
     for (const std::string& extension : model.extensionsRequired)
         if (extension != "KHR_lights_punctual" && extension != "KHR_materials_emissive_strength")
             fail(path, "requires the unsupported extension " + extension);
+    checkGltfJson(path, bytes, binary, warnings);
     return model;
 }
 

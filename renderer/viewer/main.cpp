@@ -3,8 +3,10 @@
 #include "app/cli.h"
 #include "viewer/viewer.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <iostream>
+#include <iterator>
 
 using namespace ssgi;
 
@@ -20,7 +22,8 @@ const char* kUsage = R"(usage: viewer [SCENE] [options]
   --view NAME           the composite's view to start with (see render --help)
   --cache-view NAME     start with a view of the cache: confidence, disocclusion, converged,
                         refreshed-tile (of --effect, default ao)
-  --effect NAME         the cached effect the cache views show (shadow, ao, ssdo, indirect)
+  --effect NAME         the cached effect the cache views show (shadow, ao, ssdo, indirect,
+                        sky_visibility)
 Scripted runs:
   --frames N            stop after N frames
   --play-path           follow the scene's camera path (over the N frames, or in real time)
@@ -76,6 +79,11 @@ viewer::ViewerOptions parseArgs(int argc, char** argv) {
             o.cacheView = cli::optionValue(argc, argv, i);
         } else if (arg == "--effect") {
             o.cacheEffect = cli::optionValue(argc, argv, i);
+            const std::string effects[] = {"shadow", "ao", "ssdo", "indirect", "sky_visibility"};
+            if (std::find(std::begin(effects), std::end(effects), o.cacheEffect) ==
+                std::end(effects))
+                throw InputError("--effect: unknown effect '" + o.cacheEffect +
+                                 "' (shadow, ao, ssdo, indirect, sky_visibility)");
         } else if (arg == "--screenshot") {
             o.screenshot = cli::optionValue(argc, argv, i);
             if (o.screenshot.size() < 4 || o.screenshot.substr(o.screenshot.size() - 4) != ".png")

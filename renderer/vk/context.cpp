@@ -315,6 +315,7 @@ Context::Context(const ContextOptions& options) {
 Context::~Context() {
     if (device) {
         vkDeviceWaitIdle(device);
+        if (submitFence_) vkDestroyFence(device, submitFence_, nullptr);
         vkDestroyCommandPool(device, commandPool, nullptr);
         vkDestroyDevice(device, nullptr);
     }
@@ -328,21 +329,44 @@ Context::~Context() {
 }
 
 HostSpan Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) {
-    VkCommandBufferAllocateInfo allocInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    allocInfo.commandPool = commandPool;
-    allocInfo.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    allocInfo.commandBufferCount = 1;
-    VkCommandBuffer cmd;
-    VK_CHECK(vkAllocateCommandBuffers(device, &allocInfo, &cmd));
+    const bool nested = submitting_;
+    VkCommandBuffer cmd = nested ? VK_NULL_HANDLE : submitCommands_;
+    VkFence fence = nested ? VK_NULL_HANDLE : submitFence_;
+    if (cmd == VK_NULL_HANDLE) {
+        VkCommandBufferAllocateInfo allocInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+        allocInfo.commandPool = commandPool;
+        allocInfo.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+        allocInfo.commandBufferCount = 1;
+        VK_CHECK(vkAllocateCommandBuffers(device, &allocInfo, &cmd));
+        VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+        VK_CHECK(vkCreateFence(device, &fenceInfo, nullptr, &fence));
+        if (!nested) submitCommands_ = cmd, submitFence_ = fence;
+    } else {
+        VK_CHECK(vkResetCommandBuffer(cmd, 0));
+        VK_CHECK(vkResetFences(device, 1, &fence));
+    }
+    struct Release { // the nested call's own buffer and fence go; the flag is cleared
+        Context& ctx;
+        bool nested;
+        VkCommandBuffer cmd;
+        VkFence fence;
+        ~Release() {
+            if (!nested) {
+                ctx.submitting_ = false;
+                return;
+            }
+            vkDestroyFence(ctx.device, fence, nullptr);
+            vkFreeCommandBuffers(ctx.device, ctx.commandPool, 1, &cmd);
+        }
+    } release{*this, nested, cmd, fence};
+    submitting_ = true;
+
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
     record(cmd);
     VK_CHECK(vkEndCommandBuffer(cmd));
 
-    VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    VkFence fence;
-    VK_CHECK(vkCreateFence(device, &fenceInfo, nullptr, &fence));
     VkCommandBufferSubmitInfo cmdInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
     cmdInfo.commandBuffer = cmd;
     VkSubmitInfo2 submit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
@@ -353,8 +377,6 @@ HostSpan Context::submitAndWait(const std::function<void(VkCommandBuffer)>& reco
     VK_CHECK(vkQueueSubmit2(queue, 1, &submit, fence));
     VK_CHECK(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX));
     const Clock::time_point end = Clock::now();
-    vkDestroyFence(device, fence, nullptr);
-    vkFreeCommandBuffers(device, commandPool, 1, &cmd);
     using Us = std::chrono::duration<double, std::micro>;
     return {Us(start.time_since_epoch()).count(), Us(end - start).count() * 1e-3};
 }

@@ -65,7 +65,9 @@ public:
     // Validation messages (warnings and errors) seen so far; tests require zero.
     uint32_t validationMessageCount() const { return validationMessages_; }
 
-    // Records with `record` into a fresh command buffer, submits and waits.
+    // Records with `record` into a command buffer, submits and waits. The command buffer and the
+    // fence are made once and reused: made and destroyed at every frame, they grew the
+    // validation layer's bookkeeping with every frame.
     // Returns the host's view of the submission: when it was made (microseconds on the steady
     // clock) and how long until the fence signalled (milliseconds).
     HostSpan submitAndWait(const std::function<void(VkCommandBuffer)>& record);
@@ -81,6 +83,9 @@ public:
 private:
     VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
     uint32_t validationMessages_ = 0;
+    VkCommandBuffer submitCommands_ = VK_NULL_HANDLE; // submitAndWait's, reset at each use
+    VkFence submitFence_ = VK_NULL_HANDLE;
+    bool submitting_ = false; // a submitAndWait within another's `record` gets its own
     static VkBool32 VKAPI_PTR onMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                         VkDebugUtilsMessageTypeFlagsEXT types,
                                         const VkDebugUtilsMessengerCallbackDataEXT* data,

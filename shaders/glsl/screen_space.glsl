@@ -26,9 +26,13 @@ bool insideViewport(vec2 pixel) {
            all(lessThan(pixel, worldToGbuffer.viewport));
 }
 
-// The camera's right and up axes in world space (rows of the view matrix).
-vec3 cameraRight() { return vec3(frame.view[0][0], frame.view[1][0], frame.view[2][0]); }
-vec3 cameraUp() { return vec3(frame.view[0][1], frame.view[1][1], frame.view[2][1]); }
+// The camera's right and up axes in world space: the directions of a pixel's step in x and in
+// y (down) in the mapping loadPixelToWorld copies, not the view matrix's rows read from the
+// frame's uniforms. GTAO reads them inside its slice loop, and uniform reads there make lavapipe
+// (Mesa 22.3) compile the AO shader again at every dispatch with the uniforms' values inlined,
+// keeping every copy: the process grew with each frame.
+vec3 cameraRight() { return normalize(gbufferToWorld.x); }
+vec3 cameraUp() { return -normalize(gbufferToWorld.y); }
 
 // World point -> pixel coordinates (x right, y down) and its view depth in z.
 vec3 projectToPixel(vec3 world) {
