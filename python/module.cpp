@@ -126,11 +126,9 @@ py::array reference(const std::shared_ptr<SceneObject>& sceneObject, const std::
     o.mode = reference::parseMode(mode, "mode");
     sizeArg(size.value, o.width, o.height, 1, kMaxImageSide); // reference's range (--size)
     o.spp = countArg("spp", spp.value, 1, 1u << 24);
-    // The noise target as the reference program reads --noise: 0 or None renders every sample.
+    // The noise target as the reference program reads --noise (renderReference refuses one
+    // too small to reach): 0 or None renders every sample.
     o.noiseTarget = noise ? numberArg("noise", noise->value, 0.0, 1.0) : 0.0;
-    if (o.noiseTarget > 0.0 && o.noiseTarget < 1e-6)
-        throw py::value_error("noise: " + std::to_string(o.noiseTarget) +
-                              " is below 1e-6 (0 or None: no noise target)");
     o.seed = countArg("seed", seed.value, 0, UINT32_MAX);
     o.jitter = boolArg("jitter", jitter.value);
     o.threads = countArg("threads", threads.value, 0, 1024);

@@ -157,6 +157,12 @@ ReferenceImage renderReference(const Scene& scene, const Camera& camera,
     if (options.width == 0 || options.height == 0)
         throw InputError("--size: the image must be at least 1x1");
     if (options.spp == 0) throw InputError("--spp: must be at least 1");
+    if (options.noiseTarget > 0.0 && options.noiseTarget < kMinNoiseTarget) {
+        char text[96];
+        std::snprintf(text, sizeof text, "--noise: %g is below %g (0: no noise target)",
+                      options.noiseTarget, kMinNoiseTarget);
+        throw InputError(text);
+    }
     // Refused before anything is allocated: an allocation the machine cannot back either throws
     // after seconds of paging or gets the process killed. A fifth of what is available is left
     // to the rest of the program and to everything else on the machine.

@@ -18,6 +18,8 @@ constexpr uint32_t kMinSamplesForNoise = 16;
 // is 1% (its own relMSE about 1e-4), at most 65536 a pixel: the Cornell box, the slowest of the
 // shipped scenes to converge, needs about 21000.
 constexpr double kDefaultNoiseTarget = 0.01;
+// The smallest noise target taken (0 is none): below it no cap of samples reaches it.
+constexpr double kMinNoiseTarget = 1e-6;
 constexpr uint32_t kDefaultSampleCap = 65536;
 
 struct ReferenceOptions {
