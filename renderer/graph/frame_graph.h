@@ -201,6 +201,8 @@ private:
     void writeTimestamp(VkCommandBuffer cmd, uint32_t query, const std::string& pass);
     uint32_t addResource(const std::string& name, VkFormat format, VkExtent2D extent,
                          VkImageUsageFlags usage, bool transient);
+    // The image a later pass of the frame writes over `r`'s memory with, or none.
+    const Resource* overwriter(const Resource& r) const;
     // Throws std::logic_error where a later pass of the frame writes over `r`'s memory.
     void checkReadable(const Resource& r) const;
 

@@ -72,20 +72,22 @@ void FrameGraph::allocateTransients() {
                 resources_[ids[i]].sharesWith.push_back(ids[j]);
 }
 
-bool FrameGraph::readable(ImageRef ref) const {
-    const Resource& r = resources_[resolve(ref)];
+const FrameGraph::Resource* FrameGraph::overwriter(const Resource& r) const {
     for (uint32_t q : r.sharesWith)
-        if (resources_[q].firstPass > r.firstPass) return false;
-    return true;
+        if (resources_[q].firstPass > r.firstPass) return &resources_[q];
+    return nullptr;
+}
+
+bool FrameGraph::readable(ImageRef ref) const {
+    return overwriter(resources_[resolve(ref)]) == nullptr;
 }
 
 void FrameGraph::checkReadable(const Resource& r) const {
-    for (uint32_t q : r.sharesWith)
-        if (resources_[q].firstPass > r.firstPass)
-            throw std::logic_error(
-                r.image.name + " shares its memory with " + resources_[q].image.name +
-                ", which a later pass of the frame writes: keep it (FrameGraph::keep, "
-                "RenderOptions::keep) to read it after the frame");
+    if (const Resource* q = overwriter(r))
+        throw std::logic_error(
+            r.image.name + " shares its memory with " + q->image.name +
+            ", which a later pass of the frame writes: keep it (FrameGraph::keep, "
+            "RenderOptions::keep) to read it after the frame");
 }
 
 FrameGraph::SharedMemory FrameGraph::sharedMemory() const {
