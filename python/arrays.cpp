@@ -75,8 +75,8 @@ metrics::Image imageFrom(const py::handle& object, const std::string& what) {
         throw InputError(what + ": an empty image, of shape " + shape);
     if (a.shape(0) > kMaxSide || a.shape(1) > kMaxSide)
         throw InputError(what + ": an image of " + std::to_string(a.shape(1)) + "x" +
-                         std::to_string(a.shape(0)) +
-                         " pixels is too large: at most 65536 pixels on each side");
+                         std::to_string(a.shape(0)) + " pixels is too large: at most " +
+                         std::to_string(kMaxSide) + " pixels on each side");
     const py::dtype type = a.dtype();
     const char kind = type.kind();
     double scale = 1.0;
@@ -100,15 +100,15 @@ metrics::Image imageFrom(const py::handle& object, const std::string& what) {
     const size_t channels = grey ? 1 : size_t(a.shape(2));
     image.rgba.assign(image.pixels() * 4, 1.0f);
     const float* in = floats.data();
-    const float s = float(scale);
+    const float s = float(scale); // 1 for floats, which a product by 1 leaves as they are
     for (size_t i = 0; i < image.pixels(); ++i) {
         float* out = &image.rgba[4 * i];
         if (grey) {
-            out[0] = out[1] = out[2] = scale == 1.0 ? in[i] : in[i] * s;
+            out[0] = out[1] = out[2] = in[i] * s;
             continue;
         }
         for (size_t c = 0; c < channels; ++c)
-            out[c] = scale == 1.0 ? in[channels * i + c] : in[channels * i + c] * s;
+            out[c] = in[channels * i + c] * s;
     }
     return image;
 }
