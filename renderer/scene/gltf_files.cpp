@@ -189,11 +189,14 @@ void checkGltfJson(const std::string& path, const std::string& bytes, bool binar
     }
     const nlohmann::json root = nlohmann::json::parse(text, nullptr, false);
     if (!root.is_object()) return; // tinygltf read it; nothing more to say here
+    const auto isIndex = [](const nlohmann::json& v) {
+        return (v.is_number_integer() || v.is_number_unsigned()) && v.get<double>() >= 0 &&
+               v.get<double>() <= 2147483647.0;
+    };
     const auto index = [&](const nlohmann::json& object, const char* key, const std::string& what) {
         if (!object.is_object() || !object.contains(key)) return;
         const nlohmann::json& v = object[key];
-        if (!(v.is_number_integer() || v.is_number_unsigned()) || v.get<double>() < 0 ||
-            v.get<double>() > 2147483647.0)
+        if (!isIndex(v))
             fail(path, what + ": " + key + " " + v.dump() + " is not an index (0 or more)");
     };
     const auto integer = [&](const nlohmann::json& object, const char* key, const std::string& what,
@@ -251,8 +254,7 @@ void checkGltfJson(const std::string& path, const std::string& bytes, bool binar
                                const std::string& what) {
         if (!object.is_object() || !object.contains(key) || !object[key].is_array()) return;
         for (const nlohmann::json& v : object[key])
-            if (!(v.is_number_integer() || v.is_number_unsigned()) || v.get<double>() < 0 ||
-                v.get<double>() > 2147483647.0)
+            if (!isIndex(v))
                 fail(path, what + ": " + key + " holds " + v.dump() + ", not an index (0 or more)");
     };
     i = 0;
