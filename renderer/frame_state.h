@@ -29,6 +29,14 @@ struct FrameState {
     bool drawGBuffer = true;
     // An object moved since the sky maps were drawn (or they never were).
     bool drawSkyMaps = true;
+    // The world cache of indirect_method 3 (world_cache_pass.cpp): the light moved since the
+    // last frame (every cell restarts); an object moved since the last frame (the cells near it
+    // restart); an object moved since the voxel grid was drawn, or it never was; the table holds
+    // nothing yet, or the cache is off (it is cleared before the frame fills it).
+    bool lightMoved = false;
+    bool objectsMoved = false;
+    bool drawVoxels = true;
+    bool clearWorldCache = true;
     // Camera, light and objects unchanged for as many frames as a pixel needs rotations: every
     // pixel is converged, and the cached effects compute nothing (no refresh tile: a refreshed
     // pixel's new sample would be left out of its converged history, temporal.comp).

@@ -229,6 +229,9 @@ void Renderer::renderFrame(const Camera& camera) {
     if (lastFrame_.drawGBuffer) gbufferSidesHeld_ = std::min(gbufferSidesHeld_ + 1, 2u);
     rsmStale_ = false;
     skyMapsStale_ = false;
+    voxelsStale_ = false;
+    lightMoved_ = false;
+    worldCacheEmpty_ = false;
     moved_.clear();
     ++frameIndex_;
 }
@@ -249,6 +252,10 @@ FrameState Renderer::decideFrame() {
     // Without the cache nothing persists from frame to frame: the RSM is drawn every frame.
     f.drawRsm = rsmStale_ || !settings.cache;
     f.drawSkyMaps = skyMapsStale_;
+    f.lightMoved = lightMoved_;
+    f.objectsMoved = !moved_.empty();
+    f.drawVoxels = voxelsStale_;
+    f.clearWorldCache = worldCacheEmpty_ || !settings.cache;
     f.drawGBuffer = !settings.cache || gbufferSidesHeld_ < 2;
     f.settled = stillFrames_ >= uint32_t(settings.cache_rotations);
     f.view = view_;
@@ -320,6 +327,7 @@ void Renderer::setTime(float seconds) {
     uploadTransforms();
     rsmStale_ = true;
     skyMapsStale_ = true;
+    voxelsStale_ = true;
     for (const EffectCache& cache : build_->caches.effects)
         if (cache.effect.motionTest == MOTION_RESTART_ALL) restartCache(*graph_, cache);
 }
@@ -327,6 +335,7 @@ void Renderer::setTime(float seconds) {
 void Renderer::setLight(const SpotLight& light) {
     light_ = light;
     rsmStale_ = true;
+    lightMoved_ = true;
     stillFrames_ = 0;
     for (const EffectCache& cache : build_->caches.effects)
         if (cache.effect.lightDependent) restartCache(*graph_, cache);

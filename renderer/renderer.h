@@ -9,6 +9,7 @@
 
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -92,6 +93,12 @@ public:
     // effect refreshed in the last frame, in the output's pixels (extent 0 when none, or when it
     // lay in the guard band).
     std::vector<std::string> cachedEffects() const;
+    // The world cache's counters of the last frame (indirect_method 3; WORLD_STAT_* of
+    // shared.h), or none without it.
+    struct WorldCacheCounts {
+        uint32_t live = 0, filled = 0, refreshed = 0, evicted = 0, full = 0, entries = 0;
+    };
+    std::optional<WorldCacheCounts> worldCacheCounts();
     VkRect2D refreshedTile(const std::string& effect) const;
     const graph::FrameGraph& frameGraph() const { return *graph_; }
 
@@ -124,6 +131,9 @@ private:
     uint32_t gbufferSidesHeld_ = 0;     // sides of this renderer's G-buffer pair that hold its view
     bool rsmStale_ = true;              // the light changed since the RSM was drawn
     bool skyMapsStale_ = true;          // an object moved since the sky maps were drawn
+    bool voxelsStale_ = true;           // an object moved since the voxel grid was drawn
+    bool lightMoved_ = false;           // the light changed since the last frame
+    bool worldCacheEmpty_ = true;       // no frame has filled the world cache's table yet
     int view_ = 0;                      // what the composite shows (its place in kViews)
     FrameState lastFrame_;              // what the last frame ran
     std::vector<glm::mat4> transforms_; // where the instances stand

@@ -2,6 +2,8 @@
 // the shared positions, the viewer's copy source, the cached effects and their refresh tiles.
 #include "renderer.h"
 
+#include "shared.h"
+
 #include <cmath>
 #include <cstring>
 
@@ -156,6 +158,22 @@ VkRect2D Renderer::refreshedTile(const std::string& effect) const {
         return {{x0 - v.offset.x, y0 - v.offset.y}, {uint32_t(x1 - x0), uint32_t(y1 - y0)}};
     }
     return {};
+}
+
+std::optional<Renderer::WorldCacheCounts> Renderer::worldCacheCounts() {
+    if (frameIndex_ == 0 || !hasImage("world.stats")) return std::nullopt;
+    const std::vector<float> stats = readImage("world.stats"); // WORLD_STATS x 2, RGBA each
+    const size_t row = size_t((patternFrame() - 1) & 1u) * WORLD_STATS;
+    auto at = [&](int stat) { return uint32_t(stats[4 * (row + size_t(stat))]); };
+    WorldCacheCounts c;
+    c.live = at(WORLD_STAT_LIVE);
+    c.filled = at(WORLD_STAT_NEW);
+    c.refreshed = at(WORLD_STAT_REFRESHED);
+    c.evicted = at(WORLD_STAT_EVICTED);
+    c.full = at(WORLD_STAT_FULL);
+    const VkExtent2D table = graph_->image(imageNamed("world.keys")).extent;
+    c.entries = table.width * table.height;
+    return c;
 }
 
 } // namespace ssgi

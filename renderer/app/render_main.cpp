@@ -165,6 +165,12 @@ int run(int argc, char** argv) {
     if (args.memory) printMemory(renderer.frameGraph(), common.width, common.height);
     const std::string device = std::string(ctx.properties.deviceName) + " (" + ctx.driverName + ")";
     if (args.profile) std::printf("%s", log.table(device).c_str());
+    if (args.profile)
+        if (const auto world = renderer.worldCacheCounts())
+            std::printf("world cache (last frame): %u cells live of %u entries, %u filled, %u "
+                        "refreshed, %u evicted, %u pixels without a free entry\n",
+                        world->live, world->entries, world->filled, world->refreshed,
+                        world->evicted, world->full);
     if (!args.profileJson.empty()) {
         const ProfileSummary summary = log.summary();
         nlohmann::json passes = nlohmann::json::array();

@@ -44,9 +44,11 @@ CompositeOutputs addCompositePass(FrameBuild& build, const GBufferAndRsm& in,
     pass.pushSize = sizeof(shader::CompositeConstants);
     // Each view's term slot, -1 for the composite's own views and for terms this frame lacks.
     std::vector<int> termSlots(std::size(kViews), -1);
-    for (size_t v = 0; v < std::size(kViews); ++v)
+    for (size_t v = 0; v < std::size(kViews); ++v) {
+        const char* term = kViews[v].showsTerm ? kViews[v].showsTerm : kViews[v].name;
         for (size_t slot = 0; slot < terms.size(); ++slot)
-            if (terms[slot].view == kViews[v].name) termSlots[v] = int(slot);
+            if (terms[slot].view == term) termSlots[v] = int(slot);
+    }
     addComputePass(build, std::move(pass), [&build, output, termSlots](const ComputeRecorder& r) {
         shader::CompositeConstants constants{};
         constants.view = kViews[r.frame().view].view;

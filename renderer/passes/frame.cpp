@@ -16,7 +16,10 @@ void addFramePasses(FrameBuild& build) {
     rasterized.shadowMap = addShadowMapPass(build, rasterized.rsm);
     if (settings.shadow_variant == 1 && settings.shadow_taps > 1)
         rasterized.shadowMapBack = addShadowMapBackPass(build);
-    if (settings.indirect && settings.indirect_visibility && settings.indirect_visibility_light)
+    // The screen-space visibility test's inputs; the world cache (indirect_method 3) tests its
+    // VPLs in a voxel grid instead.
+    const bool screenSpaceBounce = settings.indirect && settings.indirect_method != 3;
+    if (screenSpaceBounce && settings.indirect_visibility && settings.indirect_visibility_light)
         rasterized.lightDepthMin = addLightDepthMinPass(build, rasterized.rsm);
     addReprojectionPass(build, rasterized.gbuffer);
     // Each cached effect returns its blended history (cached_effect_pass.h), which is what its
@@ -27,7 +30,7 @@ void addFramePasses(FrameBuild& build) {
     // Depth peeling's second layer serves SSDO's occlusion test, the contact shadows' and the
     // bounce's visibility test.
     if (settings.depth_peeling && (settings.ssdo || settings.contact_shadows ||
-                                   (settings.indirect && settings.indirect_visibility)))
+                                   (screenSpaceBounce && settings.indirect_visibility)))
         rasterized.secondLayer = addPeelPass(build, rasterized);
     if (settings.contact_shadows)
         composite.shadow = addContactPass(build, rasterized, composite.shadow);

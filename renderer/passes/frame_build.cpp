@@ -65,7 +65,7 @@ vk::Pipeline FrameBuild::graphicsPipeline(const vk::GraphicsPipelineDesc& desc) 
 
 void FrameBuild::addCompositeTerm(const std::string& view, graph::ImageRef image) {
     const ViewDef* def = findView(view);
-    if (!def || def->view != VIEW_TERM)
+    if (!def || def->view != VIEW_TERM || def->showsTerm)
         throw std::logic_error("addCompositeTerm: '" + view + "' is not a term's view (views.h)");
     for (const CompositeTerm& term : compositeTerms)
         if (term.view == view) throw std::logic_error("addCompositeTerm: '" + view + "' twice");

@@ -1,7 +1,8 @@
 // The one-bounce indirect light as a cached effect: its cache declared once, then the passes of
 // the method the settings choose (indirect_method: 0 the thesis's half-resolution gather and its
 // upsampling, 1 interleaved VPL subsets and their filter, 2 the same with VPLs drawn by flux
-// beside them), then its temporal pass.
+// beside them), then its temporal pass; or (3) the world cache, which holds it in world space
+// instead.
 #include "passes/passes.h"
 
 namespace ssgi {
@@ -21,6 +22,14 @@ shader::IndirectConstants indirectConstants(const FrameBuild& build, const Effec
 }
 
 graph::ImageRef addIndirectLight(FrameBuild& build, const GBufferAndRsm& in) {
+    if (build.settings.indirect_method == 3) {
+        // Held in world space, where the view does not change it: no screen-space cache.
+        const FluxVpls vpls = addFluxVplPasses(build, in, build.settings.cache);
+        const WorldGrid grid = addWorldVoxelPasses(build);
+        const graph::ImageRef value = addWorldCachePasses(build, in, vpls, grid);
+        build.addCompositeTerm("indirect", value);
+        return value;
+    }
     // A moved light, or any moved object (whose shadow and RSM moved too), restarts it whole.
     const CachedEffect effect{.name = "indirect",
                               .lightDependent = true,
@@ -34,7 +43,7 @@ graph::ImageRef addIndirectLight(FrameBuild& build, const GBufferAndRsm& in) {
         raw = addIndirectPasses(build, in, cache);
     } else {
         std::optional<FluxVpls> vpls;
-        if (method == 2) vpls = addFluxVplPasses(build, in, cache);
+        if (method == 2) vpls = addFluxVplPasses(build, in, cache != nullptr);
         raw = addInterleavedIndirectPasses(build, in, cache, vpls ? &*vpls : nullptr);
     }
     const graph::ImageRef value = addTemporalPass(build, cache, raw, in.gbuffer);

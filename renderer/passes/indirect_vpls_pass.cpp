@@ -1,4 +1,5 @@
-// indirect.flux + indirect.vpls (indirect_method 2): the VPLs of the importance gather. The RSM
+// indirect.flux + indirect.vpls (indirect_methods 2 and 3): the VPLs of the importance gather
+// and of the world cache's cells. The RSM
 // clustered into a coarser map of VPLs, and a list of VPLs drawn this frame in proportion to
 // their flux, through a pyramid of its luminance (indirect_vpls.comp).
 //   reads:  rsm.vpls
@@ -11,7 +12,7 @@
 
 namespace ssgi {
 
-FluxVpls addFluxVplPasses(FrameBuild& build, const GBufferAndRsm& in, const EffectCache* cache) {
+FluxVpls addFluxVplPasses(FrameBuild& build, const GBufferAndRsm& in, bool moving) {
     const Settings& settings = build.settings;
     const uint32_t mapSize = build.rsmSize.width;
     const uint32_t clusterSide = uint32_t(settings.indirect_vpl_cluster);
@@ -40,7 +41,7 @@ FluxVpls addFluxVplPasses(FrameBuild& build, const GBufferAndRsm& in, const Effe
                                        {uint32_t(count) + 1, 3}, usage);
 
     shader::VplDrawConstants c{};
-    c.cached = cache ? 1 : 0;
+    c.cached = moving ? 1 : 0;
     c.mapSize = int(mapSize);
     c.vplMapSize = int(vplMapSize);
     c.paddedSize = int(padded);

@@ -60,12 +60,29 @@ shader::IndirectConstants indirectConstants(const FrameBuild& build, const Effec
 graph::ImageRef addIndirectPasses(FrameBuild& build, const GBufferAndRsm& inputs,
                                   const EffectCache* cache);
 
-// indirect.flux + indirect.vpls, indirect_method 2: the RSM clustered into a coarser map of
-// VPLs, and the list of VPLs drawn this frame in proportion to their flux.
+// indirect.flux + indirect.vpls, indirect_methods 2 and 3: the RSM clustered into a coarser map
+// of VPLs, and the list of VPLs drawn this frame in proportion to their flux (a new draw each
+// frame when `moving`, else the same every frame).
 struct FluxVpls {
     graph::ImageRef position, normal, flux, list;
 };
-FluxVpls addFluxVplPasses(FrameBuild& build, const GBufferAndRsm& inputs, const EffectCache* cache);
+FluxVpls addFluxVplPasses(FrameBuild& build, const GBufferAndRsm& inputs, bool moving);
+
+// world.voxel_clear + world.voxelize, indirect_method 3: the scene's voxel occupancy grid, drawn
+// on the first frame and after an object moved (world_voxels_pass.cpp); `constants` holds the
+// grid's place and size (WorldConstants' gridOrigin and gridSize, the rest left 0).
+struct WorldGrid {
+    graph::ImageRef voxels, blocks;
+    shader::WorldConstants constants;
+};
+shader::WorldConstants worldGridConstants(const FrameBuild& build);
+WorldGrid addWorldVoxelPasses(FrameBuild& build);
+
+// world.clear + world.insert + world.update + world.lookup, indirect_method 3: the bounce from
+// cells of a hash table in world space, which gather the flux's VPLs (`vpls.list`) with their
+// visibility in `grid`; returns the bounce looked up at every pixel (world_cache_pass.cpp).
+graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& inputs,
+                                    const FluxVpls& vpls, const WorldGrid& grid);
 
 // indirect (interleaved VPL subsets) + indirect.filter_x + indirect.filter_y: the same light,
 // indirect_method 1; with `fluxVpls` (method 2) the flux's VPLs beside the pattern's.

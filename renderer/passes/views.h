@@ -14,6 +14,10 @@ struct ViewDef {
     const char* name;
     int view;             // VIEW_*: VIEW_TERM for a lighting term's view
     int role = TERM_NONE; // a term's role in the composite (TERM_*)
+    // A view of another term's image (its view's name), which the pass that makes the term
+    // fills with something else for this view (the world cache's cells and their age in the
+    // bounce's image); the role says how the composite shows it. Never a term of its own.
+    const char* showsTerm = nullptr;
 };
 
 inline constexpr ViewDef kViews[] = {
@@ -31,6 +35,10 @@ inline constexpr ViewDef kViews[] = {
     {"contact", VIEW_CONTACT},
     {"peel", VIEW_PEEL},
     {"sky-visibility", VIEW_TERM, TERM_SKY_FILTER},
+    // indirect_method 3: each pixel's own cell's value, unblended, and its state as data (red: no
+    // samples; green: its samples' share of world_frames; blue: frames unused over world_lifetime).
+    {"world-cells", VIEW_TERM, TERM_IRRADIANCE, "indirect"},
+    {"world-age", VIEW_TERM, TERM_SKY_FILTER, "indirect"},
 };
 
 // Each of the composite's own views once, and a role for each term's view and no other.

@@ -73,21 +73,22 @@ namespace ssgi {
       "the reflective shadow map, texels per side: each texel a VPL")                              \
     X(indirect, bool, true, 0, 1, "Indirect light",                                                \
       "one-bounce indirect light from the RSM on or off")                                          \
-    X(indirect_method, int, 1, 0, 2, "Indirect light",                                             \
+    X(indirect_method, int, 1, 0, 3, "Indirect light",                                             \
       "0 the thesis's gather: every VPL per half-resolution pixel, upsampled; 1 interleaved: "     \
       "each pixel of a k x k block gathers 1/k^2 of the RSM's texels, then a geometry-aware "      \
       "filter; 2 importance: 1 from clustered VPLs, some drawn by flux, visibility tested on a "   \
-      "few drawn by their light")                                                                  \
+      "few drawn by their light; 3 world cache: cells in world space gather the flux's VPLs "      \
+      "through a voxel grid, pixels look them up")                                                 \
     X(indirect_vpls, int, 384, 1, 1024, "Indirect light",                                          \
       "VPLs of the pattern: method 0, gathered by every pixel (the thesis's: 512); methods 1-2, "  \
       "split among a block")                                                                       \
     X(indirect_flux_vpls, int, 64, 1, 512, "Indirect light",                                       \
       "method 2: VPLs drawn by flux that each block gathers (split among it like the pattern's)")  \
     X(indirect_flux_pool, int, 2048, 1, 16384, "Indirect light",                                   \
-      "method 2: VPLs drawn each frame in proportion to the RSM's flux; each 8 x 8 pixels take "   \
-      "a run of indirect_flux_vpls of them")                                                       \
+      "methods 2-3: VPLs drawn each frame in proportion to the RSM's flux; each 8 x 8 pixels "     \
+      "(method 2) or each cell (method 3) take a run of them")                                     \
     X(indirect_vpl_cluster, int, 4, 1, 16, "Indirect light",                                       \
-      "method 2: RSM texels per VPL, per side (the RSM clustered into a coarser map of VPLs)")     \
+      "methods 2-3: RSM texels per VPL, per side (the RSM clustered into a coarser map of VPLs)")  \
     X(indirect_visibility_tests, int, 6, 0, 1024, "Indirect light",                                \
       "method 2: VPLs a pixel tests for visibility, drawn by their light; 0 = every one")          \
     X(indirect_interleave, int, 4, 1, 8, "Indirect light",                                         \
@@ -108,6 +109,24 @@ namespace ssgi {
       "(light_depth_min) may tell it open: the step's stretch seen open above the VPL's surface")  \
     X(indirect_half_res, bool, true, 0, 1, "Indirect light",                                       \
       "method 0: gather at half resolution and upsample (1), or every pixel at full (0)")          \
+    X(world_voxels, int, 128, 8, 512, "World cache",                                               \
+      "method 3: voxels along the scene's longest side in the occupancy grid its visibility "      \
+      "test walks")                                                                                \
+    X(world_cell, double, 0.0, 0, 1e30, "World cache",                                             \
+      "method 3: side of the nearest cells (scene units; 0: the scene's diagonal / 128)")          \
+    X(world_cell_range, double, 32.0, 1, 1e6, "World cache",                                       \
+      "method 3: cells keep their side up to this many sides from the camera, then double at "     \
+      "each further such distance")                                                                \
+    X(world_vpls, int, 32, 1, 1024, "World cache",                                                 \
+      "method 3: VPLs a cell gathers, with their visibility, in a frame's refresh")                \
+    X(world_frames, int, 16, 1, 1024, "World cache",                                               \
+      "method 3: frames of world_vpls a cell accumulates before it stops (uncached, all at once)") \
+    X(world_cells_per_frame, int, 2048, 0, 1 << 24, "World cache",                                 \
+      "method 3: cells refreshed a frame beyond the new ones (which are always filled)")           \
+    X(world_table_bits, int, 17, 8, 22, "World cache",                                             \
+      "method 3: the hash table holds 2^bits cells")                                               \
+    X(world_lifetime, int, 120, 1, 1 << 24, "World cache",                                         \
+      "method 3: frames a cell stays while no pixel uses it")                                      \
     X(cache, bool, true, 0, 1, "Temporal cache",                                                   \
       "the temporal cache of shadow, AO, SSDO and indirect light")                                 \
     X(cache_method, int, 0, 0, 1, "Temporal cache",                                                \

@@ -114,7 +114,7 @@ static VkPhysicalDevice pickDevice(VkInstance instance, const std::string& wante
         VkPhysicalDeviceFeatures features;
         vkGetPhysicalDeviceFeatures(device, &features);
         if (!features.shaderStorageImageExtendedFormats ||
-            !features.shaderStorageImageWriteWithoutFormat)
+            !features.shaderStorageImageWriteWithoutFormat || !features.fragmentStoresAndAtomics)
             continue;
         // The temporal passes vote across a subgroup (temporal.comp: its pixels fall due together).
         VkPhysicalDeviceSubgroupProperties subgroup{
@@ -292,6 +292,8 @@ Context::Context(const ContextOptions& options) {
     // temporal pass writes either kind of history through one binding (no format).
     features2.features.shaderStorageImageExtendedFormats = VK_TRUE;
     features2.features.shaderStorageImageWriteWithoutFormat = VK_TRUE;
+    // The world cache's voxel grid is marked from fragment shaders (world_voxelize.frag).
+    features2.features.fragmentStoresAndAtomics = VK_TRUE;
 
     const char* deviceExtensions[] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME,
                                       VK_KHR_SWAPCHAIN_EXTENSION_NAME};

@@ -127,13 +127,33 @@ Pipeline createGraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& desc) 
     p.stages = VK_SHADER_STAGE_VERTEX_BIT | (fragment ? VK_SHADER_STAGE_FRAGMENT_BIT : 0);
     createLayout(ctx, p, desc.bindings, desc.textureSetLayout, desc.pushConstantSize);
 
+    // Each stage's constants: their map entries and values (empty for a stage that has none).
+    struct StageSpec {
+        std::vector<VkSpecializationMapEntry> entries;
+        std::vector<int32_t> values;
+        VkSpecializationInfo info{};
+        const VkSpecializationInfo* get() {
+            info = {uint32_t(entries.size()), entries.data(), values.size() * sizeof(int32_t),
+                    values.data()};
+            return entries.empty() ? nullptr : &info;
+        }
+    };
+    StageSpec vertexSpec, fragmentSpec;
+    vertexSpec.entries = specEntries(desc.vertexShader, desc.vertexSpec);
+    for (const SpecConstant& c : desc.vertexSpec.constants)
+        vertexSpec.values.push_back(c.value);
+    if (fragment) {
+        fragmentSpec.entries = specEntries(desc.fragmentShader, desc.fragmentSpec);
+        for (const SpecConstant& c : desc.fragmentSpec.constants)
+            fragmentSpec.values.push_back(c.value);
+    }
     VkShaderModule vs = loadShader(ctx, desc.vertexShader);
     VkShaderModule fs = fragment ? loadShader(ctx, desc.fragmentShader) : VK_NULL_HANDLE;
     VkPipelineShaderStageCreateInfo stages[2] = {
         {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
-         VK_SHADER_STAGE_VERTEX_BIT, vs, "main", nullptr},
+         VK_SHADER_STAGE_VERTEX_BIT, vs, "main", vertexSpec.get()},
         {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
-         VK_SHADER_STAGE_FRAGMENT_BIT, fs, "main", nullptr}};
+         VK_SHADER_STAGE_FRAGMENT_BIT, fs, "main", fragmentSpec.get()}};
 
     VkVertexInputBindingDescription binding{0, desc.vertices.stride, VK_VERTEX_INPUT_RATE_VERTEX};
     VkPipelineVertexInputStateCreateInfo vertexInput{

@@ -56,6 +56,8 @@ struct GraphicsPipelineDesc {
     std::vector<LayoutBinding> bindings;                     // set 0, push descriptors
     VkDescriptorSetLayout textureSetLayout = VK_NULL_HANDLE; // set 1, optional
     uint32_t pushConstantSize = 0;
+    // Each stage's specialization constants, as createComputePipeline takes them.
+    Specialization vertexSpec, fragmentSpec;
 };
 
 // Vertex input as `desc.vertices` says; no culling (our surfaces are two-sided).

@@ -360,6 +360,39 @@ struct SkyTriangles {
 };
 SSGI_CHECK_SIZE(SkyTriangles, 16 + 3 * 32 * 16);
 
+// The world cache of indirect_method 3 (world_cache_pass.cpp): a hash table of cells in world
+// space (world_cache.glsl), each the bounce gathered at one surface point from the flux's VPLs
+// with the visibility of a voxel occupancy grid (world_voxels.glsl), which pixels look up.
+struct WorldConstants {
+    vec4 gridOrigin; // xyz: the grid's lowest corner (the GPU's world space); w: a voxel's side
+    ivec4 gridSize;  // xyz: voxels per axis; w: 32-bit words per row along x
+    // x: the nearest cells' side; y: the distance from the camera over which cells keep a size
+    // (they double beyond each); z: frames of samples a cell accumulates (world_frames); w: the
+    // visibility test's offset off each surface (scene units)
+    vec4 cells;
+    ivec4 table; // x: the table images' width; y: entries; z: frames unused before eviction; w: 1 cached
+    // x: VPLs a cell gathers a frame; y: cells refreshed a frame beyond the new ones; z: the
+    // flux pool's size; w: what the lookup writes (WORLD_VIEW_*)
+    ivec4 work;
+    // x: 1 / (the VPL map's side)^2, its texels' footprint; y: 1 on a frame the
+    // light moved (every cell restarts); z: 1 on a frame an object moved; w: unused
+    vec4 change;
+};
+SSGI_CHECK_SIZE(WorldConstants, 96);
+#define WORLD_VIEW_LIGHT 0 // the bounce, interpolated between cells
+#define WORLD_VIEW_CELLS 1 // each pixel's own cell's value, its edges unblended
+#define WORLD_VIEW_AGE 2   // each pixel's own cell: green its samples' share of world_frames,
+                           // red where it holds none, blue its frames since last used
+// The world cache's counters (world.stats, R32UI, a row per frame parity): what `render
+// --profile` prints.
+#define WORLD_STAT_LIVE 0      // cells in the table after eviction
+#define WORLD_STAT_NEW 1       // cells filled for the first time (or restarted) this frame
+#define WORLD_STAT_REFRESHED 2 // cells that gathered more samples this frame
+#define WORLD_STAT_EVICTED 3   // cells evicted this frame
+#define WORLD_STAT_FULL 4      // pixels whose cell found no free entry within its probes
+#define WORLD_STAT_BUDGET 5    // refreshes handed out (world_cells_per_frame caps them)
+#define WORLD_STATS 6
+
 // How a lighting term enters the composite's sum (composite.comp). The pass that makes a term
 // registers it by its view's name (FrameBuild::addCompositeTerm); the view table
 // (renderer/passes/views.h) gives each term's view its role.

@@ -1,0 +1,123 @@
+// world.clear, world.insert, world.update, world.lookup (indirect_method 3): the bounce held in
+// world space. A hash table of cells (world_cache.glsl), each the irradiance at one surface point
+// gathered from the flux's VPLs with their visibility through the voxel grid
+// (world_voxels_pass.cpp), which does not depend on the view: a moving camera looks the cells up
+// and fills only the new ones. The table persists from frame to frame; without the cache it is
+// cleared every frame and every cell filled at once.
+//   reads:  gbuffer.view_depth, .normal, indirect.vpl_list (the flux's pool), world.voxels
+//   writes: world.keys, .irradiance, .points, .used (the table), world.stats (its counters),
+//           world.indirect (the bounce, irradiance / pi, RGBA16F: the composite's "indirect")
+#include "passes/passes.h"
+#include "passes/views.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ssgi {
+
+graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
+                                    const FluxVpls& vpls, const WorldGrid& grid) {
+    const Settings& settings = build.settings;
+    const int bits = int(settings.world_table_bits);
+    const VkExtent2D table{1u << (bits - bits / 2), 1u << (bits / 2)};
+    shader::WorldConstants base = grid.constants;
+    const float diagonal = glm::length(build.scene.bounds.size());
+    const float side =
+        settings.world_cell > 0.0 ? float(settings.world_cell) : diagonal / 128.0f;
+    const uint32_t vplMapSide = (build.rsmSize.width + uint32_t(settings.indirect_vpl_cluster) -
+                                 1) / uint32_t(settings.indirect_vpl_cluster);
+    base.cells = glm::vec4(side, float(settings.world_cell_range) * side,
+                           float(settings.world_frames), 0.5f * grid.constants.gridOrigin.w);
+    base.table = glm::ivec4(int(table.width), int(table.width * table.height),
+                            int(settings.world_lifetime), settings.cache ? 1 : 0);
+    const int pool = int(std::max(settings.indirect_flux_pool, settings.indirect_flux_vpls));
+    base.work = glm::ivec4(int(settings.world_vpls), int(settings.world_cells_per_frame), pool,
+                           WORLD_VIEW_LIGHT);
+    base.change = glm::vec4(1.0f / float(vplMapSide * vplMapSide), 0.0f, 0.0f, 0.0f);
+    // This frame's: what changed, and what the lookup shows.
+    const size_t cellsView = size_t(findView("world-cells") - kViews);
+    const size_t ageView = size_t(findView("world-age") - kViews);
+    auto constants = [base, cellsView, ageView](const FrameState& frame) {
+        shader::WorldConstants c = base;
+        c.change.y = frame.lightMoved ? 1.0f : 0.0f;
+        c.change.z = frame.objectsMoved ? 1.0f : 0.0f;
+        const size_t view = size_t(frame.view);
+        c.work.w = view == cellsView ? WORLD_VIEW_CELLS
+                   : view == ageView ? WORLD_VIEW_AGE
+                                     : WORLD_VIEW_LIGHT;
+        return c;
+    };
+
+    const VkImageUsageFlags usage =
+        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    auto tableImage = [&](const char* name, VkFormat format) {
+        return build.graph.createImage(name, format, table, usage, true);
+    };
+    const graph::ImageRef keys = tableImage("world.keys", VK_FORMAT_R32_UINT);
+    const graph::ImageRef irradiance = tableImage("world.irradiance", VK_FORMAT_R32G32B32A32_SFLOAT);
+    const graph::ImageRef points = tableImage("world.points", VK_FORMAT_R32G32B32A32_SFLOAT);
+    const graph::ImageRef used = tableImage("world.used", VK_FORMAT_R32_UINT);
+    const graph::ImageRef stats =
+        build.graph.createImage("world.stats", VK_FORMAT_R32_UINT, {WORLD_STATS, 2}, usage, true);
+    const graph::ImageRef indirect = build.graph.createImage(
+        "world.indirect", VK_FORMAT_R16G16B16A16_SFLOAT, build.size, usage);
+
+    using graph::Use;
+    // Empty keys are zeros, and so are the counters; the other images are written before they
+    // are read.
+    build.graph.addPass(
+        "world.clear", graph::PassKind::Transfer,
+        {{keys, Use::TransferDst}, {used, Use::TransferDst}, {stats, Use::TransferDst}},
+        [keys, used, stats](const graph::PassContext& pc) {
+            const VkClearColorValue zero{};
+            const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+            for (const graph::ImageRef& image : {keys, used, stats})
+                vkCmdClearColorImage(pc.cmd, pc.image(image).image,
+                                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &range);
+        },
+        [](const FrameState& frame) { return frame.clearWorldCache; });
+
+    ComputePassDesc insert{"world.insert", "world_insert.comp"};
+    insert.images = {{"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
+                     {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
+                     {"worldKeys", keys, Use::StorageReadWrite},
+                     {"worldIrradiance", irradiance, Use::StorageWrite},
+                     {"worldPoints", points, Use::StorageWrite},
+                     {"worldUsed", used, Use::StorageReadWrite},
+                     {"worldStats", stats, Use::StorageReadWrite}};
+    insert.pushSize = sizeof(shader::WorldConstants);
+    const VkExtent2D screen = build.size;
+    addComputePass(build, std::move(insert), [screen, constants](const ComputeRecorder& r) {
+        r.dispatch(screen.width, screen.height, constants(r.frame()));
+    });
+
+    ComputePassDesc update{"world.update", "world_update.comp"};
+    update.images = {{"voxels", grid.voxels, Use::Sampled},
+                     {"voxelBlocks", grid.blocks, Use::Sampled},
+                     {"vplList", vpls.list, Use::Sampled},
+                     {"worldKeys", keys, Use::StorageReadWrite},
+                     {"worldIrradiance", irradiance, Use::StorageReadWrite},
+                     {"worldPoints", points, Use::Sampled},
+                     {"worldUsed", used, Use::Sampled},
+                     {"worldStats", stats, Use::StorageReadWrite}};
+    update.pushSize = sizeof(shader::WorldConstants);
+    update.spec = {{{"POOL", pool}}};
+    addComputePass(build, std::move(update), [table, constants](const ComputeRecorder& r) {
+        r.dispatch(table.width, table.height, constants(r.frame()));
+    });
+
+    ComputePassDesc lookup{"world.lookup", "world_lookup.comp"};
+    lookup.images = {{"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
+                     {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
+                     {"worldKeys", keys, Use::Sampled},
+                     {"worldIrradiance", irradiance, Use::Sampled},
+                     {"worldUsed", used, Use::Sampled},
+                     {"indirectImage", indirect, Use::StorageWrite}};
+    lookup.pushSize = sizeof(shader::WorldConstants);
+    addComputePass(build, std::move(lookup), [screen, constants](const ComputeRecorder& r) {
+        r.dispatch(screen.width, screen.height, constants(r.frame()));
+    });
+    return indirect;
+}
+
+} // namespace ssgi

@@ -1,0 +1,69 @@
+// The world cache's hash table (indirect_method 3). A cell is a cube of world space at one level
+// of size (the nearest cells world_cell wide, doubling with distance from the camera) and one of
+// six normal directions (the normal's dominant axis and its sign), so that the two sides of a
+// wall, or a floor and the ceiling above it, never share a cell. Its key is a 32-bit checksum of
+// those (0: an empty entry); it lives at its home entry, a second hash of them, or one of the
+// WORLD_PROBES entries after it. Lookups compare checksums over all the probes, since an
+// eviction may leave a hole before a key. The table's images hold entry i at texel
+// (i % table.x, i / table.x):
+//   world.keys       R32UI    the checksum
+//   world.irradiance RGBA32F  rgb: irradiance / pi at the cell's point (the mean of its
+//                             gathers), a: the frames of samples behind it (0: none yet)
+//   world.points     RGBA32F  xyz: the point it gathers at (the first pixel that made it), w: its
+//                             normal (octahedral, two snorm16 in the float's bits)
+//   world.used       R32UI    the last frame a pixel used it (FrameUniforms.patternFrame)
+// Needs: constants (WorldConstants), common.glsl.
+#ifndef SSGI_WORLD_CACHE_GLSL
+#define SSGI_WORLD_CACHE_GLSL
+
+const int WORLD_PROBES = 8;
+const int WORLD_LEVELS = 16;
+
+// A PCG hash (O'Neill 2014).
+uint worldHash(uint v) {
+    v = v * 747796405u + 2891336453u;
+    v = ((v >> ((v >> 28u) + 4u)) ^ v) * 277803737u;
+    return (v >> 22u) ^ v;
+}
+
+// The level of the cells at distance d from the camera: level l's cells are 2^l times the
+// nearest's side, and reach 2^l - 1 times the distance cells.y.
+int worldLevel(float d) {
+    return clamp(int(floor(log2(1.0 + d / constants.cells.y))), 0, WORLD_LEVELS - 1);
+}
+float worldCellSide(int level) {
+    return constants.cells.x * exp2(float(level));
+}
+// 0..5: +x, -x, +y, -y, +z, -z, the normal's dominant axis.
+int worldDirection(vec3 n) {
+    vec3 a = abs(n);
+    int axis = a.x >= a.y && a.x >= a.z ? 0 : a.y >= a.z ? 1 : 2;
+    return 2 * axis + (n[axis] < 0.0 ? 1 : 0);
+}
+
+struct WorldKey {
+    uint home;     // the first entry it may take
+    uint checksum; // never 0
+};
+WorldKey worldKey(ivec3 cell, int level, int direction) {
+    uint tag = uint(level * 6 + direction);
+    WorldKey k;
+    k.home = worldHash(uint(cell.x) + worldHash(uint(cell.y) + worldHash(uint(cell.z) +
+                                                                          worldHash(tag)))) %
+             uint(constants.table.y);
+    // Another hash of the same four numbers, so that keys that share a home differ here.
+    k.checksum = max(worldHash(uint(cell.x) * 73856093u ^ uint(cell.y) * 19349663u ^
+                               uint(cell.z) * 83492791u ^ (tag + 1u) * 2654435761u),
+                     1u);
+    return k;
+}
+ivec2 worldEntry(uint home, int probe) {
+    uint i = (home + uint(probe)) % uint(constants.table.y);
+    return ivec2(i % uint(constants.table.x), i / uint(constants.table.x));
+}
+// The cell that holds p at `level` (in cells of that level).
+ivec3 worldCellOf(vec3 p, int level) {
+    return ivec3(floor(p / worldCellSide(level)));
+}
+
+#endif

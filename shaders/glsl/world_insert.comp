@@ -1,0 +1,61 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// world.insert (indirect_method 3): every pixel finds its own cell in the world cache
+// (world_cache.glsl), or makes it in the first free entry among its probes, and marks it used
+// this frame. The pixel that makes a cell gives it its point and normal, where the cell will
+// gather (world_update.comp). Invocation 0 also clears the next frame's row of counters.
+#include "shared.h"
+#include "common.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
+layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
+layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
+layout(set = 0, binding = 3, r32ui) uniform coherent uimage2D worldKeys;
+layout(set = 0, binding = 4, rgba32f) uniform writeonly image2D worldIrradiance;
+layout(set = 0, binding = 5, rgba32f) uniform writeonly image2D worldPoints;
+layout(set = 0, binding = 6, r32ui) uniform uimage2D worldUsed;
+layout(set = 0, binding = 7, r32ui) uniform coherent uimage2D worldStats;
+layout(push_constant) uniform WorldBlock { WorldConstants constants; };
+
+#include "gbuffer_position.glsl"
+#include "world_cache.glsl"
+
+void main() {
+    loadPixelToWorld(); // pixel_to_world.glsl
+    uint now = uint(frame.patternFrame);
+    if (gl_GlobalInvocationID.xy == uvec2(0))
+        for (int i = 0; i < WORLD_STATS; ++i)
+            imageStore(worldStats, ivec2(i, int(now + 1u) & 1), uvec4(0u));
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
+    vec4 position = gbufferPosition(pixel);
+    if (position.w == 0.0) return;
+    vec3 p = position.xyz;
+    vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
+    int level = worldLevel(distance(p, frame.cameraPosition.xyz));
+    WorldKey key = worldKey(worldCellOf(p, level), level, worldDirection(n));
+    // The key where it already is (a hole an eviction left may lie before it)...
+    for (int probe = 0; probe < WORLD_PROBES; ++probe) {
+        ivec2 entry = worldEntry(key.home, probe);
+        if (imageLoad(worldKeys, entry).r == key.checksum) {
+            if (imageLoad(worldUsed, entry).r != now) imageStore(worldUsed, entry, uvec4(now));
+            return;
+        }
+    }
+    // ...or in the first free entry, which another pixel of the same cell may take first.
+    for (int probe = 0; probe < WORLD_PROBES; ++probe) {
+        ivec2 entry = worldEntry(key.home, probe);
+        uint held = imageAtomicCompSwap(worldKeys, entry, 0u, key.checksum);
+        if (held == 0u) {
+            imageStore(worldPoints, entry,
+                       vec4(p, uintBitsToFloat(packSnorm2x16(octahedralEncode(n)))));
+            imageStore(worldIrradiance, entry, vec4(0.0));
+            imageStore(worldUsed, entry, uvec4(now));
+            return;
+        }
+        if (held == key.checksum) return; // made by another pixel this frame
+    }
+    imageAtomicAdd(worldStats, ivec2(WORLD_STAT_FULL, int(now) & 1), 1u);
+}
