@@ -4,6 +4,7 @@
 
 #include "shared.h"
 
+#include <bit>
 #include <cmath>
 #include <cstring>
 
@@ -164,7 +165,7 @@ std::optional<Renderer::WorldCacheCounts> Renderer::worldCacheCounts() {
     if (frameIndex_ == 0 || !hasImage("world.stats")) return std::nullopt;
     const std::vector<float> stats = readImage("world.stats"); // WORLD_STATS x 2, RGBA each
     const size_t row = size_t((patternFrame() - 1) & 1u) * WORLD_STATS;
-    auto at = [&](int stat) { return uint32_t(stats[4 * (row + size_t(stat))]); };
+    auto at = [&](int stat) { return std::bit_cast<uint32_t>(stats[4 * (row + size_t(stat))]); };
     WorldCacheCounts c;
     c.live = at(WORLD_STAT_LIVE);
     c.filled = at(WORLD_STAT_NEW);

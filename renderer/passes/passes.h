@@ -70,12 +70,13 @@ FluxVpls addFluxVplPasses(FrameBuild& build, const GBufferAndRsm& inputs, bool m
 
 // world.voxel_clear + world.voxelize, indirect_method 3: the scene's voxel occupancy grid, drawn
 // on the first frame and after an object moved (world_voxels_pass.cpp); `constants` holds the
-// grid's place and size (WorldConstants' gridOrigin and gridSize, the rest left 0).
+// grid's place and size (WorldConstants' gridOrigin and gridSize, the rest left 0), which
+// worldGridConstants gives for a scene (in the GPU's coordinates: frame_uniforms.h gpuOrigin).
 struct WorldGrid {
     graph::ImageRef voxels, blocks;
     shader::WorldConstants constants;
 };
-shader::WorldConstants worldGridConstants(const FrameBuild& build);
+shader::WorldConstants worldGridConstants(const Scene& scene);
 WorldGrid addWorldVoxelPasses(FrameBuild& build);
 
 // world.clear + world.insert + world.update + world.lookup, indirect_method 3: the bounce from

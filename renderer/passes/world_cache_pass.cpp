@@ -1,12 +1,14 @@
-// world.clear, world.insert, world.update, world.lookup (indirect_method 3): the bounce held in
-// world space. A hash table of cells (world_cache.glsl), each the irradiance at one surface point
-// gathered from the flux's VPLs with their visibility through the voxel grid
+// world.clear, world.insert, world.schedule, world.gather, world.lookup (indirect_method 3): the
+// bounce held in world space. A hash table of cells (world_cache.glsl), each the irradiance at
+// one surface point gathered from the flux's VPLs with their visibility through the voxel grid
 // (world_voxels_pass.cpp), which does not depend on the view: a moving camera looks the cells up
 // and fills only the new ones. The table persists from frame to frame; without the cache it is
 // cleared every frame and every cell filled at once.
-//   reads:  gbuffer.view_depth, .normal, indirect.vpl_list (the flux's pool), world.voxels
+//   reads:  gbuffer.view_depth, .normal, indirect.vpl_list (the flux's pool), world.voxels,
+//           world.voxel_blocks
 //   writes: world.keys, .irradiance, .points, .used (the table), world.stats (its counters),
-//           world.indirect (the bounce, irradiance / pi, RGBA16F: the composite's "indirect")
+//           world.gather_list (the cells that gather this frame), world.indirect (the bounce,
+//           irradiance / pi, RGBA16F: the composite's "indirect")
 #include "passes/passes.h"
 #include "passes/views.h"
 
@@ -91,19 +93,35 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
         r.dispatch(screen.width, screen.height, constants(r.frame()));
     });
 
-    ComputePassDesc update{"world.update", "world_update.comp"};
-    update.images = {{"voxels", grid.voxels, Use::Sampled},
+    // The cells that gather this frame, entry + (frames << 22) (world_schedule.comp).
+    const graph::ImageRef list = build.graph.createImage("world.gather_list", VK_FORMAT_R32_UINT,
+                                                         table, usage);
+    ComputePassDesc schedule{"world.schedule", "world_schedule.comp"};
+    schedule.images = {{"worldKeys", keys, Use::StorageReadWrite},
+                       {"worldIrradiance", irradiance, Use::StorageReadWrite},
+                       {"worldPoints", points, Use::Sampled},
+                       {"worldUsed", used, Use::Sampled},
+                       {"worldStats", stats, Use::StorageReadWrite},
+                       {"gatherList", list, Use::StorageWrite}};
+    schedule.pushSize = sizeof(shader::WorldConstants);
+    addComputePass(build, std::move(schedule), [table, constants](const ComputeRecorder& r) {
+        r.dispatch(table.width, table.height, constants(r.frame()));
+    });
+
+    ComputePassDesc gather{"world.gather", "world_gather.comp"};
+    gather.images = {{"voxels", grid.voxels, Use::Sampled},
                      {"voxelBlocks", grid.blocks, Use::Sampled},
                      {"vplList", vpls.list, Use::Sampled},
-                     {"worldKeys", keys, Use::StorageReadWrite},
                      {"worldIrradiance", irradiance, Use::StorageReadWrite},
                      {"worldPoints", points, Use::Sampled},
-                     {"worldUsed", used, Use::Sampled},
-                     {"worldStats", stats, Use::StorageReadWrite}};
-    update.pushSize = sizeof(shader::WorldConstants);
-    update.spec = {{{"POOL", pool}}};
-    addComputePass(build, std::move(update), [table, constants](const ComputeRecorder& r) {
-        r.dispatch(table.width, table.height, constants(r.frame()));
+                     {"worldStats", stats, Use::Sampled},
+                     {"gatherList", list, Use::Sampled},
+                     {"worldKeys", keys, Use::Sampled}};
+    gather.pushSize = sizeof(shader::WorldConstants);
+    gather.spec = {{{"POOL", pool}}};
+    const uint32_t entries = table.width * table.height;
+    addComputePass(build, std::move(gather), [entries, constants](const ComputeRecorder& r) {
+        r.dispatch(entries, 1, constants(r.frame()));
     });
 
     ComputePassDesc lookup{"world.lookup", "world_lookup.comp"};

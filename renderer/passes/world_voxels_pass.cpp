@@ -14,13 +14,14 @@
 
 namespace ssgi {
 
-shader::WorldConstants worldGridConstants(const FrameBuild& build) {
-    const Aabb& bounds = build.scene.bounds;
-    const glm::vec3 lo = moved(bounds.min, build.gpuOrigin);
-    const glm::vec3 hi = moved(bounds.max, build.gpuOrigin);
+shader::WorldConstants worldGridConstants(const Scene& scene) {
+    const Aabb& bounds = scene.bounds;
+    const glm::dvec3 origin = gpuOrigin(bounds);
+    const glm::vec3 lo = moved(bounds.min, origin);
+    const glm::vec3 hi = moved(bounds.max, origin);
     const glm::vec3 extent = glm::max(hi - lo, glm::vec3(0.0f));
     const float longest = std::max({extent.x, extent.y, extent.z, 1e-30f});
-    const int voxelsAlong = int(build.settings.world_voxels);
+    const int voxelsAlong = int(scene.settings.world_voxels);
     // A voxel more than the bounds on each side, so that no surface lies on the grid's edge.
     const float voxel = longest / float(voxelsAlong - 2);
     shader::WorldConstants c{};
@@ -33,7 +34,7 @@ shader::WorldConstants worldGridConstants(const FrameBuild& build) {
 
 WorldGrid addWorldVoxelPasses(FrameBuild& build) {
     WorldGrid grid;
-    grid.constants = worldGridConstants(build);
+    grid.constants = worldGridConstants(build.scene);
     const glm::ivec4 size = grid.constants.gridSize;
     const VkExtent2D extent{uint32_t(size.w * size.z), uint32_t(size.y)};
     const VkImageUsageFlags usage =

@@ -119,7 +119,7 @@ namespace ssgi {
       "each further such distance")                                                                \
     X(world_vpls, int, 32, 1, 1024, "World cache",                                                 \
       "method 3: VPLs a cell gathers, with their visibility, in a frame's refresh")                \
-    X(world_frames, int, 16, 1, 1024, "World cache",                                               \
+    X(world_frames, int, 16, 1, 512, "World cache",                                                \
       "method 3: frames of world_vpls a cell accumulates before it stops (uncached, all at once)") \
     X(world_cells_per_frame, int, 2048, 0, 1 << 24, "World cache",                                 \
       "method 3: cells refreshed a frame beyond the new ones (which are always filled)")           \

@@ -51,13 +51,10 @@ std::vector<float> decodeTexels(VkFormat format, const uint8_t* bytes, size_t co
             std::memcpy(out, bytes + 4 * i, 4);
             out[3] = 1.0f;
             break;
-        case VK_FORMAT_R32_UINT: { // counts and keys: exact as floats below 2^24
-            uint32_t u = 0;
-            std::memcpy(&u, bytes + 4 * i, 4);
-            out[0] = float(u);
+        case VK_FORMAT_R32_UINT: // keys, bit masks and counts: their bits, as the header says
+            std::memcpy(out, bytes + 4 * i, 4);
             out[3] = 1.0f;
             break;
-        }
         default:
             throw VulkanError("download: unsupported format for " + image);
         }

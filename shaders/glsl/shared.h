@@ -391,7 +391,8 @@ SSGI_CHECK_SIZE(WorldConstants, 96);
 #define WORLD_STAT_EVICTED 3   // cells evicted this frame
 #define WORLD_STAT_FULL 4      // pixels whose cell found no free entry within its probes
 #define WORLD_STAT_BUDGET 5    // refreshes handed out (world_cells_per_frame caps them)
-#define WORLD_STATS 6
+#define WORLD_STAT_LISTED 6    // cells listed for world.gather (new and refreshed)
+#define WORLD_STATS 7
 
 // How a lighting term enters the composite's sum (composite.comp). The pass that makes a term
 // registers it by its view's name (FrameBuild::addCompositeTerm); the view table

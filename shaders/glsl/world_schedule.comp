@@ -1,0 +1,81 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// world.schedule (indirect_method 3): one invocation per entry of the world cache
+// (world_cache.glsl), which decides what the cell does this frame. A cell no pixel used for
+// table.z frames is evicted. A moved light restarts every cell; a moved object restarts the
+// cells within a cell of its box (old and new place) and shortens every other cell's memory to a
+// quarter of world_frames, since the VPLs it gathers from all changed a little. Then a cell is
+// listed for world.gather (world_gather.comp) with the frames' worth of VPLs it gathers:
+// - a new or restarted cell at once, uncached world_frames, cached four;
+// - an older cell with fewer than world_frames frames of samples, one, while the frame's
+//   refreshes (world_cells_per_frame) last;
+// - a full one not at all: its value stands while the light and the objects stay still.
+// The list (world.gather_list, as big as the table) holds entry + (frames << 22), its length in
+// the counters' WORLD_STAT_LISTED: the gather's invocations then run over the cells that gather,
+// side by side, rather than over a sparse table.
+#include "shared.h"
+#include "common.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
+layout(set = 0, binding = 1, r32ui) uniform uimage2D worldKeys;
+layout(set = 0, binding = 2, rgba32f) uniform image2D worldIrradiance;
+layout(set = 0, binding = 3) uniform sampler2D worldPoints;
+layout(set = 0, binding = 4) uniform usampler2D worldUsed;
+layout(set = 0, binding = 5, r32ui) uniform coherent uimage2D worldStats;
+layout(set = 0, binding = 6, r32ui) uniform writeonly uimage2D gatherList;
+layout(push_constant) uniform WorldBlock { WorldConstants constants; };
+
+#include "world_cache.glsl"
+
+const float NEW_CELL_FRAMES = 4.0; // a new cell's first gather, in frames of samples (cached)
+
+bool nearMovedBox(vec3 p, float reach) {
+    for (int i = 0; i < int(frame.motion.x); ++i) {
+        vec3 lo = frame.movedBoxes[2 * i].xyz - reach, hi = frame.movedBoxes[2 * i + 1].xyz + reach;
+        if (all(greaterThanEqual(p, lo)) && all(lessThanEqual(p, hi))) return true;
+    }
+    return false;
+}
+
+void main() {
+    ivec2 entry = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(entry, imageSize(worldKeys)))) return;
+    uint key = imageLoad(worldKeys, entry).r;
+    if (key == 0u) return;
+    uint now = uint(frame.patternFrame);
+    int row = int(now) & 1;
+    if (now - texelFetch(worldUsed, entry, 0).r > uint(constants.table.z)) {
+        imageStore(worldKeys, entry, uvec4(0u));
+        imageAtomicAdd(worldStats, ivec2(WORLD_STAT_EVICTED, row), 1u);
+        return;
+    }
+    imageAtomicAdd(worldStats, ivec2(WORLD_STAT_LIVE, row), 1u);
+    vec4 cell = imageLoad(worldIrradiance, entry);
+    float frames = constants.cells.z;
+    float count = cell.a;
+    if (constants.change.y > 0.0) count = 0.0;
+    if (constants.change.z > 0.0) {
+        vec3 p = texelFetch(worldPoints, entry, 0).xyz;
+        float side = worldCellSide(worldLevel(distance(p, frame.cameraPosition.xyz)));
+        count = nearMovedBox(p, side) ? 0.0 : min(count, max(1.0, floor(frames / 4.0)));
+    }
+    if (count != cell.a) imageStore(worldIrradiance, entry, vec4(cell.rgb, count));
+    float gathered;
+    if (count == 0.0) {
+        gathered = constants.table.w != 0 ? min(NEW_CELL_FRAMES, frames) : frames;
+        imageAtomicAdd(worldStats, ivec2(WORLD_STAT_NEW, row), 1u);
+    } else if (count < frames &&
+               imageAtomicAdd(worldStats, ivec2(WORLD_STAT_BUDGET, row), 1u) <
+                   uint(constants.work.y)) {
+        gathered = 1.0;
+        imageAtomicAdd(worldStats, ivec2(WORLD_STAT_REFRESHED, row), 1u);
+    } else {
+        return;
+    }
+    uint slot = imageAtomicAdd(worldStats, ivec2(WORLD_STAT_LISTED, row), 1u);
+    uint index = uint(entry.x + entry.y * constants.table.x);
+    imageStore(gatherList, ivec2(slot % uint(constants.table.x), slot / uint(constants.table.x)),
+               uvec4(index | (uint(gathered) << 22u)));
+}

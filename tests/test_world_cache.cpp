@@ -1,0 +1,202 @@
+// The world cache of indirect_method 3 (world_cache_pass.cpp, world_voxels_pass.cpp): its cells
+// hold their value while only the camera moves, start over where the light or an object moved,
+// keep their own values when their keys collide in the table, and its voxel grid blocks the
+// segments the scene's triangles block.
+#include "frame_uniforms.h"
+#include "passes/passes.h"
+#include "renderer.h"
+#include "support.h"
+
+#include <bit>
+#include <cmath>
+
+using namespace ssgi;
+
+namespace {
+
+constexpr uint32_t kSize = 48;
+constexpr float kNewCellFrames = 4.0f; // world_schedule.comp NEW_CELL_FRAMES
+
+// The table as read back: each entry's key (0: empty) and irradiance (rgb, frames in a).
+struct Cells {
+    std::vector<uint32_t> keys;
+    std::vector<glm::vec4> irradiance;
+};
+
+Cells readCells(Renderer& renderer) {
+    const std::vector<float> keys = renderer.readImage("world.keys");
+    const std::vector<float> irradiance = renderer.readImage("world.irradiance");
+    Cells cells;
+    for (size_t i = 0; i < keys.size() / 4; ++i) {
+        cells.keys.push_back(std::bit_cast<uint32_t>(keys[4 * i])); // texel_decode.h
+        cells.irradiance.emplace_back(irradiance[4 * i], irradiance[4 * i + 1],
+                                      irradiance[4 * i + 2], irradiance[4 * i + 3]);
+    }
+    return cells;
+}
+
+class WorldCacheTest : public test::VulkanTest {
+protected:
+    Scene scene = [] {
+        Scene s = loadScene(test::sourcePath("scenes/cornell-box.json"));
+        s.settings.indirect_method = 3;
+        return s;
+    }();
+
+    // A slow pan: a few pixels a frame at this size.
+    Camera panned(int frame) const {
+        Camera c = scene.camera;
+        c.position.x += 0.004f * float(frame);
+        return c;
+    }
+};
+
+// Once a cell holds world_frames frames of samples, the camera moving on changes nothing of it:
+// the value is the surface's, looked up, not gathered again.
+TEST_F(WorldCacheTest, AFullCellKeepsItsValueWhileTheCameraMoves) {
+    Renderer renderer(test::context(), scene, {kSize, kSize, "final"});
+    const int frames = int(scene.settings.world_frames);
+    for (int f = 0; f < frames + 8; ++f)
+        renderer.renderFrame(panned(f));
+    const Cells before = readCells(renderer);
+    for (int f = frames + 8; f < frames + 16; ++f)
+        renderer.renderFrame(panned(f));
+    const Cells after = readCells(renderer);
+    int full = 0;
+    for (size_t i = 0; i < before.keys.size(); ++i) {
+        if (before.keys[i] == 0 || before.irradiance[i].a < float(frames)) continue;
+        ASSERT_EQ(after.keys[i], before.keys[i]) << "entry " << i << " was evicted or taken";
+        EXPECT_EQ(after.irradiance[i], before.irradiance[i]) << "entry " << i;
+        ++full;
+    }
+    EXPECT_GT(full, 100) << "too few full cells to say anything";
+    const auto counts = renderer.worldCacheCounts();
+    ASSERT_TRUE(counts.has_value());
+    EXPECT_GT(counts->live, 0u);
+}
+
+// A moved light restarts every cell: the next frame each holds a new cell's first gather alone.
+TEST_F(WorldCacheTest, AMovedLightRestartsEveryCell) {
+    Renderer renderer(test::context(), scene, {kSize, kSize, "final"});
+    for (int f = 0; f < 24; ++f)
+        renderer.renderFrame(scene.camera);
+    const Cells before = readCells(renderer);
+    SpotLight light = renderer.light();
+    light.position.x += 0.05f;
+    renderer.setLight(light);
+    renderer.renderFrame(scene.camera);
+    const Cells after = readCells(renderer);
+    int live = 0, changed = 0;
+    for (size_t i = 0; i < after.keys.size(); ++i) {
+        if (after.keys[i] == 0) continue;
+        ++live;
+        EXPECT_EQ(after.irradiance[i].a, kNewCellFrames) << "entry " << i;
+        if (after.irradiance[i] != before.irradiance[i]) ++changed;
+    }
+    EXPECT_GT(live, 100);
+    EXPECT_EQ(changed, live);
+    const auto counts = renderer.worldCacheCounts();
+    ASSERT_TRUE(counts.has_value());
+    EXPECT_EQ(counts->filled, uint32_t(live));
+    // A still frame after it refreshes without restarting.
+    renderer.renderFrame(scene.camera);
+    const Cells still = readCells(renderer);
+    for (size_t i = 0; i < still.keys.size(); ++i)
+        if (still.keys[i] != 0) EXPECT_GT(still.irradiance[i].a, kNewCellFrames);
+}
+
+// A moved object restarts the cells near its old and new place; the others keep a quarter of
+// their frames (the VPLs they gather moved a little), and none is left full.
+TEST_F(WorldCacheTest, AMovedObjectRestartsTheCellsNearIt) {
+    Scene moving = loadScene(test::sourcePath("scenes/stability/moving-object.json"));
+    moving.settings.indirect_method = 3;
+    moving.settings.world_frames = 32;
+    Renderer renderer(test::context(), moving, {kSize, kSize, "final"});
+    renderer.setTime(0.0f);
+    for (int f = 0; f < 40; ++f)
+        renderer.renderFrame(moving.camera);
+    renderer.setTime(1.0f);
+    renderer.renderFrame(moving.camera);
+    int restarted = 0, kept = 0;
+    const Cells cells = readCells(renderer);
+    for (size_t i = 0; i < cells.keys.size(); ++i) {
+        if (cells.keys[i] == 0) continue; // an empty entry's other texels hold anything
+        const glm::vec4& cell = cells.irradiance[i];
+        if (cell.a == kNewCellFrames)
+            ++restarted;
+        else
+            ++kept;
+        EXPECT_LE(cell.a, 32.0f / 4.0f + 1.0f);
+    }
+    EXPECT_GT(restarted, 10);
+    EXPECT_GT(kept, restarted) << "the block's neighbourhood is a small part of the box";
+}
+
+// With a table of 4096 entries for about a thousand cells, some hundred keys share home entries and take
+// the probes after them; every cell is still found and gathers what it would alone (its VPLs
+// follow its key, not its entry), so the bounce is the same, bit for bit, as with 2^17 entries.
+TEST_F(WorldCacheTest, CollidingKeysKeepTheirOwnValues) {
+    scene.settings.cache = false;
+    auto bounce = [&](int bits, Renderer::WorldCacheCounts& counts) {
+        Scene s = scene;
+        s.settings.world_table_bits = bits;
+        Renderer renderer(test::context(), s, {kSize, kSize, "final"});
+        renderer.renderFrame(s.camera);
+        counts = *renderer.worldCacheCounts();
+        return renderer.readImage("world.indirect");
+    };
+    Renderer::WorldCacheCounts small, large;
+    const std::vector<float> crowded = bounce(12, small);
+    const std::vector<float> roomy = bounce(17, large);
+    EXPECT_EQ(small.entries, 4096u);
+    EXPECT_EQ(small.full, 0u) << "every cell found an entry";
+    EXPECT_EQ(small.live, large.live);
+    EXPECT_GT(small.live, small.entries / 5) << "too few cells for keys to collide";
+    ASSERT_EQ(crowded.size(), roomy.size());
+    size_t lit = 0;
+    for (size_t i = 0; i < crowded.size(); ++i) {
+        ASSERT_EQ(crowded[i], roomy[i]) << "texel " << i / 4;
+        lit += crowded[i] > 0.0f;
+    }
+    EXPECT_GT(lit, crowded.size() / 4);
+}
+
+// The voxel grid as drawn blocks the segments the scene's triangles block: one through the tall
+// block, from the floor in front of it to the back wall behind it, and one across the open box,
+// from the floor to the ceiling beside the blocks. Each segment's ends lie on surfaces, as the
+// cells' and the VPLs' do; their own voxels (within two voxels of each end) are left out, as
+// the visibility test leaves them (world_voxels.glsl).
+TEST_F(WorldCacheTest, VoxelGridBlocksWhatTheTrianglesBlock) {
+    Renderer renderer(test::context(), scene, {kSize, kSize, "final"});
+    renderer.renderFrame(scene.camera);
+    const std::vector<float> words = renderer.readImage("world.voxels");
+    const shader::WorldConstants grid = worldGridConstants(scene);
+    const glm::dvec3 origin = gpuOrigin(scene.bounds);
+    const glm::ivec3 size(grid.gridSize);
+    const int rowWords = grid.gridSize.w;
+    const uint32_t width = uint32_t(rowWords * size.z);
+    auto occupied = [&](glm::ivec3 v) {
+        if (glm::any(glm::lessThan(v, glm::ivec3(0))) ||
+            glm::any(glm::greaterThanEqual(v, size)))
+            return false;
+        const size_t texel = size_t(v.y) * width + size_t((v.x >> 5) + rowWords * v.z);
+        return ((std::bit_cast<uint32_t>(words[4 * texel]) >> (v.x & 31)) & 1u) != 0u;
+    };
+    auto gridBlocks = [&](glm::vec3 a, glm::vec3 b) {
+        const float voxel = grid.gridOrigin.w;
+        const glm::vec3 lo(grid.gridOrigin);
+        const glm::vec3 A = (moved(a, origin) - lo) / voxel, B = (moved(b, origin) - lo) / voxel;
+        const float length = glm::length(B - A);
+        for (float s = 2.0f; s < length - 2.0f; s += 0.125f)
+            if (occupied(glm::ivec3(glm::floor(A + (B - A) * (s / length))))) return true;
+        return false;
+    };
+    const glm::vec3 frontFloor(0.37f, 0.0f, 0.05f), backWall(0.37f, 0.2f, 0.5592f);
+    const glm::vec3 openFloor(0.45f, 0.0f, 0.10f), ceiling(0.45f, 0.5488f, 0.12f);
+    ASSERT_TRUE(test::segmentBlocked(scene, frontFloor, backWall));
+    ASSERT_FALSE(test::segmentBlocked(scene, openFloor, ceiling));
+    EXPECT_TRUE(gridBlocks(frontFloor, backWall));
+    EXPECT_FALSE(gridBlocks(openFloor, ceiling));
+}
+
+} // namespace
