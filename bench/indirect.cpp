@@ -32,6 +32,7 @@ std::vector<Method> methodsOf(const Options& options) {
                            {{"indirect_method", 0}, {"indirect_vpls", 512}}});
         methods.push_back({"interleaved", {{"indirect_method", 1}}});
         methods.push_back({"importance", {{"indirect_method", 2}}});
+        methods.push_back({"world cache", {{"indirect_method", 3}}});
     }
     for (const auto& [label, settings] : options.methods)
         methods.push_back({label, settings});

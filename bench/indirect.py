@@ -51,8 +51,10 @@ def main():
           "default: 4×4 subsets of 384 VPLs at full resolution, geometry-aware "
           "filter), **importance** (`indirect_method=2`: the same subsets and filter over the "
           "RSM clustered 4×4 texels to a VPL, 64 more VPLs a block drawn in proportion to their "
-          "flux, the visibility test on 6 VPLs a pixel drawn by their light; "
-          "[effects.md](effects.md)). Cost: the frame's median over %d timed frames after %d "
+          "flux, the visibility test on 6 VPLs a pixel drawn by their light), **world cache** "
+          "(`indirect_method=3`: cells in world space gather the flux's VPLs with visibility "
+          "through a voxel grid, pixels look them up; uncached, every cell gathers "
+          "world_vpls × world_frames VPLs at once; [effects.md](effects.md)). Cost: the frame's median over %d timed frames after %d "
           "warm-up at %dx%d, cache off, the methods' frames interleaved; *cost* is (frame − "
           "frame without the bounce) / frame without it. On lavapipe every time is CPU time: "
           "compare within a run. Error: relMSE against `reference` (full mode; the bounce alone "
@@ -116,7 +118,7 @@ def main():
                          "bounce", "sky"], rows))
         by = {m["label"].split(":")[0]: m for m in methods}
         off, thesis = by.get("off"), by.get("thesis")
-        news = [by[k] for k in ("interleaved", "importance") if k in by]
+        news = [by[k] for k in ("interleaved", "importance", "world cache") if k in by]
         if off and thesis and news:
             def figure(m, key):
                 return m[key]["all"]["relmse"] if key != "one_frame_vs_converged" \
@@ -132,7 +134,7 @@ def main():
                 " → ".join("%.4f" % m["bounce"]["one_frame_edge_band"]["relmse"]
                            for m in [thesis] + news)])
     if summary:
-        names = " → ".join(["thesis"] + [k for k in ("interleaved", "importance")
+        names = " → ".join(["thesis"] + [k for k in ("interleaved", "importance", "world cache")
                                          if any(k == m["label"].split(":")[0]
                                                 for r in runs for m in r["indirect"]["methods"])])
         md.insert(3, "## In short\n\n" + table(

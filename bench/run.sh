@@ -8,7 +8,7 @@
 #   bench/run.sh --walkthroughs   the thesis's Tables 4.1-4.4 only: the camera paths of the bunny,
 #                          Sponza, Sibenik and the conference room at 512x512, cache off and on,
 #                          into docs/bench-walkthroughs.md (about 1 h)
-#   bench/run.sh --indirect   the indirect light's methods (off, the thesis's, interleaved) on
+#   bench/run.sh --indirect   the indirect light's methods (off, the thesis's, interleaved, importance, world cache) on
 #                          the Cornell box, bunny and Sponza: cost at 256x256, error at 128x128,
 #                          into docs/bench-indirect.md (about 3 min)
 #   bench/run.sh --cache-fixes   what each of the cache's fixes costs (each undone alone, the

@@ -192,6 +192,18 @@ void Renderer::updateUniforms(const Camera& worldCamera) {
         u.movedBoxes[2 * i + 1] = glm::vec4(moved(moved_[i].max, origin_), 0.0f);
     }
     u.motion = glm::vec4(float(moved_.size()), 0.0f, 0.0f, 0.0f);
+    if (scene_.settings.indirect && scene_.settings.indirect_method == 3) {
+        // Placed again on the frames the grid is drawn again (decideFrame: drawVoxels).
+        if (voxelsStale_) {
+            std::vector<glm::mat4> onGpu = transforms_;
+            for (glm::mat4& m : onGpu)
+                m = moved(m, origin_);
+            worldGrid_ = placeWorldGrid(boundsInFrustum(scene_, onGpu, light.viewProjection),
+                                        int(scene_.settings.world_voxels));
+        }
+        u.worldGridOrigin = glm::vec4(worldGrid_.origin, worldGrid_.voxel);
+        u.worldGridSize = glm::ivec4(worldGrid_.size, int(scene_.settings.world_voxels));
+    }
     std::memcpy(build_->frameUniforms.mapped, &u, sizeof(u));
     previousViewProjection_ = u.viewProjection;
     previousPixelToWorld_ = u.pixelToWorld;
@@ -336,6 +348,7 @@ void Renderer::setLight(const SpotLight& light) {
     light_ = light;
     rsmStale_ = true;
     lightMoved_ = true;
+    voxelsStale_ = true; // the grid lies within the light's frustum (world_grid.h)
     stillFrames_ = 0;
     for (const EffectCache& cache : build_->caches.effects)
         if (cache.effect.lightDependent) restartCache(*graph_, cache);

@@ -6,6 +6,7 @@
 #include "passes/frame_build.h"
 #include "scene/scene.h"
 #include "scene_gpu.h"
+#include "world_grid.h"
 
 #include <limits>
 #include <memory>
@@ -99,6 +100,9 @@ public:
         uint32_t live = 0, filled = 0, refreshed = 0, evicted = 0, full = 0, entries = 0;
     };
     std::optional<WorldCacheCounts> worldCacheCounts();
+    // Where the world cache's voxel grid lay in the last frame, in the GPU's coordinates
+    // (frame_uniforms.h gpuOrigin); its images are "world.voxels" and "world.voxel_blocks".
+    const WorldGridPlacement& worldGrid() const { return worldGrid_; }
     VkRect2D refreshedTile(const std::string& effect) const;
     const graph::FrameGraph& frameGraph() const { return *graph_; }
 
@@ -131,13 +135,14 @@ private:
     uint32_t gbufferSidesHeld_ = 0;     // sides of this renderer's G-buffer pair that hold its view
     bool rsmStale_ = true;              // the light changed since the RSM was drawn
     bool skyMapsStale_ = true;          // an object moved since the sky maps were drawn
-    bool voxelsStale_ = true;           // an object moved since the voxel grid was drawn
+    bool voxelsStale_ = true;           // the light or an object moved since the voxel grid was drawn
     bool lightMoved_ = false;           // the light changed since the last frame
     bool worldCacheEmpty_ = true;       // no frame has filled the world cache's table yet
     int view_ = 0;                      // what the composite shows (its place in kViews)
     FrameState lastFrame_;              // what the last frame ran
     std::vector<glm::mat4> transforms_; // where the instances stand
     std::vector<Aabb> moved_;           // boxes of the objects moved since the last frame
+    WorldGridPlacement worldGrid_;      // the world cache's voxel grid, in the GPU's coordinates
     glm::mat4 previousViewProjection_{1.0f};
     glm::mat4 previousPixelToWorld_{1.0f}; // FrameUniforms::pixelToWorld of the last frame
     glm::vec3 lastLightColor_{0.0f};       // its lightColor (the RSM's flux, rsm_vpl.glsl)

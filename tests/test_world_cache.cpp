@@ -3,7 +3,6 @@
 // keep their own values when their keys collide in the table, and its voxel grid blocks the
 // segments the scene's triangles block.
 #include "frame_uniforms.h"
-#include "passes/passes.h"
 #include "renderer.h"
 #include "support.h"
 
@@ -17,10 +16,13 @@ namespace {
 constexpr uint32_t kSize = 48;
 constexpr float kNewCellFrames = 4.0f; // world_schedule.comp NEW_CELL_FRAMES
 
-// The table as read back: each entry's key (0: empty) and irradiance (rgb, frames in a).
+// The table as read back: each entry's key and irradiance (rgb, frames in a).
 struct Cells {
     std::vector<uint32_t> keys;
     std::vector<glm::vec4> irradiance;
+    // Whether entry i holds a cell: a checksum is 2 or more, 0 an empty entry and 1 an evicted
+    // one (world_cache.glsl), whose other texels hold anything.
+    bool live(size_t i) const { return keys[i] > 1; }
 };
 
 Cells readCells(Renderer& renderer) {
@@ -64,7 +66,7 @@ TEST_F(WorldCacheTest, AFullCellKeepsItsValueWhileTheCameraMoves) {
     const Cells after = readCells(renderer);
     int full = 0;
     for (size_t i = 0; i < before.keys.size(); ++i) {
-        if (before.keys[i] == 0 || before.irradiance[i].a < float(frames)) continue;
+        if (!before.live(i) || before.irradiance[i].a < float(frames)) continue;
         ASSERT_EQ(after.keys[i], before.keys[i]) << "entry " << i << " was evicted or taken";
         EXPECT_EQ(after.irradiance[i], before.irradiance[i]) << "entry " << i;
         ++full;
@@ -88,7 +90,7 @@ TEST_F(WorldCacheTest, AMovedLightRestartsEveryCell) {
     const Cells after = readCells(renderer);
     int live = 0, changed = 0;
     for (size_t i = 0; i < after.keys.size(); ++i) {
-        if (after.keys[i] == 0) continue;
+        if (!after.live(i)) continue;
         ++live;
         EXPECT_EQ(after.irradiance[i].a, kNewCellFrames) << "entry " << i;
         if (after.irradiance[i] != before.irradiance[i]) ++changed;
@@ -102,7 +104,7 @@ TEST_F(WorldCacheTest, AMovedLightRestartsEveryCell) {
     renderer.renderFrame(scene.camera);
     const Cells still = readCells(renderer);
     for (size_t i = 0; i < still.keys.size(); ++i)
-        if (still.keys[i] != 0) EXPECT_GT(still.irradiance[i].a, kNewCellFrames);
+        if (still.live(i)) EXPECT_GT(still.irradiance[i].a, kNewCellFrames);
 }
 
 // A moved object restarts the cells near its old and new place; the others keep a quarter of
@@ -120,7 +122,7 @@ TEST_F(WorldCacheTest, AMovedObjectRestartsTheCellsNearIt) {
     int restarted = 0, kept = 0;
     const Cells cells = readCells(renderer);
     for (size_t i = 0; i < cells.keys.size(); ++i) {
-        if (cells.keys[i] == 0) continue; // an empty entry's other texels hold anything
+        if (!cells.live(i)) continue;
         const glm::vec4& cell = cells.irradiance[i];
         if (cell.a == kNewCellFrames)
             ++restarted;
@@ -132,9 +134,10 @@ TEST_F(WorldCacheTest, AMovedObjectRestartsTheCellsNearIt) {
     EXPECT_GT(kept, restarted) << "the block's neighbourhood is a small part of the box";
 }
 
-// With a table of 4096 entries for about a thousand cells, some hundred keys share home entries and take
-// the probes after them; every cell is still found and gathers what it would alone (its VPLs
-// follow its key, not its entry), so the bounce is the same, bit for bit, as with 2^17 entries.
+// With a table of 8192 entries for about two thousand cells, some two hundred keys share home
+// entries and take the probes after them; every cell is still found and gathers what it would
+// alone (its VPLs follow its key, not its entry), so the bounce is the same, bit for bit, as
+// with 2^17 entries.
 TEST_F(WorldCacheTest, CollidingKeysKeepTheirOwnValues) {
     scene.settings.cache = false;
     auto bounce = [&](int bits, Renderer::WorldCacheCounts& counts) {
@@ -146,9 +149,9 @@ TEST_F(WorldCacheTest, CollidingKeysKeepTheirOwnValues) {
         return renderer.readImage("world.indirect");
     };
     Renderer::WorldCacheCounts small, large;
-    const std::vector<float> crowded = bounce(12, small);
+    const std::vector<float> crowded = bounce(13, small);
     const std::vector<float> roomy = bounce(17, large);
-    EXPECT_EQ(small.entries, 4096u);
+    EXPECT_EQ(small.entries, 8192u);
     EXPECT_EQ(small.full, 0u) << "every cell found an entry";
     EXPECT_EQ(small.live, large.live);
     EXPECT_GT(small.live, small.entries / 5) << "too few cells for keys to collide";
@@ -170,21 +173,22 @@ TEST_F(WorldCacheTest, VoxelGridBlocksWhatTheTrianglesBlock) {
     Renderer renderer(test::context(), scene, {kSize, kSize, "final"});
     renderer.renderFrame(scene.camera);
     const std::vector<float> words = renderer.readImage("world.voxels");
-    const shader::WorldConstants grid = worldGridConstants(scene);
+    const WorldGridPlacement& grid = renderer.worldGrid();
     const glm::dvec3 origin = gpuOrigin(scene.bounds);
-    const glm::ivec3 size(grid.gridSize);
-    const int rowWords = grid.gridSize.w;
-    const uint32_t width = uint32_t(rowWords * size.z);
+    const int side = int(scene.settings.world_voxels); // the images hold the largest grid
+    const uint32_t width = uint32_t((side + 31) / 32 * side);
+    const int rowWords = (grid.size.x + 31) / 32;
+    ASSERT_EQ(words.size(), size_t(4) * width * uint32_t(side));
     auto occupied = [&](glm::ivec3 v) {
         if (glm::any(glm::lessThan(v, glm::ivec3(0))) ||
-            glm::any(glm::greaterThanEqual(v, size)))
+            glm::any(glm::greaterThanEqual(v, grid.size)))
             return false;
         const size_t texel = size_t(v.y) * width + size_t((v.x >> 5) + rowWords * v.z);
         return ((std::bit_cast<uint32_t>(words[4 * texel]) >> (v.x & 31)) & 1u) != 0u;
     };
     auto gridBlocks = [&](glm::vec3 a, glm::vec3 b) {
-        const float voxel = grid.gridOrigin.w;
-        const glm::vec3 lo(grid.gridOrigin);
+        const float voxel = grid.voxel;
+        const glm::vec3 lo = grid.origin;
         const glm::vec3 A = (moved(a, origin) - lo) / voxel, B = (moved(b, origin) - lo) / voxel;
         const float length = glm::length(B - A);
         for (float s = 2.0f; s < length - 2.0f; s += 0.125f)

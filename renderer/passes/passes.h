@@ -69,14 +69,11 @@ struct FluxVpls {
 FluxVpls addFluxVplPasses(FrameBuild& build, const GBufferAndRsm& inputs, bool moving);
 
 // world.voxel_clear + world.voxelize, indirect_method 3: the scene's voxel occupancy grid, drawn
-// on the first frame and after an object moved (world_voxels_pass.cpp); `constants` holds the
-// grid's place and size (WorldConstants' gridOrigin and gridSize, the rest left 0), which
-// worldGridConstants gives for a scene (in the GPU's coordinates: frame_uniforms.h gpuOrigin).
+// where the frame places it (FrameUniforms.worldGridOrigin, worldGridSize; world_grid.h) on
+// the frames FrameState::drawVoxels names (world_voxels_pass.cpp).
 struct WorldGrid {
     graph::ImageRef voxels, blocks;
-    shader::WorldConstants constants;
 };
-shader::WorldConstants worldGridConstants(const Scene& scene);
 WorldGrid addWorldVoxelPasses(FrameBuild& build);
 
 // world.clear + world.insert + world.update + world.lookup, indirect_method 3: the bounce from

@@ -22,14 +22,11 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
     const Settings& settings = build.settings;
     const int bits = int(settings.world_table_bits);
     const VkExtent2D table{1u << (bits - bits / 2), 1u << (bits / 2)};
-    shader::WorldConstants base = grid.constants;
-    const float diagonal = glm::length(build.scene.bounds.size());
-    const float side =
-        settings.world_cell > 0.0 ? float(settings.world_cell) : diagonal / 128.0f;
+    shader::WorldConstants base{};
     const uint32_t vplMapSide = (build.rsmSize.width + uint32_t(settings.indirect_vpl_cluster) -
                                  1) / uint32_t(settings.indirect_vpl_cluster);
-    base.cells = glm::vec4(side, float(settings.world_cell_range) * side,
-                           float(settings.world_frames), 0.5f * grid.constants.gridOrigin.w);
+    base.cells = glm::vec4(float(settings.world_cell_angle), 0.0f, float(settings.world_frames),
+                           0.0f);
     base.table = glm::ivec4(int(table.width), int(table.width * table.height),
                             int(settings.world_lifetime), settings.cache ? 1 : 0);
     const int pool = int(std::max(settings.indirect_flux_pool, settings.indirect_flux_vpls));
@@ -65,15 +62,19 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
         "world.indirect", VK_FORMAT_R16G16B16A16_SFLOAT, build.size, usage);
 
     using graph::Use;
-    // Empty keys are zeros, and so are the counters; the other images are written before they
-    // are read.
+    // Empty keys are zeros, and so are the counters; the cells' values and points too, so that
+    // every texel of the table holds a number (an entry's are written before they are read).
     build.graph.addPass(
         "world.clear", graph::PassKind::Transfer,
-        {{keys, Use::TransferDst}, {used, Use::TransferDst}, {stats, Use::TransferDst}},
-        [keys, used, stats](const graph::PassContext& pc) {
+        {{keys, Use::TransferDst},
+         {used, Use::TransferDst},
+         {stats, Use::TransferDst},
+         {irradiance, Use::TransferDst},
+         {points, Use::TransferDst}},
+        [keys, used, stats, irradiance, points](const graph::PassContext& pc) {
             const VkClearColorValue zero{};
             const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-            for (const graph::ImageRef& image : {keys, used, stats})
+            for (const graph::ImageRef& image : {keys, used, stats, irradiance, points})
                 vkCmdClearColorImage(pc.cmd, pc.image(image).image,
                                      VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &range);
         },

@@ -112,18 +112,16 @@ namespace ssgi {
     X(world_voxels, int, 128, 8, 512, "World cache",                                               \
       "method 3: voxels along the scene's longest side in the occupancy grid its visibility "      \
       "test walks")                                                                                \
-    X(world_cell, double, 0.0, 0, 1e30, "World cache",                                             \
-      "method 3: side of the nearest cells (scene units; 0: the scene's diagonal / 128)")          \
-    X(world_cell_range, double, 32.0, 1, 1e6, "World cache",                                       \
-      "method 3: cells keep their side up to this many sides from the camera, then double at "     \
-      "each further such distance")                                                                \
+    X(world_cell_angle, double, 0.02, 1e-4, 1, "World cache",                                      \
+      "method 3: the angle a cell spans from the camera (radians): a cell at distance d is the "   \
+      "power of two nearest below d x this wide")                                                  \
     X(world_vpls, int, 32, 1, 1024, "World cache",                                                 \
       "method 3: VPLs a cell gathers, with their visibility, in a frame's refresh")                \
     X(world_frames, int, 16, 1, 512, "World cache",                                                \
       "method 3: frames of world_vpls a cell accumulates before it stops (uncached, all at once)") \
     X(world_cells_per_frame, int, 2048, 0, 1 << 24, "World cache",                                 \
       "method 3: cells refreshed a frame beyond the new ones (which are always filled)")           \
-    X(world_table_bits, int, 17, 8, 22, "World cache",                                             \
+    X(world_table_bits, int, 15, 8, 22, "World cache",                                             \
       "method 3: the hash table holds 2^bits cells")                                               \
     X(world_lifetime, int, 120, 1, 1 << 24, "World cache",                                         \
       "method 3: frames a cell stays while no pixel uses it")                                      \

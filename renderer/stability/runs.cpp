@@ -16,10 +16,14 @@ RenderOptions rendererOptions(uint32_t width, uint32_t height) {
 
 // Every image of the last frame (a history pair's written side), counted for NaN/Inf. The
 // light-view images change only when the light moves, so `withRsm` says whether to read them.
+// An R32UI image holds keys, bit masks and counts, read back as their bits (texel_decode.h),
+// not as numbers: it is left out.
 size_t countNonFiniteImages(Renderer& r, bool withRsm, std::set<std::string>& offenders) {
     std::set<std::string> names;
     for (const auto& [name, bytes, pair] : r.frameGraph().imageMemory()) {
         const std::string& n = pair.empty() ? name : pair; // a pair is read by its name
+        const graph::ImageRef ref = r.frameGraph().find(name);
+        if (ref.valid() && r.frameGraph().image(ref).format == VK_FORMAT_R32_UINT) continue;
         if (withRsm || !n.starts_with("rsm.")) names.insert(n);
     }
     size_t total = 0;

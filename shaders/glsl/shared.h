@@ -78,8 +78,13 @@ struct FrameUniforms {
     // divided by, so that a very bright scene fits their half floats (65504 at most); 1 for the
     // usual scene. The composite multiplies it back.
     vec4 radianceScale;
+    // The world cache's voxel grid (indirect_method 3; world_grid.h), placed anew when the light
+    // or an object moves: xyz its lowest corner, w a voxel's side; xyz voxels per axis, w the
+    // most along any axis (world_voxels, what its images hold).
+    vec4 worldGridOrigin;
+    ivec4 worldGridSize;
 };
-SSGI_CHECK_SIZE(FrameUniforms, 10 * 64 + 20 * 16);
+SSGI_CHECK_SIZE(FrameUniforms, 10 * 64 + 22 * 16);
 
 // Per draw in the raster passes (push constants).
 struct DrawConstants {
@@ -364,11 +369,8 @@ SSGI_CHECK_SIZE(SkyTriangles, 16 + 3 * 32 * 16);
 // space (world_cache.glsl), each the bounce gathered at one surface point from the flux's VPLs
 // with the visibility of a voxel occupancy grid (world_voxels.glsl), which pixels look up.
 struct WorldConstants {
-    vec4 gridOrigin; // xyz: the grid's lowest corner (the GPU's world space); w: a voxel's side
-    ivec4 gridSize;  // xyz: voxels per axis; w: 32-bit words per row along x
-    // x: the nearest cells' side; y: the distance from the camera over which cells keep a size
-    // (they double beyond each); z: frames of samples a cell accumulates (world_frames); w: the
-    // visibility test's offset off each surface (scene units)
+    // x: the angle a cell spans from the camera (world_cell_angle, radians); y: unused; z: frames
+    // of samples a cell accumulates (world_frames); w: unused
     vec4 cells;
     ivec4 table; // x: the table images' width; y: entries; z: frames unused before eviction; w: 1 cached
     // x: VPLs a cell gathers a frame; y: cells refreshed a frame beyond the new ones; z: the
@@ -378,7 +380,7 @@ struct WorldConstants {
     // light moved (every cell restarts); z: 1 on a frame an object moved; w: unused
     vec4 change;
 };
-SSGI_CHECK_SIZE(WorldConstants, 96);
+SSGI_CHECK_SIZE(WorldConstants, 64);
 #define WORLD_VIEW_LIGHT 0 // the bounce, interpolated between cells
 #define WORLD_VIEW_CELLS 1 // each pixel's own cell's value, its edges unblended
 #define WORLD_VIEW_AGE 2   // each pixel's own cell: green its samples' share of world_frames,

@@ -1,12 +1,15 @@
 // The world cache's hash table (indirect_method 3). A cell is a cube of world space at one level
-// of size (the nearest cells world_cell wide, doubling with distance from the camera) and one of
+// of size (worldLevel: growing with the distance from the camera) and one of
 // six normal directions (the normal's dominant axis and its sign), so that the two sides of a
 // wall, or a floor and the ceiling above it, never share a cell. Its key is a 32-bit checksum of
-// those (0: an empty entry); it lives at its home entry, a second hash of them, or one of the
-// WORLD_PROBES entries after it. Lookups compare checksums over all the probes, since an
-// eviction may leave a hole before a key. The table's images hold entry i at texel
+// those; it lives at its home entry, a second hash of them, or one of the WORLD_PROBES entries
+// after it (open addressing with linear probing). An entry holds a checksum, WORLD_EMPTY (never
+// taken since the table was cleared) or WORLD_EVICTED (a tombstone: a cell was evicted there).
+// A key lies before the first empty entry of its probes, so a lookup stops at one; an insert
+// takes the first empty or evicted entry, and an evicted cell leaves a tombstone rather than a
+// hole, which would hide the keys after it. The table's images hold entry i at texel
 // (i % table.x, i / table.x):
-//   world.keys       R32UI    the checksum
+//   world.keys       R32UI    the checksum, WORLD_EMPTY or WORLD_EVICTED
 //   world.irradiance RGBA32F  rgb: irradiance / pi at the cell's point (the mean of its
 //                             gathers), a: the frames of samples behind it (0: none yet)
 //   world.points     RGBA32F  xyz: the point it gathers at (the first pixel that made it), w: its
@@ -16,8 +19,9 @@
 #ifndef SSGI_WORLD_CACHE_GLSL
 #define SSGI_WORLD_CACHE_GLSL
 
-const int WORLD_PROBES = 8;
-const int WORLD_LEVELS = 16;
+const int WORLD_PROBES = 16;
+const uint WORLD_EMPTY = 0u;
+const uint WORLD_EVICTED = 1u;
 
 // A PCG hash (O'Neill 2014).
 uint worldHash(uint v) {
@@ -26,13 +30,15 @@ uint worldHash(uint v) {
     return (v >> 22u) ^ v;
 }
 
-// The level of the cells at distance d from the camera: level l's cells are 2^l times the
-// nearest's side, and reach 2^l - 1 times the distance cells.y.
+// The level of the cells at distance d from the camera: level l's cells are 2^l scene units wide
+// (l may be negative), the power of two nearest below d times world_cell_angle, so that a cell
+// spans about the same angle from the camera near and far (and its side follows the scene's
+// scale).
 int worldLevel(float d) {
-    return clamp(int(floor(log2(1.0 + d / constants.cells.y))), 0, WORLD_LEVELS - 1);
+    return clamp(int(floor(log2(max(d * constants.cells.x, 1e-30)))), -120, 120);
 }
 float worldCellSide(int level) {
-    return constants.cells.x * exp2(float(level));
+    return exp2(float(level));
 }
 // 0..5: +x, -x, +y, -y, +z, -z, the normal's dominant axis.
 int worldDirection(vec3 n) {
@@ -43,7 +49,7 @@ int worldDirection(vec3 n) {
 
 struct WorldKey {
     uint home;     // the first entry it may take
-    uint checksum; // never 0
+    uint checksum; // 2 or more
 };
 WorldKey worldKey(ivec3 cell, int level, int direction) {
     uint tag = uint(level * 6 + direction);
@@ -51,10 +57,11 @@ WorldKey worldKey(ivec3 cell, int level, int direction) {
     k.home = worldHash(uint(cell.x) + worldHash(uint(cell.y) + worldHash(uint(cell.z) +
                                                                           worldHash(tag)))) %
              uint(constants.table.y);
-    // Another hash of the same four numbers, so that keys that share a home differ here.
+    // Another hash of the same four numbers, so that keys that share a home differ here; never
+    // WORLD_EMPTY or WORLD_EVICTED.
     k.checksum = max(worldHash(uint(cell.x) * 73856093u ^ uint(cell.y) * 19349663u ^
                                uint(cell.z) * 83492791u ^ (tag + 1u) * 2654435761u),
-                     1u);
+                     2u);
     return k;
 }
 ivec2 worldEntry(uint home, int probe) {

@@ -31,7 +31,9 @@ layout(push_constant) uniform WorldBlock { WorldConstants constants; };
 vec3 gather(vec3 p, vec3 n, int count, uint start) {
     float total = texelFetch(vplList, ivec2(POOL, 0), 0).r;
     if (total <= 0.0) return vec3(0.0);
-    vec3 from = p + n * constants.cells.w;
+    // Half a voxel off each surface (world_voxels.glsl leaves the surfaces' own voxels).
+    float offset = 0.5 * frame.worldGridOrigin.w;
+    vec3 from = p + n * offset;
     // A VPL of the VPL map stands for a texel of it: its footprint's half-width per distance from
     // the light, squared.
     float footprint = frame.lightFrustum.z * frame.lightFrustum.z * constants.change.x;
@@ -52,7 +54,7 @@ vec3 gather(vec3 p, vec3 n, int count, uint start) {
         // The distance clamped to the VPL's footprint, as the other methods clamp it.
         vec3 fromLight = q - frame.lightPosition.xyz;
         float d2 = max(distance2, dot(fromLight, fromLight) * footprint);
-        if (!voxelSegmentOpen(from, q + nq * constants.cells.w)) continue;
+        if (!voxelSegmentOpen(from, q + nq * offset)) continue;
         sum += fluxProbability.rgb * (cosP * cosQ / (PI * PI * d2 * probability));
     }
     return sum / float(count);

@@ -1,8 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // world.insert (indirect_method 3): every pixel finds its own cell in the world cache
-// (world_cache.glsl), or makes it in the first free entry among its probes, and marks it used
-// this frame. The pixel that makes a cell gives it its point and normal, where the cell will
+// (world_cache.glsl), or makes it in the first empty or evicted entry among its probes, and
+// marks it used this frame. The pixel that makes a cell gives it its point and normal, where the cell will
 // gather (world_update.comp). Invocation 0 also clears the next frame's row of counters.
 #include "shared.h"
 #include "common.glsl"
@@ -36,19 +36,26 @@ void main() {
     vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     int level = worldLevel(distance(p, frame.cameraPosition.xyz));
     WorldKey key = worldKey(worldCellOf(p, level), level, worldDirection(n));
-    // The key where it already is (a hole an eviction left may lie before it)...
+    // The key where it already is, before the first empty entry...
+    int free = WORLD_PROBES;
     for (int probe = 0; probe < WORLD_PROBES; ++probe) {
-        ivec2 entry = worldEntry(key.home, probe);
-        if (imageLoad(worldKeys, entry).r == key.checksum) {
+        uint held = imageLoad(worldKeys, worldEntry(key.home, probe)).r;
+        if (held == key.checksum) {
+            ivec2 entry = worldEntry(key.home, probe);
             if (imageLoad(worldUsed, entry).r != now) imageStore(worldUsed, entry, uvec4(now));
             return;
         }
+        if (held == WORLD_EMPTY) break;
     }
-    // ...or in the first free entry, which another pixel of the same cell may take first.
+    // ...or in the first empty or evicted entry, which another pixel of the same cell may take
+    // first (every pixel of a cell tries the same entries in the same order).
     for (int probe = 0; probe < WORLD_PROBES; ++probe) {
         ivec2 entry = worldEntry(key.home, probe);
-        uint held = imageAtomicCompSwap(worldKeys, entry, 0u, key.checksum);
-        if (held == 0u) {
+        uint seen = imageLoad(worldKeys, entry).r;
+        if (seen == key.checksum) return; // made by another pixel this frame
+        if (seen != WORLD_EMPTY && seen != WORLD_EVICTED) continue;
+        uint held = imageAtomicCompSwap(worldKeys, entry, seen, key.checksum);
+        if (held == seen) {
             imageStore(worldPoints, entry,
                        vec4(p, uintBitsToFloat(packSnorm2x16(octahedralEncode(n)))));
             imageStore(worldIrradiance, entry, vec4(0.0));

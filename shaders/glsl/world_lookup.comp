@@ -27,7 +27,9 @@ ivec2 findCell(ivec3 cell, int level, int direction) {
     WorldKey key = worldKey(cell, level, direction);
     for (int probe = 0; probe < WORLD_PROBES; ++probe) {
         ivec2 entry = worldEntry(key.home, probe);
-        if (texelFetch(worldKeys, entry, 0).r == key.checksum) return entry;
+        uint held = texelFetch(worldKeys, entry, 0).r;
+        if (held == key.checksum) return entry;
+        if (held == WORLD_EMPTY) break; // no key lies past an empty entry
     }
     return ivec2(-1);
 }

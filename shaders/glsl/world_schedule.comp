@@ -43,11 +43,11 @@ void main() {
     ivec2 entry = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(entry, imageSize(worldKeys)))) return;
     uint key = imageLoad(worldKeys, entry).r;
-    if (key == 0u) return;
+    if (key == WORLD_EMPTY || key == WORLD_EVICTED) return;
     uint now = uint(frame.patternFrame);
     int row = int(now) & 1;
     if (now - texelFetch(worldUsed, entry, 0).r > uint(constants.table.z)) {
-        imageStore(worldKeys, entry, uvec4(0u));
+        imageStore(worldKeys, entry, uvec4(WORLD_EVICTED)); // a tombstone (world_cache.glsl)
         imageAtomicAdd(worldStats, ivec2(WORLD_STAT_EVICTED, row), 1u);
         return;
     }

@@ -13,8 +13,7 @@ layout(constant_id = 1) const int SUPERSAMPLE = 2;
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
 layout(set = 0, binding = 1) uniform sampler2D baseColorTexture;
 layout(set = 0, binding = 2, r32ui) uniform coherent uimage2D voxels;
-layout(set = 0, binding = 3, std140) uniform WorldBlock { WorldConstants constants; };
-layout(set = 0, binding = 4, r32ui) uniform coherent uimage2D voxelBlocks;
+layout(set = 0, binding = 3, r32ui) uniform coherent uimage2D voxelBlocks;
 layout(push_constant) uniform DrawBlock { DrawConstants draw; };
 #include "base_color.glsl"
 
@@ -24,7 +23,7 @@ layout(location = 1) in vec4 color;
 void main() {
     if (baseColor(uv, color).a < draw.material.y) return; // the alpha mask's holes stay open
     ivec3 order = AXIS == 0 ? ivec3(1, 2, 0) : AXIS == 1 ? ivec3(2, 0, 1) : ivec3(0, 1, 2);
-    int depthVoxels = constants.gridSize[order.z];
+    int depthVoxels = frame.worldGridSize[order.z];
     float depth = gl_FragCoord.z * float(depthVoxels);
     // Half the depth's change across the pixel, each way.
     float reach = 0.5 * (abs(dFdx(depth)) + abs(dFdy(depth)));
@@ -36,11 +35,11 @@ void main() {
         v[order.x] = face.x;
         v[order.y] = face.y;
         v[order.z] = k;
-        if (any(greaterThanEqual(v, constants.gridSize.xyz))) continue;
-        imageAtomicOr(voxels, ivec2((v.x >> 5) + constants.gridSize.w * v.z, v.y),
+        if (any(greaterThanEqual(v, frame.worldGridSize.xyz))) continue;
+        imageAtomicOr(voxels, ivec2((v.x >> 5) + (frame.worldGridSize.x + 31) / 32 * v.z, v.y),
                       1u << uint(v.x & 31));
         ivec3 b = v / 4; // its block (world_voxels.glsl)
-        int blockWords = ((constants.gridSize.x + 3) / 4 + 31) / 32;
+        int blockWords = ((frame.worldGridSize.x + 3) / 4 + 31) / 32;
         imageAtomicOr(voxelBlocks, ivec2((b.x >> 5) + blockWords * b.z, b.y), 1u << uint(b.x & 31));
     }
 }

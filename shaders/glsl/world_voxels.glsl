@@ -1,25 +1,29 @@
 // The voxel occupancy grid of indirect_method 3 (world_voxelize.frag writes it), at two levels:
 // - voxels: one bit a voxel, 32 voxels along x to a word, the word of voxel (x, y, z) at texel
-//   (x / 32 + gridSize.w z, y) of an R32UI image;
+//   (x / 32 + voxelWords() z, y) of an R32UI image;
 // - blocks: one bit for each 4 x 4 x 4 voxels, set where any of them is occupied, laid out the
 //   same way (blockWords(), blocks per axis gridSize / 4 rounded up).
 // Its test of a segment walks every voxel the segment crosses (Amanatides and Woo 1987), so a
 // wall one voxel thick stops it, and crosses an empty block in one step.
-// Needs: constants (WorldConstants), usampler2D voxels, usampler2D voxelBlocks.
+// The grid's place and size are the frame's (FrameUniforms.worldGridOrigin, worldGridSize).
+// Needs: frame, usampler2D voxels, usampler2D voxelBlocks.
 #ifndef SSGI_WORLD_VOXELS_GLSL
 #define SSGI_WORLD_VOXELS_GLSL
 
 const int WORLD_BLOCK = 4; // voxels per block, per axis
 
+int voxelWords() {
+    return (frame.worldGridSize.x + 31) / 32;
+}
 ivec3 blockCount() {
-    return (constants.gridSize.xyz + WORLD_BLOCK - 1) / WORLD_BLOCK;
+    return (frame.worldGridSize.xyz + WORLD_BLOCK - 1) / WORLD_BLOCK;
 }
 int blockWords() {
     return (blockCount().x + 31) / 32;
 }
 
 bool voxelOccupied(ivec3 v) {
-    uint word = texelFetch(voxels, ivec2((v.x >> 5) + constants.gridSize.w * v.z, v.y), 0).r;
+    uint word = texelFetch(voxels, ivec2((v.x >> 5) + voxelWords() * v.z, v.y), 0).r;
     return ((word >> uint(v.x & 31)) & 1u) != 0u;
 }
 bool blockOccupied(ivec3 b) {
@@ -38,8 +42,8 @@ float boxExit(vec3 A, vec3 inverse, vec3 lo, float side) {
 // are occupied (its own surface), and takes the occupied voxels within two voxels of b for b's
 // own surface.
 bool voxelSegmentOpen(vec3 a, vec3 b) {
-    vec3 A = (a - constants.gridOrigin.xyz) / constants.gridOrigin.w;
-    vec3 B = (b - constants.gridOrigin.xyz) / constants.gridOrigin.w;
+    vec3 A = (a - frame.worldGridOrigin.xyz) / frame.worldGridOrigin.w;
+    vec3 B = (b - frame.worldGridOrigin.xyz) / frame.worldGridOrigin.w;
     float len = length(B - A);
     if (len < 1e-6) return true;
     vec3 dir = (B - A) / len;
@@ -47,11 +51,11 @@ bool voxelSegmentOpen(vec3 a, vec3 b) {
     dir = mix(dir, vec3(1e-7), lessThan(abs(dir), vec3(1e-7)));
     vec3 inverse = 1.0 / dir;
     // The part of the segment inside the grid.
-    vec3 size = vec3(constants.gridSize.xyz);
+    vec3 size = vec3(frame.worldGridSize.xyz);
     vec3 t0 = (vec3(0.0) - A) * inverse, t1 = (size - A) * inverse;
     float s = max(max(min(t0.x, t1.x), min(t0.y, t1.y)), max(min(t0.z, t1.z), 0.0));
     float end = min(min(max(t0.x, t1.x), max(t0.y, t1.y)), min(max(t0.z, t1.z), len));
-    ivec3 last = constants.gridSize.xyz - 1;
+    ivec3 last = frame.worldGridSize.xyz - 1;
     bool leaving = true;
     // A step's length at least a thousandth of a voxel, so that the walk always moves on.
     for (int i = 0; i < 4096 && s < end; ++i) {
