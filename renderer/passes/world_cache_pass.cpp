@@ -32,7 +32,7 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
     const int pool = int(std::max(settings.indirect_flux_pool, settings.indirect_flux_vpls));
     base.work = glm::ivec4(int(settings.world_vpls), int(settings.world_cells_per_frame), pool,
                            WORLD_VIEW_LIGHT);
-    base.change = glm::vec4(1.0f / float(vplMapSide * vplMapSide), 0.0f, 0.0f, 0.0f);
+    base.change = glm::vec4(0.0f, 0.0f, 0.0f, float(vplMapSide));
     // This frame's: what changed, and what the lookup shows.
     const size_t cellsView = size_t(findView("world-cells") - kViews);
     const size_t ageView = size_t(findView("world-age") - kViews);
@@ -117,7 +117,10 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
                      {"worldPoints", points, Use::Sampled},
                      {"worldStats", stats, Use::Sampled},
                      {"gatherList", list, Use::Sampled},
-                     {"worldKeys", keys, Use::Sampled}};
+                     {"worldKeys", keys, Use::Sampled},
+                     {"vplPosition", vpls.position, Use::Sampled},
+                     {"vplNormal", vpls.normal, Use::Sampled},
+                     {"vplFlux", vpls.flux, Use::Sampled}};
     gather.pushSize = sizeof(shader::WorldConstants);
     gather.spec = {{{"POOL", pool}}};
     const uint32_t entries = table.width * table.height;

@@ -376,8 +376,8 @@ struct WorldConstants {
     // x: VPLs a cell gathers a frame; y: cells refreshed a frame beyond the new ones; z: the
     // flux pool's size; w: what the lookup writes (WORLD_VIEW_*)
     ivec4 work;
-    // x: 1 / (the VPL map's side)^2, its texels' footprint; y: 1 on a frame the
-    // light moved (every cell restarts); z: 1 on a frame an object moved; w: unused
+    // x: unused; y: 1 on a frame the light moved (every cell restarts); z: 1 on a frame an
+    // object moved; w: the VPL map's side
     vec4 change;
 };
 SSGI_CHECK_SIZE(WorldConstants, 64);
