@@ -1,14 +1,14 @@
 // world.clear, world.insert, world.schedule, world.gather, world.lookup (indirect_method 3): the
 // bounce held in world space. A hash table of cells (world_cache.glsl), each the irradiance at
-// one surface point gathered from the flux's VPLs with their visibility through the voxel grid
+// one surface point gathered from the RSM's VPLs with their visibility through the voxel grid
 // (world_voxels_pass.cpp), which does not depend on the view: a moving camera looks the cells up
 // and fills only the new ones. The table persists from frame to frame; without the cache it is
 // cleared every frame and every cell filled at once.
-//   reads:  gbuffer.view_depth, .normal, indirect.vpl_list (the flux's pool), world.voxels,
-//           world.voxel_blocks
-//   writes: world.keys, .irradiance, .points, .used (the table), world.stats (its counters),
-//           world.gather_list (the cells that gather this frame), world.indirect (the bounce,
-//           irradiance / pi, RGBA16F: the composite's "indirect")
+//   reads:  gbuffer.view_depth, .normal, indirect.vpl_list (the flux's pool), the VPL map
+//           (indirect.vpl_position, .vpl_normal, .vpl_flux), world.voxels, .voxel_blocks
+//   writes: world.keys, .irradiance, .points, .used, .directions (the table), world.stats (its
+//           counters), world.gather_list (the cells that gather this frame), world.indirect (the
+//           bounce, irradiance / pi, RGBA16F: the composite's "indirect")
 #include "passes/passes.h"
 #include "passes/views.h"
 
@@ -56,6 +56,8 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
     const graph::ImageRef irradiance = tableImage("world.irradiance", VK_FORMAT_R32G32B32A32_SFLOAT);
     const graph::ImageRef points = tableImage("world.points", VK_FORMAT_R32G32B32A32_SFLOAT);
     const graph::ImageRef used = tableImage("world.used", VK_FORMAT_R32_UINT);
+    const graph::ImageRef directions =
+        tableImage("world.directions", VK_FORMAT_R32G32B32A32_SFLOAT);
     const graph::ImageRef stats =
         build.graph.createImage("world.stats", VK_FORMAT_R32_UINT, {WORLD_STATS, 2}, usage, true);
     const graph::ImageRef indirect = build.graph.createImage(
@@ -70,11 +72,12 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
          {used, Use::TransferDst},
          {stats, Use::TransferDst},
          {irradiance, Use::TransferDst},
-         {points, Use::TransferDst}},
-        [keys, used, stats, irradiance, points](const graph::PassContext& pc) {
+         {points, Use::TransferDst},
+         {directions, Use::TransferDst}},
+        [keys, used, stats, irradiance, points, directions](const graph::PassContext& pc) {
             const VkClearColorValue zero{};
             const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-            for (const graph::ImageRef& image : {keys, used, stats, irradiance, points})
+            for (const graph::ImageRef& image : {keys, used, stats, irradiance, points, directions})
                 vkCmdClearColorImage(pc.cmd, pc.image(image).image,
                                      VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &range);
         },
@@ -87,7 +90,8 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
                      {"worldIrradiance", irradiance, Use::StorageWrite},
                      {"worldPoints", points, Use::StorageWrite},
                      {"worldUsed", used, Use::StorageReadWrite},
-                     {"worldStats", stats, Use::StorageReadWrite}};
+                     {"worldStats", stats, Use::StorageReadWrite},
+                     {"worldDirections", directions, Use::StorageWrite}};
     insert.pushSize = sizeof(shader::WorldConstants);
     const VkExtent2D screen = build.size;
     addComputePass(build, std::move(insert), [screen, constants](const ComputeRecorder& r) {
@@ -120,7 +124,8 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
                      {"worldKeys", keys, Use::Sampled},
                      {"vplPosition", vpls.position, Use::Sampled},
                      {"vplNormal", vpls.normal, Use::Sampled},
-                     {"vplFlux", vpls.flux, Use::Sampled}};
+                     {"vplFlux", vpls.flux, Use::Sampled},
+                     {"worldDirections", directions, Use::StorageReadWrite}};
     gather.pushSize = sizeof(shader::WorldConstants);
     gather.spec = {{{"POOL", pool}}};
     const uint32_t entries = table.width * table.height;
@@ -134,7 +139,9 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
                      {"worldKeys", keys, Use::Sampled},
                      {"worldIrradiance", irradiance, Use::Sampled},
                      {"worldUsed", used, Use::Sampled},
-                     {"indirectImage", indirect, Use::StorageWrite}};
+                     {"indirectImage", indirect, Use::StorageWrite},
+                     {"worldPoints", points, Use::Sampled},
+                     {"worldDirections", directions, Use::Sampled}};
     lookup.pushSize = sizeof(shader::WorldConstants);
     addComputePass(build, std::move(lookup), [screen, constants](const ComputeRecorder& r) {
         r.dispatch(screen.width, screen.height, constants(r.frame()));

@@ -14,6 +14,8 @@
 //                             gathers), a: the frames of samples behind it (0: none yet)
 //   world.points     RGBA32F  xyz: the point it gathers at (the first pixel that made it), w: its
 //                             normal (octahedral, two snorm16 in the float's bits)
+//   world.directions RGBA32F  the mean of its gathers' light as an L1 spherical harmonic of its
+//                             luminance (world_gather.comp), to carry its value to other normals
 //   world.used       R32UI    the last frame a pixel used it (FrameUniforms.patternFrame)
 // Needs: constants (WorldConstants), common.glsl.
 #ifndef SSGI_WORLD_CACHE_GLSL

@@ -17,6 +17,7 @@ layout(set = 0, binding = 4, rgba32f) uniform writeonly image2D worldIrradiance;
 layout(set = 0, binding = 5, rgba32f) uniform writeonly image2D worldPoints;
 layout(set = 0, binding = 6, r32ui) uniform uimage2D worldUsed;
 layout(set = 0, binding = 7, r32ui) uniform coherent uimage2D worldStats;
+layout(set = 0, binding = 8, rgba32f) uniform writeonly image2D worldDirections;
 layout(push_constant) uniform WorldBlock { WorldConstants constants; };
 
 #include "gbuffer_position.glsl"
@@ -59,6 +60,7 @@ void main() {
             imageStore(worldPoints, entry,
                        vec4(p, uintBitsToFloat(packSnorm2x16(octahedralEncode(n)))));
             imageStore(worldIrradiance, entry, vec4(0.0));
+            imageStore(worldDirections, entry, vec4(0.0));
             imageStore(worldUsed, entry, uvec4(now));
             return;
         }

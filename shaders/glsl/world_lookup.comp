@@ -4,7 +4,8 @@
 // (world_cache.glsl) rather than gathered. The value is interpolated between the eight cells
 // around the pixel at its level and with its normal's direction, trilinearly by the pixel's
 // place between their centres, so that no cell's edge shows; a cell absent or still empty
-// drops out of the weights. The debug views (WORLD_VIEW_*) show each pixel's own cell instead.
+// drops out of the weights. Each cell's value is carried over from its own normal to the
+// pixel's by its light's directional estimate (toNormal). The debug views (WORLD_VIEW_*) show each pixel's own cell instead.
 #include "shared.h"
 #include "common.glsl"
 
@@ -17,6 +18,8 @@ layout(set = 0, binding = 3) uniform usampler2D worldKeys;
 layout(set = 0, binding = 4) uniform sampler2D worldIrradiance;
 layout(set = 0, binding = 5) uniform usampler2D worldUsed;
 layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D indirectImage;
+layout(set = 0, binding = 7) uniform sampler2D worldPoints;
+layout(set = 0, binding = 8) uniform sampler2D worldDirections;
 layout(push_constant) uniform WorldBlock { WorldConstants constants; };
 
 #include "gbuffer_position.glsl"
@@ -32,6 +35,16 @@ ivec2 findCell(ivec3 cell, int level, int direction) {
         if (held == WORLD_EMPTY) break; // no key lies past an empty entry
     }
     return ivec2(-1);
+}
+
+// What carries a cell's value over to normal n: the ratio of its light's directional estimate
+// for n to that for the cell's own normal (world_gather.comp), at most 4.
+float toNormal(ivec2 entry, vec3 n) {
+    vec4 d = texelFetch(worldDirections, entry, 0);
+    vec3 own = octahedralDecode(unpackSnorm2x16(floatBitsToUint(texelFetch(worldPoints, entry, 0).w)));
+    float there = d.x * 0.25 + 0.5 * dot(d.yzw, own);
+    float here = d.x * 0.25 + 0.5 * dot(d.yzw, n);
+    return there > 0.0 ? clamp(here / there, 0.0, 4.0) : 1.0;
 }
 
 void main() {
@@ -76,7 +89,7 @@ void main() {
         if (cell.a == 0.0) continue;
         vec3 w3 = mix(1.0 - f, f, vec3(offset));
         float w = w3.x * w3.y * w3.z;
-        sum += cell.rgb * w;
+        sum += cell.rgb * w * toNormal(entry, n);
         weights += w;
     }
     imageStore(indirectImage, pixel, vec4(weights > 0.0 ? sum / weights : vec3(0.0), 1.0));
