@@ -20,6 +20,9 @@ struct FrameState {
     float patternRotation = 0.0f;
     float patternScale = 1.0f;
     float patternOffset = 0.5f;
+    // Where the patterns stand (FrameUniforms.patternFrame): the frame's number, for passes that
+    // keep something per frame parity (the world cache's counters).
+    uint32_t patternFrame = 0;
     // The light changed since the RSM was last drawn (always so without the cache): the RSM and
     // what is made from it alone (the flux's VPL map) are made again.
     bool drawRsm = true;

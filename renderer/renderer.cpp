@@ -261,6 +261,7 @@ FrameState Renderer::decideFrame() {
     f.patternRotation = std::fmod(frame * turn, 2.0f * glm::pi<float>());
     f.patternScale = 1.0f + jitter * (2.0f * std::fmod(frame * 0.618034f, 1.0f) - 1.0f);
     f.patternOffset = std::fmod(0.5f + frame * 0.7548777f, 1.0f);
+    f.patternFrame = patternFrame();
     // Without the cache nothing persists from frame to frame: the RSM is drawn every frame.
     f.drawRsm = rsmStale_ || !settings.cache;
     f.drawSkyMaps = skyMapsStale_;

@@ -15,6 +15,17 @@ static bool isStorage(graph::Use use) {
 
 void ComputeRecorder::dispatch(uint32_t width, uint32_t height, const void* constants,
                                uint32_t size) const {
+    pushDescriptors();
+    vk::dispatch(pass_.cmd, pipeline_, width, height, constants, size);
+}
+
+void ComputeRecorder::dispatchIndirect(VkBuffer buffer, VkDeviceSize offset,
+                                       const void* constants, uint32_t size) const {
+    pushDescriptors();
+    vk::dispatchIndirect(pass_.cmd, pipeline_, buffer, offset, constants, size);
+}
+
+void ComputeRecorder::pushDescriptors() const {
     const FrameBuild& build = build_;
     vk::Descriptors d;
     d.uniformBuffer(0, build.frameUniforms.buffer, build.frameUniforms.size);
@@ -29,7 +40,6 @@ void ComputeRecorder::dispatch(uint32_t width, uint32_t height, const void* cons
     for (const ShaderBuffer& b : desc_.uniforms)
         d.uniformBuffer(binding++, b.buffer.buffer, b.buffer.size);
     d.push(build.ctx, pass_.cmd, pipeline_);
-    vk::dispatch(pass_.cmd, pipeline_, width, height, constants, size);
 }
 
 void addComputePass(FrameBuild& build, ComputePassDesc desc, ComputeRecordFn record,

@@ -57,9 +57,19 @@ public:
         dispatch(width, height, &constants, sizeof(T));
     }
     void dispatch(uint32_t width, uint32_t height) const { dispatch(width, height, nullptr, 0); }
+    // As dispatch, the workgroup counts read by the device from `buffer` at `offset` (a
+    // VkDispatchIndirectCommand written earlier in the frame; the caller records the barrier
+    // that makes it visible to the indirect read).
+    template <typename T>
+    void dispatchIndirect(VkBuffer buffer, VkDeviceSize offset, const T& constants) const {
+        dispatchIndirect(buffer, offset, &constants, sizeof(T));
+    }
 
 private:
     void dispatch(uint32_t width, uint32_t height, const void* constants, uint32_t size) const;
+    void dispatchIndirect(VkBuffer buffer, VkDeviceSize offset, const void* constants,
+                          uint32_t size) const;
+    void pushDescriptors() const;
     const FrameBuild& build_;
     const graph::PassContext& pass_;
     const ComputePassDesc& desc_;

@@ -76,6 +76,11 @@ void FrameBuild::addCompositeTerm(const std::string& view, graph::ImageRef image
     compositeTerms.push_back({view, def->role, image});
 }
 
+const vk::Buffer& FrameBuild::deviceBuffer(VkDeviceSize bytes, VkBufferUsageFlags usage) {
+    buffers_.push_back(vk::createBuffer(ctx, bytes, usage, false));
+    return buffers_.back();
+}
+
 const vk::Buffer& FrameBuild::uniformBuffer(const void* data, VkDeviceSize bytes) {
     buffers_.push_back(vk::createBuffer(ctx, bytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true));
     std::memcpy(buffers_.back().mapped, data, bytes);

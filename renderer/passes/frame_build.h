@@ -73,6 +73,8 @@ public:
     vk::Pipeline graphicsPipeline(const vk::GraphicsPipelineDesc& desc);
     // A host-visible uniform buffer holding `bytes`, destroyed with the build.
     const vk::Buffer& uniformBuffer(const void* data, VkDeviceSize bytes);
+    // A device buffer of `bytes` for `usage`, destroyed with the build.
+    const vk::Buffer& deviceBuffer(VkDeviceSize bytes, VkBufferUsageFlags usage);
 
 private:
     void release();                      // what the destructor gives back; idempotent

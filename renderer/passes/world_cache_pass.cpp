@@ -113,6 +113,48 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
         r.dispatch(table.width, table.height, constants(r.frame()));
     });
 
+    // The gather's workgroups, as the schedule counted them, copied to the buffer its indirect
+    // dispatch reads: a command for each row of counters (frame parity).
+    const vk::Buffer& dispatchSize =
+        build.deviceBuffer(2 * sizeof(VkDispatchIndirectCommand),
+                           VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    const VkBuffer sizes = dispatchSize.buffer;
+    auto commandOffset = [](const FrameState& frame) {
+        return VkDeviceSize(frame.patternFrame & 1u) * sizeof(VkDispatchIndirectCommand);
+    };
+    build.graph.addPass(
+        "world.dispatch_size", graph::PassKind::Transfer, {{stats, Use::TransferSrc}},
+        [stats, sizes, commandOffset](const graph::PassContext& pc) {
+            // After last frame's indirect read of the buffer.
+            VkBufferMemoryBarrier2 before{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2};
+            before.srcStageMask = VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT;
+            before.srcAccessMask = VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT;
+            before.dstStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+            before.dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+            before.srcQueueFamilyIndex = before.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+            before.buffer = sizes;
+            before.size = VK_WHOLE_SIZE;
+            VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+            dependency.bufferMemoryBarrierCount = 1;
+            dependency.pBufferMemoryBarriers = &before;
+            vkCmdPipelineBarrier2(pc.cmd, &dependency);
+            VkBufferImageCopy region{};
+            region.bufferOffset = commandOffset(pc.frame);
+            region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+            region.imageOffset = {WORLD_STAT_GROUPS, int32_t(pc.frame.patternFrame & 1u), 0};
+            region.imageExtent = {3, 1, 1};
+            vkCmdCopyImageToBuffer(pc.cmd, pc.image(stats).image,
+                                   VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, sizes, 1, &region);
+            // Before the gather's indirect read of it.
+            VkBufferMemoryBarrier2 after = before;
+            after.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+            after.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+            after.dstStageMask = VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT;
+            after.dstAccessMask = VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT;
+            dependency.pBufferMemoryBarriers = &after;
+            vkCmdPipelineBarrier2(pc.cmd, &dependency);
+        });
+
     ComputePassDesc gather{"world.gather", "world_gather.comp"};
     gather.images = {{"voxels", grid.voxels, Use::Sampled},
                      {"voxelBlocks", grid.blocks, Use::Sampled},
@@ -128,10 +170,10 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
                      {"worldDirections", directions, Use::StorageReadWrite}};
     gather.pushSize = sizeof(shader::WorldConstants);
     gather.spec = {{{"POOL", pool}}};
-    const uint32_t entries = table.width * table.height;
-    addComputePass(build, std::move(gather), [entries, constants](const ComputeRecorder& r) {
-        r.dispatch(entries, 1, constants(r.frame()));
-    });
+    addComputePass(
+        build, std::move(gather), [sizes, constants, commandOffset](const ComputeRecorder& r) {
+            r.dispatchIndirect(sizes, commandOffset(r.frame()), constants(r.frame()));
+        });
 
     ComputePassDesc lookup{"world.lookup", "world_lookup.comp"};
     lookup.images = {{"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},

@@ -291,6 +291,16 @@ void dispatch(VkCommandBuffer cmd, const Pipeline& pipeline, uint32_t width, uin
     vkCmdDispatch(cmd, (width + group.x - 1) / group.x, (height + group.y - 1) / group.y, 1);
 }
 
+void dispatchIndirect(VkCommandBuffer cmd, const Pipeline& pipeline, VkBuffer buffer,
+                      VkDeviceSize offset, const void* pushConstants, uint32_t pushSize) {
+    if (pushSize != pipeline.pushConstantSize)
+        throw VulkanError("dispatch: push constant size does not match the pipeline's");
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.pipeline);
+    if (pushSize)
+        vkCmdPushConstants(cmd, pipeline.layout, pipeline.stages, 0, pushSize, pushConstants);
+    vkCmdDispatchIndirect(cmd, buffer, offset);
+}
+
 VkSampler createSampler(const Context& ctx, VkFilter filter, VkSamplerAddressMode address) {
     return createSampler(ctx, filter, filter, address, address);
 }

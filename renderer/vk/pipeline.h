@@ -82,6 +82,10 @@ private:
 
 // Binds, pushes constants (size checked against the pipeline) and dispatches enough of the
 // shader's workgroups to cover width x height.
+// As dispatch, with the workgroup counts read by the device from `buffer` at `offset` (a
+// VkDispatchIndirectCommand) rather than given.
+void dispatchIndirect(VkCommandBuffer cmd, const Pipeline& pipeline, VkBuffer buffer,
+                      VkDeviceSize offset, const void* pushConstants, uint32_t pushSize);
 void dispatch(VkCommandBuffer cmd, const Pipeline& pipeline, uint32_t width, uint32_t height,
               const void* pushConstants, uint32_t pushSize);
 

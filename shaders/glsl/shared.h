@@ -394,7 +394,9 @@ SSGI_CHECK_SIZE(WorldConstants, 64);
 #define WORLD_STAT_FULL 4      // pixels whose cell found no free entry within its probes
 #define WORLD_STAT_BUDGET 5    // refreshes handed out (world_cells_per_frame caps them)
 #define WORLD_STAT_LISTED 6    // cells listed for world.gather (new and refreshed)
-#define WORLD_STATS 7
+// world.gather's workgroups, x, y and z (a VkDispatchIndirectCommand, copied to a buffer).
+#define WORLD_STAT_GROUPS 7
+#define WORLD_STATS 10
 
 // How a lighting term enters the composite's sum (composite.comp). The pass that makes a term
 // registers it by its view's name (FrameBuild::addCompositeTerm); the view table

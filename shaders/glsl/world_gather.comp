@@ -1,8 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // world.gather (indirect_method 3): one invocation per cell that world.schedule listed
-// (world_schedule.comp), over the whole list's capacity: the invocations past its length return
-// at once. A cell gathers work.x VPLs for each frame's worth it was given from the flux's pool
+// (world_schedule.comp), dispatched indirectly for the list's length. A cell gathers work.x VPLs for each frame's worth it was given from the flux's pool
 // (indirect_vpls.comp: drawn in proportion to their flux, a new draw each frame when cached), a
 // run from a place of its own for each cell and frame (from its key's hash), each weighted by
 // its probability, tests each one's visibility through the voxel grid (world_voxels.glsl), and

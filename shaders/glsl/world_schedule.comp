@@ -11,8 +11,9 @@
 //   refreshes (world_cells_per_frame) last;
 // - a full one not at all: its value stands while the light and the objects stay still.
 // The list (world.gather_list, as big as the table) holds entry + (frames << 22), its length in
-// the counters' WORLD_STAT_LISTED: the gather's invocations then run over the cells that gather,
-// side by side, rather than over a sparse table.
+// the counters' WORLD_STAT_LISTED and the gather's workgroups in WORLD_STAT_GROUPS (dispatched
+// indirectly): the gather's invocations run over the cells that gather, side by side, rather
+// than over a sparse table.
 #include "shared.h"
 #include "common.glsl"
 
@@ -41,10 +42,14 @@ bool nearMovedBox(vec3 p, float reach) {
 
 void main() {
     ivec2 entry = ivec2(gl_GlobalInvocationID.xy);
+    uint now = uint(frame.patternFrame);
+    if (entry == ivec2(0)) { // the gather's y and z workgroups
+        imageStore(worldStats, ivec2(WORLD_STAT_GROUPS + 1, int(now) & 1), uvec4(1u));
+        imageStore(worldStats, ivec2(WORLD_STAT_GROUPS + 2, int(now) & 1), uvec4(1u));
+    }
     if (any(greaterThanEqual(entry, imageSize(worldKeys)))) return;
     uint key = imageLoad(worldKeys, entry).r;
     if (key == WORLD_EMPTY || key == WORLD_EVICTED) return;
-    uint now = uint(frame.patternFrame);
     int row = int(now) & 1;
     if (now - texelFetch(worldUsed, entry, 0).r > uint(constants.table.z)) {
         imageStore(worldKeys, entry, uvec4(WORLD_EVICTED)); // a tombstone (world_cache.glsl)
@@ -75,6 +80,8 @@ void main() {
         return;
     }
     uint slot = imageAtomicAdd(worldStats, ivec2(WORLD_STAT_LISTED, row), 1u);
+    // The gather's workgroups (64 invocations each), dispatched as many as the list needs.
+    imageAtomicMax(worldStats, ivec2(WORLD_STAT_GROUPS, row), slot / 64u + 1u);
     uint index = uint(entry.x + entry.y * constants.table.x);
     imageStore(gatherList, ivec2(slot % uint(constants.table.x), slot / uint(constants.table.x)),
                uvec4(index | (uint(gathered) << 22u)));
