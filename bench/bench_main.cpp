@@ -35,9 +35,10 @@ const char* kUsage =
   --series-methods N    sweep: 1 = the thesis rule only, 2 = also the running mean, 3 = also
                         the running mean with cheap frames (default)
   --method "LABEL: K=V ..."  walkthrough: a configuration to compare (repeatable); replaces the
-                        default ones (cache off; thesis rule; running mean with cheap frames);
-                        indirect: an indirect-light configuration to compare with "off"
-                        (replaces the thesis's and the interleaved method)
+                        default ones (cache off; thesis rule; running mean with cheap frames;
+                        world cache, indirect_method 3); indirect: an indirect-light
+                        configuration to compare with "off" (replaces the thesis's, the
+                        interleaved, the importance and the world cache methods)
   --converged-frames N  indirect: cached still-camera frames of the converged image (default 40)
   --commit TEXT         the source's commit, recorded with the results
 )";

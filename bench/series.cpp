@@ -150,8 +150,10 @@ Json walkthrough(vk::Context& ctx, const Scene& scene, const Options& options, u
                  uint32_t errorFrames) {
     const std::function<Camera(uint32_t)> cameraOf = pathCamera(scene, pathFrames);
     const std::vector<uint32_t> errorAt = pathErrorFrames(pathFrames, errorFrames);
-    std::vector<Method> methods = {
-        {"cache off", {{"cache", 0}}}, {"cache: thesis rule", {{"cache", 1}}}, cheapFrames()};
+    std::vector<Method> methods = {{"cache off", {{"cache", 0}}},
+                                   {"cache: thesis rule", {{"cache", 1}}},
+                                   cheapFrames(),
+                                   {"cache: world cache", {{"cache", 1}, {"indirect_method", 3}}}};
     if (!options.methods.empty()) {
         methods.clear();
         for (const auto& [label, settings] : options.methods)
