@@ -13,7 +13,7 @@
 //   world.irradiance RGBA32F  rgb: irradiance / pi at the cell's point (the mean of its
 //                             gathers), a: the frames of samples behind it (0: none yet)
 //   world.points     RGBA32F  xyz: the point it gathers at (the first pixel that made it), w: its
-//                             normal (octahedral, two snorm16 in the float's bits)
+//                             normal (packCellNormal: a whole number, so that every texel is one)
 //   world.directions RGBA32F  the mean of its gathers' light as an L1 spherical harmonic of its
 //                             luminance (world_gather.comp), to carry its value to other normals
 //   world.used       R32UI    the last frame a pixel used it (FrameUniforms.patternFrame)
@@ -70,6 +70,17 @@ ivec2 worldEntry(uint home, int probe) {
     uint i = (home + uint(probe)) % uint(constants.table.y);
     return ivec2(i % uint(constants.table.x), i / uint(constants.table.x));
 }
+// A normal as one float: its octahedral map in 12 bits per axis, a whole number below 2^24 that
+// a float holds exactly (a float of arbitrary bits may be a NaN).
+float packCellNormal(vec3 n) {
+    uvec2 q = uvec2(round((octahedralEncode(n) * 0.5 + 0.5) * 4095.0));
+    return float(q.x + q.y * 4096u);
+}
+vec3 unpackCellNormal(float packed) {
+    uint v = uint(packed);
+    return octahedralDecode(vec2(v & 4095u, v >> 12u) / 4095.0 * 2.0 - 1.0);
+}
+
 // The cell that holds p at `level` (in cells of that level).
 ivec3 worldCellOf(vec3 p, int level) {
     return ivec3(floor(p / worldCellSide(level)));

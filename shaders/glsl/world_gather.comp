@@ -133,7 +133,7 @@ void main() {
     ivec2 entry = ivec2(index % uint(constants.table.x), index / uint(constants.table.x));
     vec4 cell = imageLoad(worldIrradiance, entry);
     vec4 point = texelFetch(worldPoints, entry, 0);
-    vec3 n = octahedralDecode(unpackSnorm2x16(floatBitsToUint(point.w)));
+    vec3 n = unpackCellNormal(point.w);
     // Where its run of VPLs starts: from its key rather than its entry, so that a cell gathers the
     // same wherever a collision put it.
     uint start = worldHash(texelFetch(worldKeys, entry, 0).r + now * 6271u);

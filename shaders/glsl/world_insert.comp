@@ -58,7 +58,7 @@ void main() {
         uint held = imageAtomicCompSwap(worldKeys, entry, seen, key.checksum);
         if (held == seen) {
             imageStore(worldPoints, entry,
-                       vec4(p, uintBitsToFloat(packSnorm2x16(octahedralEncode(n)))));
+                       vec4(p, packCellNormal(n)));
             imageStore(worldIrradiance, entry, vec4(0.0));
             imageStore(worldDirections, entry, vec4(0.0));
             imageStore(worldUsed, entry, uvec4(now));

@@ -41,7 +41,7 @@ ivec2 findCell(ivec3 cell, int level, int direction) {
 // for n to that for the cell's own normal (world_gather.comp), at most 4.
 float toNormal(ivec2 entry, vec3 n) {
     vec4 d = texelFetch(worldDirections, entry, 0);
-    vec3 own = octahedralDecode(unpackSnorm2x16(floatBitsToUint(texelFetch(worldPoints, entry, 0).w)));
+    vec3 own = unpackCellNormal(texelFetch(worldPoints, entry, 0).w);
     float there = d.x * 0.25 + 0.5 * dot(d.yzw, own);
     float here = d.x * 0.25 + 0.5 * dot(d.yzw, n);
     return there > 0.0 ? clamp(here / there, 0.0, 4.0) : 1.0;
