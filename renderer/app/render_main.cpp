@@ -166,11 +166,15 @@ int run(int argc, char** argv) {
     const std::string device = std::string(ctx.properties.deviceName) + " (" + ctx.driverName + ")";
     if (args.profile) std::printf("%s", log.table(device).c_str());
     if (args.profile)
-        if (const auto world = renderer.worldCacheCounts())
+        if (const auto world = renderer.worldCacheCounts()) {
+            const WorldGridPlacement& grid = renderer.worldGrid();
             std::printf("world cache (last frame): %u cells live of %u entries, %u filled, %u "
-                        "refreshed, %u evicted, %u pixels without a free entry\n",
+                        "refreshed, %u evicted, %u pixels without a free entry; voxel grid "
+                        "%dx%dx%d of side %.4g\n",
                         world->live, world->entries, world->filled, world->refreshed,
-                        world->evicted, world->full);
+                        world->evicted, world->full, grid.size.x, grid.size.y, grid.size.z,
+                        double(grid.voxel));
+        }
     if (!args.profileJson.empty()) {
         const ProfileSummary summary = log.summary();
         nlohmann::json passes = nlohmann::json::array();
