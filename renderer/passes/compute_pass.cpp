@@ -26,8 +26,12 @@ void ComputeRecorder::dispatch(uint32_t width, uint32_t height, const void* cons
         else
             d.storageImage(binding++, view);
     }
-    for (const ShaderBuffer& b : desc_.uniforms)
-        d.uniformBuffer(binding++, b.buffer.buffer, b.buffer.size);
+    for (const ShaderBuffer& b : desc_.uniforms) {
+        if (b.storage)
+            d.storageBuffer(binding++, b.buffer.buffer, b.buffer.size);
+        else
+            d.uniformBuffer(binding++, b.buffer.buffer, b.buffer.size);
+    }
     d.push(build.ctx, pass_.cmd, pipeline_);
     vk::dispatch(pass_.cmd, pipeline_, width, height, constants, size);
 }
@@ -49,7 +53,9 @@ void addComputePass(FrameBuild& build, ComputePassDesc desc, ComputeRecordFn rec
         uses.push_back({i.image, i.use});
     }
     for (const ShaderBuffer& b : desc.uniforms)
-        layout.push_back({VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, b.name});
+        layout.push_back(
+            {b.storage ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER : VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
+             b.name, b.storage});
     const vk::Pipeline pipeline = build.computePipeline(desc, layout);
     const std::string name = desc.name;
     build.graph.addPass(

@@ -73,6 +73,9 @@ public:
     vk::Pipeline graphicsPipeline(const vk::GraphicsPipelineDesc& desc);
     // A host-visible uniform buffer holding `bytes`, destroyed with the build.
     const vk::Buffer& uniformBuffer(const void* data, VkDeviceSize bytes);
+    // A host-visible storage buffer of `bytes` (zero), destroyed with the build; a pass that
+    // writes it when recording may, since the Renderer waits for each frame before the next.
+    const vk::Buffer& storageBuffer(VkDeviceSize bytes);
 
 private:
     void release();                      // what the destructor gives back; idempotent
