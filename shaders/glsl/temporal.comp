@@ -43,6 +43,10 @@ const float AGREE_TOLERANCE = 1.0 / 2048.0;
 const float AGREE_FLOOR = 1e-4;
 // The most blur one frame of motion adds (a filter's spread, squared pixels).
 const float MOTION_BLUR_STEP = 0.5;
+// A converged value that agreeing texels carried while the camera moved (historyAt) was computed
+// at the texels' points, not at its own: it is stored with its blur as -(blur + CARRIED), and
+// computed again once the camera holds still.
+const float CARRIED = 1.0;
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
 layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
@@ -74,12 +78,19 @@ bool agreesWith(vec3 a, vec3 b) {
     return all(lessThanEqual(abs(a - b), vec3(AGREE_TOLERANCE * largest)));
 }
 
-// A history texel as value (rgb) and blur (a), whichever layout holds it; and the other way.
-vec4 historyTexel(sampler2D historyValue, bool scalar, ivec2 q) {
+// A history texel as value (rgb) and blur (a), whichever layout holds it, and whether
+// agreement carried it (CARRIED); and the other way.
+vec4 historyTexel(sampler2D historyValue, bool scalar, ivec2 q, inout bool carried) {
     vec4 t = texelFetch(historyValue, q, 0);
-    return scalar ? vec4(t.rrr, t.g) : t;
+    t = scalar ? vec4(t.rrr, t.g) : t;
+    if (t.a < 0.0) {
+        carried = true;
+        t.a = -t.a - CARRIED;
+    }
+    return t;
 }
-vec4 historyStored(bool scalar, vec3 value, float blur) {
+vec4 historyStored(bool scalar, vec3 value, float blur, bool carried) {
+    if (carried) blur = -(blur + CARRIED);
     return scalar ? vec4(value.r, blur, 0.0, 0.0) : vec4(value, blur);
 }
 
@@ -94,8 +105,10 @@ vec4 historyStored(bool scalar, vec3 value, float blur) {
 // counts the same. `agree`: a view-independent effect's four texels all hold the surface and
 // agree to within AGREE_TOLERANCE of the largest; any filter over them gives the same value, so
 // resampling them adds no blur (a lit or umbral region of the shadow), whatever the spread.
-vec4 historyAt(CacheConstants cache, bool scalar, sampler2D historyValue,
-               sampler2D historyCount, Reprojection r, out float spread, out bool agree) {
+// `carried`: a texel it read holds a value agreement carried (CARRIED).
+vec4 historyAt(CacheConstants cache, bool scalar, sampler2D historyValue, sampler2D historyCount,
+               Reprojection r, out float spread, out bool agree, out bool carried) {
+    carried = false;
     vec2 size = vec2(textureSize(historyValue, 0));
     vec2 toPixels = frame.viewport.xy / size;
     vec2 texel = r.uv * size - 0.5;
@@ -114,7 +127,7 @@ vec4 historyAt(CacheConstants cache, bool scalar, sampler2D historyValue,
             continue; // -0 is never stored (packCount)
         float w = (offset.x == 1 ? f.x : 1.0 - f.x) * (offset.y == 1 ? f.y : 1.0 - f.y);
         vec2 d = (vec2(offset) - f) * toPixels;
-        vec4 v = historyTexel(historyValue, scalar, q);
+        vec4 v = historyTexel(historyValue, scalar, q, carried);
         sum += w * v;
         spread += w * dot(d, d);
         weights += w;
@@ -131,14 +144,14 @@ vec4 historyAt(CacheConstants cache, bool scalar, sampler2D historyValue,
     } else { // no texel around passed: the one that did (the nearest, or one beside it)
         vec2 d = (vec2(r.texel) + 0.5 - r.uv * size) * toPixels;
         spread = dot(d, d);
-        v = historyTexel(historyValue, scalar, r.texel);
+        v = historyTexel(historyValue, scalar, r.texel, carried);
     }
     // Offsets below a thirtieth of a pixel are rounding (a still camera): no blur, and the
     // texel itself, unfiltered, so that a still camera carries its history over exactly (the
     // rounding's tiny weights on the neighbours changed a half float's last digit now and then).
     if (spread < 1e-3) {
         spread = 0.0;
-        v = historyTexel(historyValue, scalar, r.texel);
+        v = historyTexel(historyValue, scalar, r.texel, carried);
     }
     return v;
 }
@@ -149,6 +162,7 @@ struct Carried {
     float blur;
     float count;
     bool due;
+    bool carried; // by agreeing texels, not computed at its point since (CARRIED)
 };
 
 // One effect's value of this frame blended into its history at a pixel whose surface the
@@ -159,9 +173,10 @@ Carried carry(CacheConstants cache, bool scalar, sampler2D current, sampler2D hi
     float stored = s.found ? texelFetch(historyCount, s.texel, 0).r : 0.0;
     Reprojection r = reprojectInto(s, stored, world, cache);
     float spread = 0.0;
-    bool agree = false;
-    vec4 history =
-        r.valid ? historyAt(cache, scalar, historyValue, historyCount, r, spread, agree) : vec4(0.0);
+    bool agree = false, carried = false;
+    vec4 history = r.valid ? historyAt(cache, scalar, historyValue, historyCount, r, spread, agree,
+                                       carried)
+                           : vec4(0.0);
     // Texels that agree say the value is one constant around the point, so that resampling them
     // loses nothing; a value computed here that differs from theirs shows it is not (a needle's
     // shadow falling between texel centres that are all lit), and the history is resampled
@@ -199,8 +214,11 @@ Carried carry(CacheConstants cache, bool scalar, sampler2D current, sampler2D hi
         count = r.count;
         blur = history.a;
         // Resampled past its budget (its texels no longer agree), the value counts as one
-        // sample: computed again next frame, it is soon replaced, moving or still.
-        if (blur > budget && !resized) count = min(count, 1.0);
+        // sample: computed again next frame, it is soon replaced, moving or still. So does a
+        // value agreement carried, once the camera holds still: the texels it came from agreed,
+        // but a needle's shadow may fall between their points and on this one.
+        if ((blur > budget && !resized) || (carried && spread == 0.0))
+            count = exact ? 0.0 : min(count, 1.0);
     } else if (!r.valid || exact) {
         value = now.rgb;
         count = 1.0;
@@ -245,7 +263,8 @@ Carried carry(CacheConstants cache, bool scalar, sampler2D current, sampler2D hi
         // neighbourhood) starts its accumulation over, keeping what it holds as one sample, so
         // that it settles where a fresh start does; while it still carries blur, each frame
         // weighs at least as in a running mean (the confidence rule alone would keep it).
-        if (spread == 0.0 && history.a > RESTART_BLUR && r.count >= rotations - 1.0) {
+        if (spread == 0.0 && (history.a > RESTART_BLUR || carried) &&
+            r.count >= rotations - 1.0) {
             fresh = 0.5;
             count = 2.0;
         } else if (spread == 0.0 && history.a > 0.0) {
@@ -295,7 +314,9 @@ Carried carry(CacheConstants cache, bool scalar, sampler2D current, sampler2D hi
         count = count < rotations ? 0.0 : blur > REACCUMULATE_BLUR ? EXACT_BLURRED : 1.0;
     else
         count = max(min(count, rotations), 1.0);
-    return Carried(value, blur, count, due);
+    // Kept while the camera moves by agreement alone, the value is not this point's yet.
+    bool carriedOn = wasSkipped(now) && spread > 0.0 && (agree || carried) && count >= 1.0;
+    return Carried(value, blur, count, due, carriedOn);
 }
 
 void main() {
@@ -310,11 +331,11 @@ void main() {
 #define CARRY_SLOT(k)                                                                             \
     if (EFFECTS > k) {                                                                            \
         bool scalar = (SCALAR_HISTORIES & (1 << k)) != 0;                                         \
-        Carried c = Carried(texelFetch(current##k, pixel, 0).rgb, 0.0, 0.0, false);               \
+        Carried c = Carried(texelFetch(current##k, pixel, 0).rgb, 0.0, 0.0, false, false);        \
         if (!background)                                                                          \
             c = carry(temporal.effects[k], scalar, current##k, historyValue##k, historyCount##k, pixel,    \
                       position.xyz, s);                                                           \
-        imageStore(newValue##k, pixel, historyStored(scalar, c.value, c.blur));                   \
+        imageStore(newValue##k, pixel, historyStored(scalar, c.value, c.blur, c.carried));        \
         imageStore(newCount##k, pixel, vec4(packCount(c.count, c.due)));                          \
     } else if (pixel == ivec2(0)) {                                                               \
         imageStore(newValue##k, pixel, vec4(0.0));                                                \
