@@ -62,16 +62,16 @@ void addTemporalDispatch(FrameBuild& build, const GBuffer& gbuffer,
     pass.uniforms = {
         {"TemporalBlock", build.storageBuffer(sizeof(shader::TemporalEffects)), /*storage=*/true}};
     pass.spec = {{{"EFFECTS", int(group.size())}, {"SCALAR_HISTORIES", scalarHistories}}};
-    const vk::Buffer& constants = pass.uniforms.back().buffer;
+    void* const constants = pass.uniforms.back().buffer.mapped; // the build owns the buffer
     addComputePass(build, std::move(pass),
-                   [&build, group = std::move(group), &constants](const ComputeRecorder& r) {
+                   [&build, group = std::move(group), constants](const ComputeRecorder& r) {
                        // The frame waits for the last one before it is recorded (Renderer), so
                        // the buffer is free to write.
                        shader::TemporalEffects effects{};
                        for (size_t k = 0; k < group.size(); ++k)
                            effects.effects[k] =
                                cacheConstants(build.settings, group[k].cache, r.frame());
-                       std::memcpy(constants.mapped, &effects, sizeof(effects));
+                       std::memcpy(constants, &effects, sizeof(effects));
                        const VkExtent2D area = cacheDispatch(group[0].cache, r.frame(), build.size);
                        r.dispatch(area.width, area.height);
                    });
