@@ -12,10 +12,10 @@ import statistics
 FLOOR_PASSES = ("direct", "composite")
 FLOOR_LABEL = " + ".join(FLOOR_PASSES)
 # The passes in the order a frame runs them (tables and charts list them so).
-FRAME_ORDER = ("gbuffer", "rsm", "shadow", "shadow.temporal", "shadow.keep", "direct", "ao",
-               "ssdo", "ao.temporal", "ao.keep", "ssdo.temporal", "ssdo.keep", "indirect.flux",
-               "indirect.vpls", "indirect",
-               "upsample", "indirect.filter_x", "indirect.filter_y", "indirect.temporal", "indirect.keep", "composite")
+FRAME_ORDER = ("gbuffer", "rsm", "indirect.flux", "indirect.vpls", "indirect", "upsample",
+               "indirect.filter_x", "indirect.filter_y", "indirect.temporal", "indirect.keep",
+               "shadow", "shadow.temporal", "shadow.keep", "ao", "ssdo", "ao.temporal", "ao.keep",
+               "ssdo.temporal", "ssdo.keep", "temporal", "direct", "composite")
 
 
 def load_runs(results_dir, kind):

@@ -28,7 +28,7 @@ PASS_COLOURS = {
     "ao.temporal": "#ff9d9a", "ao.keep": "#fcd0cf", "ssdo.temporal": "#fabfd2",
     "indirect.flux": "#d4a373", "indirect.vpls": "#e9c46a", "indirect": "#f28e2b", "upsample": "#ffbe7d", "indirect.filter_x": "#ffbe7d",
     "indirect.filter_y": "#ffd8a8", "indirect.temporal": "#f1ce63",
-    "indirect.keep": "#f7e3a8", "composite": "#79706e",
+    "indirect.keep": "#f7e3a8", "temporal": "#bab0ac", "composite": "#79706e",
 }
 
 

@@ -69,7 +69,7 @@ TEST(ShaderBindings, ReflectTheShadersOwnDeclarations) {
     // A storage image declared without a format (the temporal pass writes either history).
     const vk::EmbeddedShader& t = embedded("temporal.comp");
     for (const auto& [b, binding] : vk::shaderBindings(t.code, t.bytes / 4, 0))
-        if (binding.name == "newValue") {
+        if (binding.name == "newValue0") {
             EXPECT_EQ(binding.format, VK_FORMAT_UNDEFINED);
         }
     EXPECT_TRUE(vk::shaderBindings(s.code, s.bytes / 4, 1).empty()) << "nothing in set 1";

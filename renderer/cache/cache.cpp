@@ -34,10 +34,14 @@ EffectCache* createCache(graph::FrameGraph& graph, CacheSet& caches, const Setti
     // a half float holds them to 1/1000 of their value, and its sign whether the pixel is due
     // (temporal.glsl packCount).
     c.countHistory = graph.createHistory(name + ".count", kCountFormat, size, usage);
+    // Each effect its own order of tiles, from its name: the same whatever the frame adds
+    // before it.
+    uint32_t seed = 2166136261u; // FNV-1a
+    for (char ch : name)
+        seed = (seed ^ uint8_t(ch)) * 16777619u;
     if (settings.cache_refresh)
         c.refresh = std::make_unique<TileRefresh>(
-            size.width, size.height, uint32_t(settingValue(settings, "cache_tile_" + name)),
-            uint32_t(caches.effects.size()));
+            size.width, size.height, uint32_t(settingValue(settings, "cache_tile_" + name)), seed);
     c.blurBudget = float(settingValue(settings, "cache_blur_" + name));
     return &c;
 }

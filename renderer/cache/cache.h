@@ -72,11 +72,20 @@ struct CountTexel {
 uint16_t packCount(CountTexel t);
 CountTexel unpackCount(uint16_t bits);
 
+// An effect whose value of this frame is made (`value`) and not yet blended into its history:
+// the frame's next temporal pass carries it (temporal_pass.cpp).
+struct WaitingEffect {
+    const EffectCache* cache;
+    graph::ImageRef value;
+};
+
 // Every cached effect of a frame, and the history of the G-buffer's view depths they share.
 struct CacheSet {
     std::deque<EffectCache> effects; // a deque: passes keep pointers to its elements
     std::optional<uint32_t> viewDepthHistory;
     graph::ImageRef reprojection; // this frame's, shared by every effect (reprojection_pass.cpp)
+    std::vector<WaitingEffect> waiting; // in the order the frame made them
+    uint32_t temporalPasses = 0;        // the temporal dispatches the frame has so far
 };
 
 // The temporal cache of `effect` when the settings cache it (cache and cache_<name> on), made

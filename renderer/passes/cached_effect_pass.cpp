@@ -1,7 +1,7 @@
-// <effect>.keep and <effect>.temporal: the temporal cache of one effect (thesis 3.1) around the
-// effect's own passes: reverse reprojection, accumulation with the thesis's confidence rule or a
-// running mean, reuse of converged pixels (the effect's passes skip them), tiled refresh. The
-// history pair swaps each frame in the graph.
+// <effect>.keep and the effect's place in the temporal pass: the temporal cache of one effect
+// (thesis 3.1) around the effect's own passes: reverse reprojection, accumulation with the
+// thesis's confidence rule or a running mean (temporal_pass.cpp), reuse of converged pixels (the
+// effect's passes skip them), tiled refresh. The history pair swaps each frame in the graph.
 #include "passes/cached_effect_pass.h"
 
 namespace ssgi {
@@ -59,29 +59,11 @@ void addKeepPass(FrameBuild& build, const EffectCache* cache,
         [](const FrameState& frame) { return frame.copyHistories; });
 }
 
-graph::ImageRef addTemporalPass(FrameBuild& build, const EffectCache* cache, graph::ImageRef raw,
-                                const GBuffer& gbuffer) {
+graph::ImageRef blendInTemporalPass(FrameBuild& build, const EffectCache* cache,
+                                    graph::ImageRef raw) {
     if (!cache) return raw;
-    using graph::FrameGraph;
-    using graph::Use;
-    const graph::ImageRef value = FrameGraph::current(cache->valueHistory);
-    ComputePassDesc pass{cache->name() + ".temporal", "temporal.comp"};
-    pass.images = {{"gbufferViewDepth", gbuffer.viewDepth, Use::Sampled},
-                   {"current", raw, Use::Sampled},
-                   {"historyValue", FrameGraph::previous(cache->valueHistory), Use::Sampled}};
-    for (ShaderImage& history : cacheBindings(build, cache, gbuffer.viewDepth))
-        pass.images.push_back(std::move(history));
-    pass.images.push_back({"newValue", value, Use::StorageWrite});
-    pass.images.push_back(
-        {"newCount", FrameGraph::current(cache->countHistory), Use::StorageWrite});
-    pass.pushSize = sizeof(shader::TemporalConstants);
-    pass.spec = {{{"SCALAR_HISTORY", cache->effect.scalar ? 1 : 0}}};
-    addComputePass(build, std::move(pass), [&build, cache](const ComputeRecorder& r) {
-        const shader::TemporalConstants constants{cacheConstants(build.settings, cache, r.frame())};
-        const VkExtent2D area = cacheDispatch(cache, r.frame(), build.size);
-        r.dispatch(area.width, area.height, constants);
-    });
-    return value;
+    build.caches.waiting.push_back({cache, raw});
+    return graph::FrameGraph::current(cache->valueHistory);
 }
 
 graph::ImageRef addCachedComputePass(FrameBuild& build, const GBuffer& gbuffer,
@@ -106,7 +88,7 @@ graph::ImageRef addCachedComputePass(FrameBuild& build, const GBuffer& gbuffer,
                    [&build, cache, record = std::move(record)](const ComputeRecorder& r) {
                        record(CachedRecorder(build, cache, r));
                    });
-    const graph::ImageRef value = addTemporalPass(build, cache, raw, gbuffer);
+    const graph::ImageRef value = blendInTemporalPass(build, cache, raw);
     if (!desc.term.empty()) build.addCompositeTerm(desc.term, value);
     return value;
 }

@@ -1,8 +1,8 @@
 // The passes of a cached effect (thesis 3.1) around the effect's own: <effect>.keep carries the
-// history over on the first settled frame (settled frames compute nothing), and
-// <effect>.temporal blends this frame's value into the history. An effect of one compute pass
-// is declared whole by addCachedComputePass; an effect of several passes (the indirect light)
-// uses the pieces below it. docs/frame.md, "Adding a cached effect".
+// history over on the first settled frame (settled frames compute nothing), and the frame's
+// temporal pass, one for every cached effect, blends this frame's value into the history. An
+// effect of one compute pass is declared whole by addCachedComputePass; an effect of several
+// passes (the indirect light) uses the pieces below it. docs/frame.md, "Adding a cached effect".
 #pragma once
 
 #include "cache/cache.h"
@@ -55,9 +55,10 @@ struct CachedComputePass {
 };
 using CachedRecordFn = std::function<void(const CachedRecorder&)>;
 
-// The effect's cache (when the settings cache it), its keep pass, its compute pass and its
-// temporal pass; returns what the effect's consumers read (the blended history, or the raw
-// value without a cache), which is also the composite's term when the pass names one.
+// The effect's cache (when the settings cache it), its keep pass and its compute pass, its value
+// handed to the temporal pass; returns what the effect's consumers read once that pass has run
+// (the blended history, or the raw value without a cache), which is also the composite's term
+// when the pass names one.
 graph::ImageRef addCachedComputePass(FrameBuild& build, const GBuffer& gbuffer,
                                      CachedComputePass pass, CachedRecordFn record);
 
@@ -72,9 +73,15 @@ std::vector<ShaderImage> cacheBindings(const FrameBuild& build, const EffectCach
 // on both sides hold it), and the images in `cleared` cleared to "skipped", so that what the
 // effect's passes wrote last reads as skipped while nothing is computed.
 void addKeepPass(FrameBuild& build, const EffectCache* cache, std::vector<graph::ImageRef> cleared);
-// <effect>.temporal: blends an effect's value of this frame into its history; returns what
-// the effect's consumers read (the raw value when there is no cache).
-graph::ImageRef addTemporalPass(FrameBuild& build, const EffectCache* cache, graph::ImageRef raw,
-                                const GBuffer& gbuffer);
+// Hands an effect's value of this frame (`raw`) to the frame's next temporal pass
+// (addTemporalPass, temporal_pass.cpp), which blends it into its history; returns what the
+// effect's consumers read once that pass has run (the raw value at once when there is no cache).
+graph::ImageRef blendInTemporalPass(FrameBuild& build, const EffectCache* cache,
+                                    graph::ImageRef raw);
+
+// temporal: blends every effect handed to it since the last (blendInTemporalPass) into its
+// history, TEMPORAL_EFFECT_SLOTS (or cache_temporal_slots) effects a dispatch. The frame adds it
+// after the effects' passes and before what reads their blended values; nothing without a cache.
+void addTemporalPass(FrameBuild& build, const GBuffer& gbuffer);
 
 } // namespace ssgi

@@ -37,8 +37,12 @@ void ComputeRecorder::pushDescriptors() const {
         else
             d.storageImage(binding++, view);
     }
-    for (const ShaderBuffer& b : desc_.uniforms)
-        d.uniformBuffer(binding++, b.buffer.buffer, b.buffer.size);
+    for (const ShaderBuffer& b : desc_.uniforms) {
+        if (b.storage)
+            d.storageBuffer(binding++, b.buffer.buffer, b.buffer.size);
+        else
+            d.uniformBuffer(binding++, b.buffer.buffer, b.buffer.size);
+    }
     d.push(build.ctx, pass_.cmd, pipeline_);
 }
 
@@ -59,7 +63,9 @@ void addComputePass(FrameBuild& build, ComputePassDesc desc, ComputeRecordFn rec
         uses.push_back({i.image, i.use});
     }
     for (const ShaderBuffer& b : desc.uniforms)
-        layout.push_back({VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, b.name});
+        layout.push_back(
+            {b.storage ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER : VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
+             b.name, b.storage});
     const vk::Pipeline pipeline = build.computePipeline(desc, layout);
     const std::string name = desc.name;
     build.graph.addPass(

@@ -29,10 +29,12 @@ struct ShaderImage {
     VkSampler sampler = VK_NULL_HANDLE; // for a sampled use: the setup's nearest unless given
 };
 
-// One uniform buffer a compute pass binds, after its images.
+// One uniform buffer a compute pass binds, after its images (or, `storage`, a storage buffer:
+// std430, which lays out scalars and arrays as C++ does).
 struct ShaderBuffer {
-    std::string name; // the shader's uniform block
+    std::string name; // the shader's uniform or buffer block
     vk::Buffer buffer;
+    bool storage = false;
 };
 
 struct ComputePassDesc {

@@ -1,6 +1,7 @@
-// The frame, pass by pass, in order: rasterise the camera's and the light's views; the shadow
-// term; ambient occlusion (or the direct light and SSDO in its place); the indirect light; the
-// direct light; the sky's visibility; composite and tonemap. Which passes there are follows from
+// The frame, pass by pass, in order: rasterise the camera's and the light's views; the indirect
+// light; the shadow term; ambient occlusion (or the direct light and SSDO in its place); the
+// sky's visibility; the temporal pass that blends them all into their histories; the direct
+// light; composite and tonemap. Which passes there are follows from
 // the scene's settings; which of them run on a given frame, from the FrameState (frame_state.h).
 // docs/frame.md draws the frame this builds.
 #include "passes/passes.h"
@@ -23,33 +24,41 @@ void addFramePasses(FrameBuild& build) {
         rasterized.lightDepthMin = addLightDepthMinPass(build, rasterized.rsm);
     addReprojectionPass(build, rasterized.gbuffer);
     // Each cached effect returns its blended history (cached_effect_pass.h), which is what its
-    // consumers read; the lighting terms hand theirs to the composite, which adds them up in the
-    // order they come here (FrameBuild::addCompositeTerm).
+    // consumers read once the temporal pass has blended it; the lighting terms hand theirs to
+    // the composite, which adds them up in the order they come here (FrameBuild::addCompositeTerm).
     CompositeImages composite;
-    composite.shadow = addShadowPass(build, rasterized);
     // Depth peeling's second layer serves SSDO's occlusion test, the contact shadows' and the
     // bounce's visibility test.
     if (settings.depth_peeling && (settings.ssdo || settings.contact_shadows ||
                                    (screenSpaceBounce && settings.indirect_visibility)))
         rasterized.secondLayer = addPeelPass(build, rasterized);
-    if (settings.contact_shadows)
-        composite.shadow = addContactPass(build, rasterized, composite.shadow);
+    // The indirect light first: its working images are the frame's largest set at once, and the
+    // other effects' values, which wait for the temporal pass, are not made yet to add to it.
+    if (settings.indirect) addIndirectLight(build, rasterized);
+    composite.shadow = addShadowPass(build, rasterized);
     if (settings.ssdo) {
-        // SSDO's bounce reads the direct light.
+        // SSDO's bounce reads the direct light, which reads the blended shadow: a temporal pass
+        // of their own blends the effects made so far (the indirect light, the shadow) first.
+        addTemporalPass(build, rasterized.gbuffer);
+        if (settings.contact_shadows)
+            composite.shadow = addContactPass(build, rasterized, composite.shadow);
         composite.direct = addDirectPass(build, rasterized, composite.shadow);
         addSsdoPass(build, rasterized, composite.direct);
     } else if (settings.ao) {
         addAoPass(build, rasterized);
     }
-    if (settings.indirect) addIndirectLight(build, rasterized);
-    // Without SSDO only the composite reads the direct light: made once the indirect light's
-    // working images are gone, it shares their memory instead of adding to it (FrameGraph's
-    // transient images).
-    if (!composite.direct.valid())
-        composite.direct = addDirectPass(build, rasterized, composite.shadow);
     // The sky's visibility beyond the screen, for the sky term beside the AO (none to see
     // under a black sky, as in the Cornell boxes).
     if (hasSkyVisibility(scene)) addSkyVisibilityPasses(build, rasterized);
+    // One pass blends every cached effect's value of this frame into its history (the frame's
+    // only one without SSDO), before anything reads the blended values.
+    addTemporalPass(build, rasterized.gbuffer);
+    if (settings.contact_shadows && !settings.ssdo)
+        composite.shadow = addContactPass(build, rasterized, composite.shadow);
+    // Without SSDO only the composite reads the direct light: made once the effects' values are
+    // blended, it shares their memory instead of adding to it (FrameGraph's transient images).
+    if (!composite.direct.valid())
+        composite.direct = addDirectPass(build, rasterized, composite.shadow);
     addCompositePass(build, rasterized, composite);
 }
 

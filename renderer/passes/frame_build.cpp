@@ -87,4 +87,10 @@ const vk::Buffer& FrameBuild::uniformBuffer(const void* data, VkDeviceSize bytes
     return buffers_.back();
 }
 
+const vk::Buffer& FrameBuild::storageBuffer(VkDeviceSize bytes) {
+    buffers_.push_back(vk::createBuffer(ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true));
+    std::memset(buffers_.back().mapped, 0, bytes);
+    return buffers_.back();
+}
+
 } // namespace ssgi

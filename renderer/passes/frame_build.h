@@ -75,6 +75,9 @@ public:
     const vk::Buffer& uniformBuffer(const void* data, VkDeviceSize bytes);
     // A device buffer of `bytes` for `usage`, destroyed with the build.
     const vk::Buffer& deviceBuffer(VkDeviceSize bytes, VkBufferUsageFlags usage);
+    // A host-visible storage buffer of `bytes` (zero), destroyed with the build; a pass that
+    // writes it when recording may, since the Renderer waits for each frame before the next.
+    const vk::Buffer& storageBuffer(VkDeviceSize bytes);
 
 private:
     void release();                      // what the destructor gives back; idempotent

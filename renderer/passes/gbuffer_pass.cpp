@@ -14,7 +14,8 @@ GBuffer addGBufferPass(FrameBuild& build) {
                      {{".view_depth", VK_FORMAT_R32_SFLOAT},
                       {".normal", VK_FORMAT_R16G16B16A16_SFLOAT},
                       {".albedo", VK_FORMAT_R8G8B8A8_UNORM}},
-                     enabled, build.settings.cache ? &build.caches.viewDepthHistory : nullptr);
+                     enabled, build.settings.cache ? &build.caches.viewDepthHistory : nullptr,
+                     OpaqueDraws::Shaded, DepthTarget::DrawOnly);
     return {t.colors[0], t.colors[1], t.colors[2], t.depth};
 }
 

@@ -1,8 +1,8 @@
 // The one-bounce indirect light as a cached effect: its cache declared once, then the passes of
 // the method the settings choose (indirect_method: 0 the thesis's half-resolution gather and its
 // upsampling, 1 interleaved VPL subsets and their filter, 2 the same with VPLs drawn by flux
-// beside them), then its temporal pass; or (3) the world cache, which holds it in world space
-// instead.
+// beside them), its value then handed to the frame's temporal pass; or (3) the world cache,
+// which holds it in world space instead, with no screen-space cache.
 #include "passes/passes.h"
 
 namespace ssgi {
@@ -46,7 +46,7 @@ graph::ImageRef addIndirectLight(FrameBuild& build, const GBufferAndRsm& in) {
         if (method == 2) vpls = addFluxVplPasses(build, in, cache != nullptr);
         raw = addInterleavedIndirectPasses(build, in, cache, vpls ? &*vpls : nullptr);
     }
-    const graph::ImageRef value = addTemporalPass(build, cache, raw, in.gbuffer);
+    const graph::ImageRef value = blendInTemporalPass(build, cache, raw);
     build.addCompositeTerm("indirect", value);
     return value;
 }

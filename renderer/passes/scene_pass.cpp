@@ -14,7 +14,7 @@ vk::GraphicsPipelineDesc depthOnly(vk::GraphicsPipelineDesc desc) {
 SceneTargets addScenePass(FrameBuild& build, const std::string& name, const std::string& shader,
                           VkExtent2D extent, const std::vector<SceneTarget>& targets,
                           graph::EnabledFn enabled, std::optional<uint32_t>* firstTargetHistory,
-                          OpaqueDraws opaqueDraws) {
+                          OpaqueDraws opaqueDraws, DepthTarget depthTarget) {
     const bool persistent = bool(enabled);
     const VkImageUsageFlags color =
         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
@@ -32,9 +32,10 @@ SceneTargets addScenePass(FrameBuild& build, const std::string& name, const std:
         }
         formats.push_back(target.format);
     }
-    t.depth = build.graph.createImage(
-        name + ".depth", VK_FORMAT_D32_SFLOAT, extent,
-        VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, persistent);
+    t.depth = build.graph.createImage(name + ".depth", VK_FORMAT_D32_SFLOAT, extent,
+                                      VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT |
+                                          VK_IMAGE_USAGE_SAMPLED_BIT,
+                                      persistent && depthTarget == DepthTarget::Read);
 
     vk::GraphicsPipelineDesc desc;
     desc.vertices = sceneVertexInput();

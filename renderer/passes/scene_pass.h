@@ -31,14 +31,21 @@ enum class OpaqueDraws {
 // A scene pipeline's depth-only twin for its opaque draws: no fragment shader, and of its
 // bindings only binding 0, the view's uniforms, which is all the scene's vertex shaders read.
 vk::GraphicsPipelineDesc depthOnly(vk::GraphicsPipelineDesc desc);
+// What a scene pass's depth target is for.
+enum class DepthTarget {
+    Read,     // later passes read it (the RSM's and the shadow maps': the shadow test)
+    DrawOnly, // it serves the pass's own draw alone (the G-buffer's): transient, kept by nothing
+};
 // `enabled` (optional) is asked each frame whether to draw; the targets of a pass that may be
-// skipped persist from frame to frame. With `firstTargetHistory`, the first colour target is a
-// history pair (colors[0] is its current side), whose id is written there.
+// skipped persist from frame to frame (but a DrawOnly depth). With `firstTargetHistory`, the
+// first colour target is a history pair (colors[0] is its current side), whose id is written
+// there.
 SceneTargets addScenePass(FrameBuild& build, const std::string& name, const std::string& shader,
                           VkExtent2D extent, const std::vector<SceneTarget>& targets,
                           graph::EnabledFn enabled = {},
                           std::optional<uint32_t>* firstTargetHistory = nullptr,
-                          OpaqueDraws opaqueDraws = OpaqueDraws::Shaded);
+                          OpaqueDraws opaqueDraws = OpaqueDraws::Shaded,
+                          DepthTarget depthTarget = DepthTarget::Read);
 
 // gbuffer: view depth (0 where nothing was drawn), normal, albedo, depth.
 struct GBuffer {

@@ -157,6 +157,9 @@ namespace ssgi {
       "a camera jump beyond this x the scene's diagonal between two frames is a cut")              \
     X(cache_resize, bool, true, 0, 1, "Temporal cache",                                            \
       "a resize resamples every history to the new size (1) or drops it (0)")                      \
+    X(cache_temporal_slots, int, 4, 1, 4, "Temporal cache",                                        \
+      "cached effects one temporal dispatch blends (4: all of a frame's in one; 1: a dispatch "    \
+      "per effect, the same values)")                                                              \
     X(cache_shadow, bool, true, 0, 1, "Temporal cache",                                            \
       "the shadow term cached (1), or computed anew every frame")                                  \
     X(cache_ao, bool, true, 0, 1, "Temporal cache", "the AO cached (1), or computed anew")         \

@@ -327,11 +327,13 @@ struct ContactConstants {
 };
 SSGI_CHECK_SIZE(ContactConstants, 16);
 
-// The temporal pass of one effect: its cache state (push constants).
-struct TemporalConstants {
-    CacheConstants cache;
+// The temporal pass (temporal.comp) carries up to this many cached effects a dispatch, one a slot;
+// its storage buffer (std430, laid out as C++ lays it out) holds each slot's cache this frame.
+#define TEMPORAL_EFFECT_SLOTS 4
+struct TemporalEffects {
+    CacheConstants effects[TEMPORAL_EFFECT_SLOTS];
 };
-SSGI_CHECK_SIZE(TemporalConstants, 40);
+SSGI_CHECK_SIZE(TemporalEffects, 160);
 
 // Sky visibility maps (sky_maps.glsl): orthographic depth maps of the scene from `tile.y`
 // directions over the sphere, tiled `tile.z` to a row of an atlas, `tile.w` texels a side each,

@@ -1,8 +1,12 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_vote : require
-// The temporal cache of one effect (thesis 3.1.2): this frame's value V_t, computed with a
-// turned and scaled sampling pattern, is blended with the reprojected history V_{t-1}.
+// The temporal cache (thesis 3.1.2) of every cached effect, in one pass: each pixel's surface is
+// found once in last frame's image (the reprojection pass's, unpacked once here), and each
+// effect's value of this frame V_t, computed with a turned and scaled sampling pattern, is
+// blended with its reprojected history V_{t-1}, by the effect's own constants (its rule, tile,
+// blur budget, motion test) and the same code for all. Up to TEMPORAL_EFFECT_SLOTS effects a
+// dispatch (shared.h), in slots 0..EFFECTS-1 (renderer/passes/temporal_pass.cpp).
 // Thesis rule: confidence = 1 - saturate(|V_{t-1} - V_t|) / (1 + bias) (4),
 // V = confidence V_{t-1} + (1 - confidence) V_t (5). Running mean (the principled
 // alternative): V = H + (V_t - H) / (n + 1), with H the history clamped to the spread of this
@@ -16,11 +20,16 @@
 // exceeds it (a budget of 0: computed anew while the camera moves, accumulated while still).
 #include "shared.h"
 #include "common.glsl"
+// temporal.glsl's helpers for a pass that binds one effect's counts are not this pass's.
+#define SSGI_TEMPORAL_PASS
 
 layout(local_size_x = 8, local_size_y = 8) in;
-// 1: a scalar effect's history (the shadow, the AO): rg16f, its value in r and its blur in g;
-// 0: rgba16f, the value in rgb and the blur in alpha (EffectCache::scalar).
-layout(constant_id = 0) const int SCALAR_HISTORY = 0;
+// How many slots hold an effect this dispatch (1..TEMPORAL_EFFECT_SLOTS); the rest are bound to
+// stand-ins, never read, whose one texel is written 0 so that no image holds undefined memory.
+layout(constant_id = 0) const int EFFECTS = 1;
+// Bit k set: slot k's history is a scalar effect's (the shadow, the AO): rg16f, its value in r
+// and its blur in g; clear: rgba16f, the value in rgb and the blur in alpha (EffectCache::scalar).
+layout(constant_id = 1) const int SCALAR_HISTORIES = 0;
 // Once the camera holds still, a converged history that motion resampled with more than
 // RESTART_BLUR (squared pixels) starts its accumulation over; one with more than
 // REACCUMULATE_BLUR keeps being computed and blended until its blur falls below it. After a
@@ -34,17 +43,28 @@ const float AGREE_TOLERANCE = 1.0 / 2048.0;
 const float AGREE_FLOOR = 1e-4;
 // The most blur one frame of motion adds (a filter's spread, squared pixels).
 const float MOTION_BLUR_STEP = 0.5;
+// A converged value that agreeing texels carried while the camera moved (historyAt) was computed
+// at the texels' points, not at its own: it is stored with its blur as -(blur + CARRIED), and
+// computed again once the camera holds still.
+const float CARRIED = 1.0;
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
 layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
-layout(set = 0, binding = 2) uniform sampler2D current; // wasSkipped: converged, not computed
-layout(set = 0, binding = 3) uniform sampler2D historyValue;
-layout(set = 0, binding = 4) uniform sampler2D historyViewDepth;
-layout(set = 0, binding = 5) uniform usampler2D reprojection;
-layout(set = 0, binding = 6) uniform sampler2D historyCount;
-layout(set = 0, binding = 7) uniform writeonly image2D newValue; // rgba16f or rg16f
-layout(set = 0, binding = 8, r16f) uniform writeonly image2D newCount; // packCount
-layout(push_constant) uniform TemporalBlock { TemporalConstants constants; };
+layout(set = 0, binding = 2) uniform sampler2D historyViewDepth;
+layout(set = 0, binding = 3) uniform usampler2D reprojection;
+// Per slot k: this frame's value (wasSkipped: converged, not computed), last frame's history
+// and counts, and this frame's history (rgba16f or rg16f) and counts (packCount).
+#define EFFECT_SLOT(k, first)                                                                     \
+    layout(set = 0, binding = first) uniform sampler2D current##k;                                \
+    layout(set = 0, binding = first + 1) uniform sampler2D historyValue##k;                       \
+    layout(set = 0, binding = first + 2) uniform sampler2D historyCount##k;                       \
+    layout(set = 0, binding = first + 3) uniform writeonly image2D newValue##k;                   \
+    layout(set = 0, binding = first + 4, r16f) uniform writeonly image2D newCount##k;
+EFFECT_SLOT(0, 4)
+EFFECT_SLOT(1, 9)
+EFFECT_SLOT(2, 14)
+EFFECT_SLOT(3, 19)
+layout(set = 0, binding = 24, std430) readonly buffer TemporalBlock { TemporalEffects temporal; };
 
 #include "gbuffer_position.glsl"
 #include "screen_space.glsl"
@@ -58,14 +78,20 @@ bool agreesWith(vec3 a, vec3 b) {
     return all(lessThanEqual(abs(a - b), vec3(AGREE_TOLERANCE * largest)));
 }
 
-// A history texel as value (rgb) and blur (a), whichever layout holds it; and the other way.
-vec4 historyTexel(ivec2 q) {
+// A history texel as value (rgb) and blur (a), whichever layout holds it, and whether
+// agreement carried it (CARRIED); and the other way.
+vec4 historyTexel(sampler2D historyValue, bool scalar, ivec2 q, inout bool carried) {
     vec4 t = texelFetch(historyValue, q, 0);
-    return SCALAR_HISTORY != 0 ? vec4(t.rrr, t.g) : t;
+    t = scalar ? vec4(t.rrr, t.g) : t;
+    if (t.a < 0.0) {
+        carried = true;
+        t.a = -t.a - CARRIED;
+    }
+    return t;
 }
-void storeHistory(ivec2 pixel, vec3 value, float blur) {
-    imageStore(newValue, pixel, SCALAR_HISTORY != 0 ? vec4(value.r, blur, 0.0, 0.0)
-                                                    : vec4(value, blur));
+vec4 historyStored(bool scalar, vec3 value, float blur, bool carried) {
+    if (carried) blur = -(blur + CARRIED);
+    return scalar ? vec4(value.r, blur, 0.0, 0.0) : vec4(value, blur);
 }
 
 // The history at the reprojected point, filtered bilinearly over the four texels around it that
@@ -79,7 +105,10 @@ void storeHistory(ivec2 pixel, vec3 value, float blur) {
 // counts the same. `agree`: a view-independent effect's four texels all hold the surface and
 // agree to within AGREE_TOLERANCE of the largest; any filter over them gives the same value, so
 // resampling them adds no blur (a lit or umbral region of the shadow), whatever the spread.
-vec4 historyAt(Reprojection r, out float spread, out bool agree) {
+// `carried`: a texel it read holds a value agreement carried (CARRIED).
+vec4 historyAt(CacheConstants cache, bool scalar, sampler2D historyValue, sampler2D historyCount,
+               Reprojection r, out float spread, out bool agree, out bool carried) {
+    carried = false;
     vec2 size = vec2(textureSize(historyValue, 0));
     vec2 toPixels = frame.viewport.xy / size;
     vec2 texel = r.uv * size - 0.5;
@@ -98,7 +127,7 @@ vec4 historyAt(Reprojection r, out float spread, out bool agree) {
             continue; // -0 is never stored (packCount)
         float w = (offset.x == 1 ? f.x : 1.0 - f.x) * (offset.y == 1 ? f.y : 1.0 - f.y);
         vec2 d = (vec2(offset) - f) * toPixels;
-        vec4 v = historyTexel(q);
+        vec4 v = historyTexel(historyValue, scalar, q, carried);
         sum += w * v;
         spread += w * dot(d, d);
         weights += w;
@@ -106,7 +135,7 @@ vec4 historyAt(Reprojection r, out float spread, out bool agree) {
         high = max(high, v.rgb);
         ++texels;
     }
-    agree = (constants.cache.reprojection & REUSE_AGREEING) != 0 && texels == 4 &&
+    agree = (cache.reprojection & REUSE_AGREEING) != 0 && texels == 4 &&
             agreesWith(low, high);
     vec4 v;
     if (weights > 1e-6) {
@@ -115,34 +144,39 @@ vec4 historyAt(Reprojection r, out float spread, out bool agree) {
     } else { // no texel around passed: the one that did (the nearest, or one beside it)
         vec2 d = (vec2(r.texel) + 0.5 - r.uv * size) * toPixels;
         spread = dot(d, d);
-        v = historyTexel(r.texel);
+        v = historyTexel(historyValue, scalar, r.texel, carried);
     }
     // Offsets below a thirtieth of a pixel are rounding (a still camera): no blur, and the
     // texel itself, unfiltered, so that a still camera carries its history over exactly (the
     // rounding's tiny weights on the neighbours changed a half float's last digit now and then).
     if (spread < 1e-3) {
         spread = 0.0;
-        v = historyTexel(r.texel);
+        v = historyTexel(historyValue, scalar, r.texel, carried);
     }
     return v;
 }
 
-void main() {
-    loadPixelToWorld(); // pixel_to_world.glsl
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
-    vec4 position = gbufferPosition(pixel);
-    if (position.w == 0.0) {
-        storeHistory(pixel, texelFetch(current, pixel, 0).rgb, 0.0);
-        imageStore(newCount, pixel, vec4(packCount(0.0, false)));
-        return;
-    }
-    CacheConstants cache = constants.cache;
+// One effect's history and counts at this pixel this frame.
+struct Carried {
+    vec3 value;
+    float blur;
+    float count;
+    bool due;
+    bool carried; // by agreeing texels, not computed at its point since (CARRIED)
+};
+
+// One effect's value of this frame blended into its history at a pixel whose surface the
+// reprojection pass found at `s` (world position `world`), by the effect's constants `cache`.
+Carried carry(CacheConstants cache, bool scalar, sampler2D current, sampler2D historyValue,
+              sampler2D historyCount, ivec2 pixel, vec3 world, SurfaceReprojection s) {
     vec4 now = texelFetch(current, pixel, 0);
-    Reprojection r = reproject(pixel, position.xyz, cache);
+    float stored = s.found ? texelFetch(historyCount, s.texel, 0).r : 0.0;
+    Reprojection r = reprojectInto(s, stored, world, cache);
     float spread = 0.0;
-    bool agree = false;
-    vec4 history = r.valid ? historyAt(r, spread, agree) : vec4(0.0);
+    bool agree = false, carried = false;
+    vec4 history = r.valid ? historyAt(cache, scalar, historyValue, historyCount, r, spread, agree,
+                                       carried)
+                           : vec4(0.0);
     // Texels that agree say the value is one constant around the point, so that resampling them
     // loses nothing; a value computed here that differs from theirs shows it is not (a needle's
     // shadow falling between texel centres that are all lit), and the history is resampled
@@ -159,7 +193,7 @@ void main() {
     // its budget; a scalar one keeps it within its budget only, and the sharp shadow (budget 0)
     // starts over: a shadow resampled to another size is wrong along every edge, and a still
     // camera would keep it (docs/temporal-cache.md, "Resize", measures it).
-    bool resized = SCALAR_HISTORY == 0 &&
+    bool resized = !scalar &&
                    any(notEqual(textureSize(historyValue, 0), ivec2(frame.viewport.xy)));
     float budget = cache.blurBudget;
     // Reused while the camera moves, a pixel's value is computed again once its blur passes a
@@ -180,8 +214,11 @@ void main() {
         count = r.count;
         blur = history.a;
         // Resampled past its budget (its texels no longer agree), the value counts as one
-        // sample: computed again next frame, it is soon replaced, moving or still.
-        if (blur > budget && !resized) count = min(count, 1.0);
+        // sample: computed again next frame, it is soon replaced, moving or still. So does a
+        // value agreement carried, once the camera holds still: the texels it came from agreed,
+        // but a needle's shadow may fall between their points and on this one.
+        if ((blur > budget && !resized) || (carried && spread == 0.0))
+            count = exact ? 0.0 : min(count, 1.0);
     } else if (!r.valid || exact) {
         value = now.rgb;
         count = 1.0;
@@ -226,7 +263,8 @@ void main() {
         // neighbourhood) starts its accumulation over, keeping what it holds as one sample, so
         // that it settles where a fresh start does; while it still carries blur, each frame
         // weighs at least as in a running mean (the confidence rule alone would keep it).
-        if (spread == 0.0 && history.a > RESTART_BLUR && r.count >= rotations - 1.0) {
+        if (spread == 0.0 && (history.a > RESTART_BLUR || carried) &&
+            r.count >= rotations - 1.0) {
             fresh = 0.5;
             count = 2.0;
         } else if (spread == 0.0 && history.a > 0.0) {
@@ -268,7 +306,6 @@ void main() {
     bool due = subgroupAny(reuseWhileMoving && blur + nextAdded > limit);
     if (spread == 0.0 && blur > REACCUMULATE_BLUR && count >= rotations) count = rotations - 1.0;
     if (blur < 1e-3) blur = 0.0; // below a thirtieth of a pixel: gone
-    storeHistory(pixel, value, blur);
     // A count stays at least 1 (0 is a pixel that holds nothing). An exact effect's one rotation
     // would make any count converged: there 0 has the pixel computed again next frame, and
     // EXACT_BLURRED marks a value that resampling has blurred, reused while the camera moves and
@@ -277,5 +314,35 @@ void main() {
         count = count < rotations ? 0.0 : blur > REACCUMULATE_BLUR ? EXACT_BLURRED : 1.0;
     else
         count = max(min(count, rotations), 1.0);
-    imageStore(newCount, pixel, vec4(packCount(count, due)));
+    // Kept while the camera moves by agreement alone, the value is not this point's yet.
+    bool carriedOn = wasSkipped(now) && spread > 0.0 && (agree || carried) && count >= 1.0;
+    return Carried(value, blur, count, due, carriedOn);
+}
+
+void main() {
+    loadPixelToWorld(); // pixel_to_world.glsl
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
+    vec4 position = gbufferPosition(pixel);
+    // Nothing drawn here: each effect's value as it is, holding nothing.
+    bool background = position.w == 0.0;
+    SurfaceReprojection s = SurfaceReprojection(false, vec2(0.0), ivec2(0), 0);
+    if (!background) s = unpackReprojection(texelFetch(reprojection, pixel, 0).xy);
+#define CARRY_SLOT(k)                                                                             \
+    if (EFFECTS > k) {                                                                            \
+        bool scalar = (SCALAR_HISTORIES & (1 << k)) != 0;                                         \
+        Carried c = Carried(texelFetch(current##k, pixel, 0).rgb, 0.0, 0.0, false, false);        \
+        if (!background)                                                                          \
+            c = carry(temporal.effects[k], scalar, current##k, historyValue##k, historyCount##k, pixel,    \
+                      position.xyz, s);                                                           \
+        imageStore(newValue##k, pixel, historyStored(scalar, c.value, c.blur, c.carried));        \
+        imageStore(newCount##k, pixel, vec4(packCount(c.count, c.due)));                          \
+    } else if (pixel == ivec2(0)) {                                                               \
+        imageStore(newValue##k, pixel, vec4(0.0));                                                \
+        imageStore(newCount##k, pixel, vec4(0.0));                                                \
+    }
+    CARRY_SLOT(0)
+    CARRY_SLOT(1)
+    CARRY_SLOT(2)
+    CARRY_SLOT(3)
 }

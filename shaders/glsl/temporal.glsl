@@ -3,7 +3,8 @@
 // Needs: frame, historyViewDepth (last frame's G-buffer view depths, shared by every cached
 // effect), reprojection (the reprojection pass's image of this frame, reproject.comp),
 // historyCount (the effect's rotation counts, 0 where it holds nothing, and whether a pixel is
-// due: packCount), screen_space.glsl; loadPixelToWorld() called in main().
+// due: packCount), screen_space.glsl; loadPixelToWorld() called in main(). The temporal pass,
+// which binds every effect's counts, defines SSGI_TEMPORAL_PASS and binds no historyCount.
 #ifndef SSGI_TEMPORAL_GLSL
 #define SSGI_TEMPORAL_GLSL
 
@@ -108,17 +109,14 @@ bool gatherMeetsEdge(vec3 world, vec4 previousClip, CacheConstants cache) {
     return any(greaterThan(abs(cutNow - cutThen), vec4(EDGE_TOLERANCE)));
 }
 
-// The surface's reprojection into the effect's history: the reprojection pass's (computed once
-// for every effect; a settled frame, which runs neither, computes nothing). Valid where a
-// texel holds the surface (reprojection.glsl) and a value of the effect (its count is not 0),
-// no moved object may have changed it, and the screen's edge cuts off what it cut off before.
-Reprojection reproject(ivec2 pixel, vec3 world, CacheConstants cache) {
+// The surface's reprojection into an effect's history: the reprojection pass's `s` (computed
+// once for every effect; a settled frame, which runs neither, computes nothing), with `stored`
+// the effect's count texel at s.texel. Valid where a texel holds the surface (reprojection.glsl)
+// and a value of the effect (its count is not 0), no moved object may have changed it, and the
+// screen's edge cuts off what it cut off before.
+Reprojection reprojectInto(SurfaceReprojection s, float stored, vec3 world, CacheConstants cache) {
     Reprojection r = Reprojection(false, vec2(0.0), ivec2(0), 0.0, 0, false);
-    if (cache.historyValid == 0 || movedNearby(world, cache)) return r;
-    SurfaceReprojection s = unpackReprojection(texelFetch(reprojection, pixel, 0).xy);
-    if (!s.found) return r;
-    float stored = texelFetch(historyCount, s.texel, 0).r;
-    if (stored == 0.0) return r;
+    if (cache.historyValid == 0 || !s.found || stored == 0.0 || movedNearby(world, cache)) return r;
     if (gatherMeetsEdge(world, frame.previousViewProjection * vec4(world, 1.0), cache)) return r;
     r.valid = true;
     r.uv = s.uv;
@@ -128,6 +126,16 @@ Reprojection reproject(ivec2 pixel, vec3 world, CacheConstants cache) {
     r.due = unpackDue(stored);
     return r;
 }
+
+#ifndef SSGI_TEMPORAL_PASS
+// An effect's pass, which binds its own counts as `historyCount`: its reprojection of `pixel`.
+Reprojection reproject(ivec2 pixel, vec3 world, CacheConstants cache) {
+    if (cache.historyValid == 0) return Reprojection(false, vec2(0.0), ivec2(0), 0.0, 0, false);
+    SurfaceReprojection s = unpackReprojection(texelFetch(reprojection, pixel, 0).xy);
+    float stored = s.found ? texelFetch(historyCount, s.texel, 0).r : 0.0;
+    return reprojectInto(s, stored, world, cache);
+}
+#endif
 
 // The top-left pixel of this frame's refresh tile (cache.refreshTileCorner >= 0).
 ivec2 refreshTileCorner(CacheConstants cache) {
@@ -172,6 +180,7 @@ bool convergedAround(ivec2 pixel, Reprojection r, CacheConstants cache, int marg
            any(greaterThanEqual(pixel, corner + cache.tileSize + margin));
 }
 
+#ifndef SSGI_TEMPORAL_PASS
 bool convergedAround(ivec2 pixel, vec3 world, CacheConstants cache, int margin) {
     return convergedAround(pixel, reproject(pixel, world, cache), cache, margin);
 }
@@ -179,5 +188,6 @@ bool convergedAround(ivec2 pixel, vec3 world, CacheConstants cache, int margin) 
 bool converged(ivec2 pixel, vec3 world, CacheConstants cache) {
     return convergedAround(pixel, world, cache, 0);
 }
+#endif
 
 #endif
