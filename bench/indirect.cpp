@@ -136,12 +136,19 @@ Json indirectComparison(vk::Context& ctx, const Scene& scene, const Options& opt
             bounce[i] = i % 4 == 3 ? 1.0f : bounce[i] * albedo[i];
         return metrics::Image{errorSize.width, errorSize.height, bounce};
     };
+    // The image that holds a frame's bounce: the cache's blended history, the raw value
+    // without the cache, or the world cache's lookup (indirect_method 3, which keeps no
+    // screen-space history).
+    auto bounceImage = [](const Scene& s) -> std::string {
+        if (s.settings.indirect_method == 3) return "world.indirect";
+        return s.settings.cache ? "indirect.history" : "indirect";
+    };
     metrics::Mask geometry, band;
     // Means over the geometry of each term, real-time (converged) against the reference: the
     // sky term is what the composite adds beyond the direct light and the bounce.
-    auto termMeans = [&](Renderer& r) {
+    auto termMeans = [&](Renderer& r, const Scene& cached) {
         const std::vector<float> hdr = r.readImage("hdr"), direct = r.readImage("direct");
-        const std::vector<float> bounce = bounceOf(r, "indirect.history").rgba;
+        const std::vector<float> bounce = bounceOf(r, bounceImage(cached)).rgba;
         double sums[6] = {};
         size_t n = 0;
         for (size_t i = 0; i < geometry.size(); ++i) {
@@ -183,7 +190,7 @@ Json indirectComparison(vk::Context& ctx, const Scene& scene, const Options& opt
             still.renderFrame(scene.camera);
         const metrics::Image converged{errorSize.width, errorSize.height, still.readImage("hdr")};
         const metrics::Image convergedBounce =
-            m > 0 ? bounceOf(still, "indirect.history") : metrics::Image{};
+            m > 0 ? bounceOf(still, bounceImage(cachedScene)) : metrics::Image{};
 
         // One uncached frame, kOneFrameDraws times with the patterns at successive places of
         // their sequence (a draw's figures vary with where its samples fall): the mean of each.
@@ -195,7 +202,8 @@ Json indirectComparison(vk::Context& ctx, const Scene& scene, const Options& opt
         for (uint32_t draw = 0; draw < kOneFrameDraws; ++draw) {
             Renderer single(
                 ctx, onceScene,
-                RenderOptions{errorSize.width, errorSize.height, "final", {"indirect"}, draw});
+                RenderOptions{errorSize.width, errorSize.height, "final",
+                              {bounceImage(onceScene)}, draw});
             single.renderFrame(scene.camera);
             if (geometry.empty()) {
                 const std::vector<float> position = single.readImage("gbuffer.position");
@@ -212,7 +220,7 @@ Json indirectComparison(vk::Context& ctx, const Scene& scene, const Options& opt
             sums["vs_converged"] += relMse(one, converged, geometry);
             sums["vs_converged_band"] += relMse(one, converged, band);
             if (m > 0) {
-                const metrics::Image oneBounce = bounceOf(single, "indirect");
+                const metrics::Image oneBounce = bounceOf(single, bounceImage(onceScene));
                 sums["bounce"] += relMse(oneBounce, bounceTruth, geometry);
                 sums["bounce_band"] += relMse(oneBounce, bounceTruth, band);
                 sums["bounce_vs_converged"] += relMse(oneBounce, convergedBounce, geometry);
@@ -236,7 +244,7 @@ Json indirectComparison(vk::Context& ctx, const Scene& scene, const Options& opt
                 {"one_frame_vs_converged", mean("bounce_vs_converged", geometry)},
                 {"converged", figures(convergedBounce, bounceTruth, geometry)},
                 {"converged_edge_band", figures(convergedBounce, bounceTruth, band)}};
-            entry["term_means"] = termMeans(still);
+            entry["term_means"] = termMeans(still, cachedScene);
         }
         result["methods"].push_back(entry);
     }
