@@ -115,8 +115,9 @@ namespace ssgi {
     X(world_cell_angle, double, 0.02, 1e-4, 1, "World cache",                                      \
       "method 3: the angle a cell spans from the camera (radians): a cell at distance d is the "   \
       "power of two nearest below d x this wide")                                                  \
-    X(world_vpls, int, 32, 1, 1024, "World cache",                                                 \
-      "method 3: VPLs a cell gathers, with their visibility, in a frame's refresh")                \
+    X(world_vpls, int, 32, 2, 1024, "World cache",                                                 \
+      "method 3: VPLs a cell gathers, with their visibility, in a frame's refresh (half by flux, "  \
+      "half next to it)")                                                                          \
     X(world_frames, int, 16, 1, 512, "World cache",                                                \
       "method 3: frames of world_vpls a cell accumulates before it stops (uncached, all at once)") \
     X(world_cells_per_frame, int, 2048, 0, 1 << 24, "World cache",                                 \
