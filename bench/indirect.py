@@ -78,7 +78,8 @@ def main():
         rows = []
         for m in methods:
             passes = ", ".join("%s %.1f" % (k, v) for k, v in sorted(m["pass_ms"].items())
-                               if k.startswith("indirect") and not k.endswith((".temporal", ".keep"))
+                               if k.startswith(("indirect", "world."))
+                               and not k.endswith((".temporal", ".keep")) and v > 0.0
                                or k == "upsample")
             rows.append([m["label"], "%.1f" % m["frame_ms"], "%.2f" % m["cost_relative"],
                          passes or "—"])
