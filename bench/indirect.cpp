@@ -202,8 +202,8 @@ Json indirectComparison(vk::Context& ctx, const Scene& scene, const Options& opt
         for (uint32_t draw = 0; draw < kOneFrameDraws; ++draw) {
             Renderer single(
                 ctx, onceScene,
-                RenderOptions{errorSize.width, errorSize.height, "final",
-                              {bounceImage(onceScene)}, draw});
+                RenderOptions{
+                    errorSize.width, errorSize.height, "final", {bounceImage(onceScene)}, draw});
             single.renderFrame(scene.camera);
             if (geometry.empty()) {
                 const std::vector<float> position = single.readImage("gbuffer.position");

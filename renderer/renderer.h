@@ -131,15 +131,15 @@ private:
     uint32_t patternStart_ = 0; // RenderOptions::patternStart
     uint32_t patternFrame() const { return patternStart_ + frameIndex_; }
     vk::HostSpan lastSubmission_;
-    uint32_t stillFrames_ = 0;          // frames in a row with this camera and light
-    uint32_t gbufferSidesHeld_ = 0;     // sides of this renderer's G-buffer pair that hold its view
-    bool rsmStale_ = true;              // the light changed since the RSM was drawn
-    bool skyMapsStale_ = true;          // an object moved since the sky maps were drawn
-    bool voxelsStale_ = true;           // the light or an object moved since the voxel grid was drawn
-    bool lightMoved_ = false;           // the light changed since the last frame
-    bool worldCacheEmpty_ = true;       // no frame has filled the world cache's table yet
-    int view_ = 0;                      // what the composite shows (its place in kViews)
-    FrameState lastFrame_;              // what the last frame ran
+    uint32_t stillFrames_ = 0;      // frames in a row with this camera and light
+    uint32_t gbufferSidesHeld_ = 0; // sides of this renderer's G-buffer pair that hold its view
+    bool rsmStale_ = true;          // the light changed since the RSM was drawn
+    bool skyMapsStale_ = true;      // an object moved since the sky maps were drawn
+    bool voxelsStale_ = true;       // the light or an object moved since the voxel grid was drawn
+    bool lightMoved_ = false;       // the light changed since the last frame
+    bool worldCacheEmpty_ = true;   // no frame has filled the world cache's table yet
+    int view_ = 0;                  // what the composite shows (its place in kViews)
+    FrameState lastFrame_;          // what the last frame ran
     std::vector<glm::mat4> transforms_; // where the instances stand
     std::vector<Aabb> moved_;           // boxes of the objects moved since the last frame
     WorldGridPlacement worldGrid_;      // the world cache's voxel grid, in the GPU's coordinates

@@ -16,12 +16,18 @@ struct Corner {
 // The clip-space planes' signed distances (inside where >= 0): x, y in [-w, w], z in [0, w].
 float planeDistance(const glm::vec4& c, int plane) {
     switch (plane) {
-    case 0: return c.w + c.x;
-    case 1: return c.w - c.x;
-    case 2: return c.w + c.y;
-    case 3: return c.w - c.y;
-    case 4: return c.z;
-    default: return c.w - c.z;
+    case 0:
+        return c.w + c.x;
+    case 1:
+        return c.w - c.x;
+    case 2:
+        return c.w + c.y;
+    case 3:
+        return c.w - c.y;
+    case 4:
+        return c.z;
+    default:
+        return c.w - c.z;
     }
 }
 
@@ -78,8 +84,7 @@ WorldGridPlacement placeWorldGrid(const Aabb& box, int voxels) {
     grid.voxel = side / float(voxels - 2);
     grid.origin = box.min - glm::vec3(grid.voxel);
     for (int axis = 0; axis < 3; ++axis)
-        grid.size[axis] =
-            std::clamp(int(std::ceil(extent[axis] / grid.voxel)) + 2, 1, voxels);
+        grid.size[axis] = std::clamp(int(std::ceil(extent[axis] / grid.voxel)) + 2, 1, voxels);
     return grid;
 }
 

@@ -19,8 +19,8 @@ void ComputeRecorder::dispatch(uint32_t width, uint32_t height, const void* cons
     vk::dispatch(pass_.cmd, pipeline_, width, height, constants, size);
 }
 
-void ComputeRecorder::dispatchIndirect(VkBuffer buffer, VkDeviceSize offset,
-                                       const void* constants, uint32_t size) const {
+void ComputeRecorder::dispatchIndirect(VkBuffer buffer, VkDeviceSize offset, const void* constants,
+                                       uint32_t size) const {
     pushDescriptors();
     vk::dispatchIndirect(pass_.cmd, pipeline_, buffer, offset, constants, size);
 }

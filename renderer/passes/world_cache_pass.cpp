@@ -23,10 +23,11 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
     const int bits = int(settings.world_table_bits);
     const VkExtent2D table{1u << (bits - bits / 2), 1u << (bits / 2)};
     shader::WorldConstants base{};
-    const uint32_t vplMapSide = (build.rsmSize.width + uint32_t(settings.indirect_vpl_cluster) -
-                                 1) / uint32_t(settings.indirect_vpl_cluster);
-    base.cells = glm::vec4(float(settings.world_cell_angle), 0.0f, float(settings.world_frames),
-                           0.0f);
+    const uint32_t vplMapSide =
+        (build.rsmSize.width + uint32_t(settings.indirect_vpl_cluster) - 1) /
+        uint32_t(settings.indirect_vpl_cluster);
+    base.cells =
+        glm::vec4(float(settings.world_cell_angle), 0.0f, float(settings.world_frames), 0.0f);
     base.table = glm::ivec4(int(table.width), int(table.width * table.height),
                             int(settings.world_lifetime), settings.cache ? 1 : 0);
     const int pool = int(std::max(settings.indirect_flux_pool, settings.indirect_flux_vpls));
@@ -53,15 +54,16 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
         return build.graph.createImage(name, format, table, usage, true);
     };
     const graph::ImageRef keys = tableImage("world.keys", VK_FORMAT_R32_UINT);
-    const graph::ImageRef irradiance = tableImage("world.irradiance", VK_FORMAT_R32G32B32A32_SFLOAT);
+    const graph::ImageRef irradiance =
+        tableImage("world.irradiance", VK_FORMAT_R32G32B32A32_SFLOAT);
     const graph::ImageRef points = tableImage("world.points", VK_FORMAT_R32G32B32A32_SFLOAT);
     const graph::ImageRef used = tableImage("world.used", VK_FORMAT_R32_UINT);
     const graph::ImageRef directions =
         tableImage("world.directions", VK_FORMAT_R32G32B32A32_SFLOAT);
     const graph::ImageRef stats =
         build.graph.createImage("world.stats", VK_FORMAT_R32_UINT, {WORLD_STATS, 2}, usage, true);
-    const graph::ImageRef indirect = build.graph.createImage(
-        "world.indirect", VK_FORMAT_R16G16B16A16_SFLOAT, build.size, usage);
+    const graph::ImageRef indirect =
+        build.graph.createImage("world.indirect", VK_FORMAT_R16G16B16A16_SFLOAT, build.size, usage);
 
     using graph::Use;
     // Empty keys are zeros, and so are the counters; the cells' values and points too, so that
@@ -99,8 +101,8 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
     });
 
     // The cells that gather this frame, entry + (frames << 22) (world_schedule.comp).
-    const graph::ImageRef list = build.graph.createImage("world.gather_list", VK_FORMAT_R32_UINT,
-                                                         table, usage);
+    const graph::ImageRef list =
+        build.graph.createImage("world.gather_list", VK_FORMAT_R32_UINT, table, usage);
     ComputePassDesc schedule{"world.schedule", "world_schedule.comp"};
     schedule.images = {{"worldKeys", keys, Use::StorageReadWrite},
                        {"worldIrradiance", irradiance, Use::StorageReadWrite},
@@ -170,10 +172,10 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
                      {"worldDirections", directions, Use::StorageReadWrite}};
     gather.pushSize = sizeof(shader::WorldConstants);
     gather.spec = {{{"POOL", pool}}};
-    addComputePass(
-        build, std::move(gather), [sizes, constants, commandOffset](const ComputeRecorder& r) {
-            r.dispatchIndirect(sizes, commandOffset(r.frame()), constants(r.frame()));
-        });
+    addComputePass(build, std::move(gather),
+                   [sizes, constants, commandOffset](const ComputeRecorder& r) {
+                       r.dispatchIndirect(sizes, commandOffset(r.frame()), constants(r.frame()));
+                   });
 
     ComputePassDesc lookup{"world.lookup", "world_lookup.comp"};
     lookup.images = {{"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},

@@ -29,9 +29,7 @@ WorldGrid addWorldVoxelPasses(FrameBuild& build) {
     const VkExtent2D blockExtent{uint32_t((blocks + 31) / 32 * blocks), uint32_t(blocks)};
     grid.blocks =
         build.graph.createImage("world.voxel_blocks", VK_FORMAT_R32_UINT, blockExtent, usage, true);
-    const graph::EnabledFn onVoxelFrames = [](const FrameState& frame) {
-        return frame.drawVoxels;
-    };
+    const graph::EnabledFn onVoxelFrames = [](const FrameState& frame) { return frame.drawVoxels; };
     using graph::Use;
     build.graph.addPass(
         "world.voxel_clear", graph::PassKind::Transfer,
@@ -54,11 +52,11 @@ WorldGrid addWorldVoxelPasses(FrameBuild& build) {
         desc.vertices = sceneVertexInput();
         desc.vertexShader = "world_voxelize.vert";
         desc.fragmentShader = "world_voxelize.frag";
-        desc.bindings = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, "FrameBlock"},
-                         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, "baseColorTexture"},
-                         {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, "voxels", false, VK_FORMAT_R32_UINT},
-                         {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, "voxelBlocks", false,
-                          VK_FORMAT_R32_UINT}};
+        desc.bindings = {
+            {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, "FrameBlock"},
+            {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, "baseColorTexture"},
+            {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, "voxels", false, VK_FORMAT_R32_UINT},
+            {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, "voxelBlocks", false, VK_FORMAT_R32_UINT}};
         desc.pushConstantSize = sizeof(shader::DrawConstants);
         desc.vertexSpec = {{{"AXIS", axis}}};
         desc.fragmentSpec = {{{"AXIS", axis}, {"SUPERSAMPLE", kSupersample}}};
