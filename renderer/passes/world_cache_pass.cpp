@@ -6,7 +6,8 @@
 // cleared every frame and every cell filled at once.
 //   reads:  gbuffer.view_depth, .normal, indirect.vpl_list (the flux's pool), the VPL map
 //           (indirect.vpl_position, .vpl_normal, .vpl_flux), world.voxels, .voxel_blocks
-//   writes: world.keys, .irradiance, .points, .used, .directions (the table), world.stats (its
+//   writes: world.keys, .irradiance, .points, .used, .directions, .owner (the table), world.stats
+//   (its
 //           counters), world.gather_list (the cells that gather this frame), world.indirect (the
 //           bounce, irradiance / pi, RGBA16F: the composite's "indirect")
 #include "passes/passes.h"
@@ -60,6 +61,7 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
     const graph::ImageRef used = tableImage("world.used", VK_FORMAT_R32_UINT);
     const graph::ImageRef directions =
         tableImage("world.directions", VK_FORMAT_R32G32B32A32_SFLOAT);
+    const graph::ImageRef owner = tableImage("world.owner", VK_FORMAT_R32_UINT);
     const graph::ImageRef stats =
         build.graph.createImage("world.stats", VK_FORMAT_R32_UINT, {WORLD_STATS, 2}, usage, true);
     const graph::ImageRef indirect =
@@ -75,11 +77,13 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
          {stats, Use::TransferDst},
          {irradiance, Use::TransferDst},
          {points, Use::TransferDst},
-         {directions, Use::TransferDst}},
-        [keys, used, stats, irradiance, points, directions](const graph::PassContext& pc) {
+         {directions, Use::TransferDst},
+         {owner, Use::TransferDst}},
+        [keys, used, stats, irradiance, points, directions, owner](const graph::PassContext& pc) {
             const VkClearColorValue zero{};
             const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-            for (const graph::ImageRef& image : {keys, used, stats, irradiance, points, directions})
+            for (const graph::ImageRef& image :
+                 {keys, used, stats, irradiance, points, directions, owner})
                 vkCmdClearColorImage(pc.cmd, pc.image(image).image,
                                      VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &range);
         },
@@ -90,7 +94,7 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
                      {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
                      {"worldKeys", keys, Use::StorageReadWrite},
                      {"worldIrradiance", irradiance, Use::StorageWrite},
-                     {"worldPoints", points, Use::StorageWrite},
+                     {"worldOwner", owner, Use::StorageReadWrite},
                      {"worldUsed", used, Use::StorageReadWrite},
                      {"worldStats", stats, Use::StorageReadWrite},
                      {"worldDirections", directions, Use::StorageWrite}};
@@ -106,10 +110,13 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
     ComputePassDesc schedule{"world.schedule", "world_schedule.comp"};
     schedule.images = {{"worldKeys", keys, Use::StorageReadWrite},
                        {"worldIrradiance", irradiance, Use::StorageReadWrite},
-                       {"worldPoints", points, Use::Sampled},
+                       {"worldPoints", points, Use::StorageReadWrite},
                        {"worldUsed", used, Use::Sampled},
                        {"worldStats", stats, Use::StorageReadWrite},
-                       {"gatherList", list, Use::StorageWrite}};
+                       {"gatherList", list, Use::StorageWrite},
+                       {"worldOwner", owner, Use::StorageReadWrite},
+                       {"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
+                       {"gbufferNormal", in.gbuffer.normal, Use::Sampled}};
     schedule.pushSize = sizeof(shader::WorldConstants);
     addComputePass(build, std::move(schedule), [table, constants](const ComputeRecorder& r) {
         r.dispatch(table.width, table.height, constants(r.frame()));

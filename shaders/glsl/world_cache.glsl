@@ -17,6 +17,10 @@
 //   world.directions RGBA32F  the mean of its gathers' light as an L1 spherical harmonic of its
 //                             luminance (world_gather.comp), to carry its value to other normals
 //   world.used       R32UI    the last frame a pixel used it (FrameUniforms.patternFrame)
+//   world.owner      R32UI    which pixel gives a new cell its point: WORLD_OWNERLESS, then
+//                             the largest of its pixels' ownerRank (the first pixel in the
+//                             image's order, whichever thread runs first), then WORLD_SETTLED
+//                             once world.schedule has taken the point from it
 // Needs: constants (WorldConstants), common.glsl.
 #ifndef SSGI_WORLD_CACHE_GLSL
 #define SSGI_WORLD_CACHE_GLSL
@@ -24,6 +28,16 @@
 const int WORLD_PROBES = 16;
 const uint WORLD_EMPTY = 0u;
 const uint WORLD_EVICTED = 1u;
+const uint WORLD_OWNERLESS = 0u;
+const uint WORLD_SETTLED = 0xffffffffu;
+// A pixel's claim to give its cell its point: larger for a pixel earlier in the image.
+uint ownerRank(ivec2 pixel, int width) {
+    return 0xfffffffeu - uint(pixel.x + pixel.y * width);
+}
+ivec2 ownerPixel(uint rank, int width) {
+    uint index = 0xfffffffeu - rank;
+    return ivec2(index % uint(width), index / uint(width));
+}
 
 // A PCG hash (O'Neill 2014).
 uint worldHash(uint v) {

@@ -2,8 +2,9 @@
 #extension GL_GOOGLE_include_directive : require
 // world.insert (indirect_method 3): every pixel finds its own cell in the world cache
 // (world_cache.glsl), or makes it in the first empty or evicted entry among its probes, and
-// marks it used this frame. The pixel that makes a cell gives it its point and normal, where the cell will
-// gather (world_update.comp). Invocation 0 also clears the next frame's row of counters.
+// marks it used this frame; a new cell's pixels vote for the one whose point and normal it will
+// gather at (world.owner; world_schedule.comp takes them). Invocation 0 also clears the next
+// frame's row of counters.
 #include "shared.h"
 #include "common.glsl"
 
@@ -14,7 +15,7 @@ layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
 layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
 layout(set = 0, binding = 3, r32ui) uniform coherent uimage2D worldKeys;
 layout(set = 0, binding = 4, rgba32f) uniform writeonly image2D worldIrradiance;
-layout(set = 0, binding = 5, rgba32f) uniform writeonly image2D worldPoints;
+layout(set = 0, binding = 5, r32ui) uniform uimage2D worldOwner;
 layout(set = 0, binding = 6, r32ui) uniform uimage2D worldUsed;
 layout(set = 0, binding = 7, r32ui) uniform coherent uimage2D worldStats;
 layout(set = 0, binding = 8, rgba32f) uniform writeonly image2D worldDirections;
@@ -38,33 +39,35 @@ void main() {
     int level = worldLevel(distance(p, frame.cameraPosition.xyz));
     WorldKey key = worldKey(worldCellOf(p, level), level, worldDirection(n));
     // The key where it already is, before the first empty entry...
-    int free = WORLD_PROBES;
-    for (int probe = 0; probe < WORLD_PROBES; ++probe) {
+    ivec2 found = ivec2(-1);
+    for (int probe = 0; probe < WORLD_PROBES && found.x < 0; ++probe) {
         uint held = imageLoad(worldKeys, worldEntry(key.home, probe)).r;
-        if (held == key.checksum) {
-            ivec2 entry = worldEntry(key.home, probe);
-            if (imageLoad(worldUsed, entry).r != now) imageStore(worldUsed, entry, uvec4(now));
-            return;
-        }
+        if (held == key.checksum) found = worldEntry(key.home, probe);
         if (held == WORLD_EMPTY) break;
     }
     // ...or in the first empty or evicted entry, which another pixel of the same cell may take
     // first (every pixel of a cell tries the same entries in the same order).
-    for (int probe = 0; probe < WORLD_PROBES; ++probe) {
+    for (int probe = 0; probe < WORLD_PROBES && found.x < 0; ++probe) {
         ivec2 entry = worldEntry(key.home, probe);
         uint seen = imageLoad(worldKeys, entry).r;
-        if (seen == key.checksum) return; // made by another pixel this frame
-        if (seen != WORLD_EMPTY && seen != WORLD_EVICTED) continue;
-        uint held = imageAtomicCompSwap(worldKeys, entry, seen, key.checksum);
-        if (held == seen) {
-            imageStore(worldPoints, entry,
-                       vec4(p, packCellNormal(n)));
-            imageStore(worldIrradiance, entry, vec4(0.0));
-            imageStore(worldDirections, entry, vec4(0.0));
-            imageStore(worldUsed, entry, uvec4(now));
-            return;
+        if (seen == key.checksum) {
+            found = entry; // made by another pixel this frame
+        } else if (seen == WORLD_EMPTY || seen == WORLD_EVICTED) {
+            uint held = imageAtomicCompSwap(worldKeys, entry, seen, key.checksum);
+            if (held == seen) {
+                imageStore(worldIrradiance, entry, vec4(0.0));
+                imageStore(worldDirections, entry, vec4(0.0));
+            }
+            if (held == seen || held == key.checksum) found = entry;
         }
-        if (held == key.checksum) return; // made by another pixel this frame
+    }
+    if (found.x >= 0) {
+        if (imageLoad(worldUsed, found).r != now) imageStore(worldUsed, found, uvec4(now));
+        // A new cell's point is its first pixel's in the image, whichever thread runs first, so
+        // that the same frame makes the same cells wherever they lie in the table.
+        if (imageLoad(worldOwner, found).r != WORLD_SETTLED)
+            imageAtomicMax(worldOwner, found, ownerRank(pixel, int(frame.viewport.x)));
+        return;
     }
     imageAtomicAdd(worldStats, ivec2(WORLD_STAT_FULL, int(now) & 1), 1u);
 }

@@ -1,7 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // world.schedule (indirect_method 3): one invocation per entry of the world cache
-// (world_cache.glsl), which decides what the cell does this frame. A cell no pixel used for
+// (world_cache.glsl), which decides what the cell does this frame. A cell made this frame first
+// takes its point and normal from the G-buffer at the pixel its pixels chose (world.owner). A cell no pixel used for
 // table.z frames is evicted. A moved light restarts every cell; a moved object restarts the
 // cells within a cell of its box (old and new place) and shortens every other cell's memory to a
 // quarter of world_frames, since the VPLs it gathers from all changed a little. Then a cell is
@@ -22,12 +23,16 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
 layout(set = 0, binding = 1, r32ui) uniform uimage2D worldKeys;
 layout(set = 0, binding = 2, rgba32f) uniform image2D worldIrradiance;
-layout(set = 0, binding = 3) uniform sampler2D worldPoints;
+layout(set = 0, binding = 3, rgba32f) uniform image2D worldPoints;
 layout(set = 0, binding = 4) uniform usampler2D worldUsed;
 layout(set = 0, binding = 5, r32ui) uniform coherent uimage2D worldStats;
 layout(set = 0, binding = 6, r32ui) uniform writeonly uimage2D gatherList;
+layout(set = 0, binding = 7, r32ui) uniform uimage2D worldOwner;
+layout(set = 0, binding = 8) uniform sampler2D gbufferViewDepth;
+layout(set = 0, binding = 9) uniform sampler2D gbufferNormal;
 layout(push_constant) uniform WorldBlock { WorldConstants constants; };
 
+#include "gbuffer_position.glsl"
 #include "world_cache.glsl"
 
 const float NEW_CELL_FRAMES = 4.0; // a new cell's first gather, in frames of samples (cached)
@@ -41,6 +46,7 @@ bool nearMovedBox(vec3 p, float reach) {
 }
 
 void main() {
+    loadPixelToWorld(); // pixel_to_world.glsl
     ivec2 entry = ivec2(gl_GlobalInvocationID.xy);
     uint now = uint(frame.patternFrame);
     if (entry == ivec2(0)) { // the gather's y and z workgroups
@@ -53,16 +59,25 @@ void main() {
     int row = int(now) & 1;
     if (now - texelFetch(worldUsed, entry, 0).r > uint(constants.table.z)) {
         imageStore(worldKeys, entry, uvec4(WORLD_EVICTED)); // a tombstone (world_cache.glsl)
+        imageStore(worldOwner, entry, uvec4(WORLD_OWNERLESS));
         imageAtomicAdd(worldStats, ivec2(WORLD_STAT_EVICTED, row), 1u);
         return;
     }
     imageAtomicAdd(worldStats, ivec2(WORLD_STAT_LIVE, row), 1u);
+    // A cell made this frame takes its point and normal from the pixel its pixels chose.
+    uint owner = imageLoad(worldOwner, entry).r;
+    if (owner != WORLD_SETTLED) {
+        ivec2 pixel = ownerPixel(owner, int(frame.viewport.x));
+        imageStore(worldPoints, entry, vec4(gbufferPosition(pixel).xyz,
+                                            packCellNormal(texelFetch(gbufferNormal, pixel, 0).xyz)));
+        imageStore(worldOwner, entry, uvec4(WORLD_SETTLED));
+    }
     vec4 cell = imageLoad(worldIrradiance, entry);
     float frames = constants.cells.z;
     float count = cell.a;
     if (constants.change.y > 0.0) count = 0.0;
     if (constants.change.z > 0.0) {
-        vec3 p = texelFetch(worldPoints, entry, 0).xyz;
+        vec3 p = imageLoad(worldPoints, entry).xyz;
         float side = worldCellSide(worldLevel(distance(p, frame.cameraPosition.xyz)));
         count = nearMovedBox(p, side) ? 0.0 : min(count, max(1.0, floor(frames / 4.0)));
     }
