@@ -12,7 +12,7 @@
 //   world.keys       R32UI    the checksum, WORLD_EMPTY or WORLD_EVICTED
 //   world.irradiance RGBA32F  rgb: irradiance / pi at the cell's point (the mean of its
 //                             gathers), a: the frames of samples behind it (0: none yet)
-//   world.points     RGBA32F  xyz: the point it gathers at (the first pixel that made it), w: its
+//   world.points     RGBA32F  xyz: the point it gathers at (its first pixel's), w: its
 //                             normal (packCellNormal: a whole number, so that every texel is one)
 //   world.directions RGBA32F  the mean of its gathers' light as an L1 spherical harmonic of its
 //                             luminance (world_gather.comp), to carry its value to other normals
