@@ -124,11 +124,15 @@ void Renderer::release() {
     graph_.reset();
 }
 
-void Renderer::uploadTransforms() {
+std::vector<glm::mat4> Renderer::gpuTransforms() const {
     std::vector<glm::mat4> onGpu = transforms_;
     for (glm::mat4& m : onGpu)
         m = moved(m, origin_);
-    sceneGpu_->setTransforms(onGpu);
+    return onGpu;
+}
+
+void Renderer::uploadTransforms() {
+    sceneGpu_->setTransforms(gpuTransforms());
 }
 
 void Renderer::updateUniforms(const Camera& worldCamera) {
@@ -194,13 +198,10 @@ void Renderer::updateUniforms(const Camera& worldCamera) {
     u.motion = glm::vec4(float(moved_.size()), 0.0f, 0.0f, 0.0f);
     if (scene_.settings.indirect && scene_.settings.indirect_method == 3) {
         // Placed again on the frames the grid is drawn again (decideFrame: drawVoxels).
-        if (voxelsStale_) {
-            std::vector<glm::mat4> onGpu = transforms_;
-            for (glm::mat4& m : onGpu)
-                m = moved(m, origin_);
-            worldGrid_ = placeWorldGrid(boundsInFrustum(scene_, onGpu, light.viewProjection),
-                                        int(scene_.settings.world_voxels));
-        }
+        if (voxelsStale_)
+            worldGrid_ =
+                placeWorldGrid(boundsInFrustum(scene_, gpuTransforms(), light.viewProjection),
+                               int(scene_.settings.world_voxels));
         u.worldGridOrigin = glm::vec4(worldGrid_.origin, worldGrid_.voxel);
         u.worldGridSize = glm::ivec4(worldGrid_.size, int(scene_.settings.world_voxels));
     }

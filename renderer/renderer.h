@@ -118,8 +118,9 @@ private:
     // What this frame runs and with which patterns (frame_state.h), once the camera is known.
     FrameState decideFrame();
     bool startsAfresh(const Camera& camera) const;
-    void uploadTransforms(); // transforms_, moved to the GPU's origin
-    void release();          // what the destructor gives back, also when the constructor fails
+    std::vector<glm::mat4> gpuTransforms() const; // transforms_, moved to the GPU's origin
+    void uploadTransforms();                      // gpuTransforms() to the scene's draws
+    void release(); // what the destructor gives back, also when the constructor fails
 
     vk::Context& ctx_;
     const Scene& scene_;
