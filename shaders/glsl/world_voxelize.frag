@@ -16,6 +16,8 @@ layout(set = 0, binding = 2, r32ui) uniform coherent uimage2D voxels;
 layout(set = 0, binding = 3, r32ui) uniform coherent uimage2D voxelBlocks;
 layout(push_constant) uniform DrawBlock { DrawConstants draw; };
 #include "base_color.glsl"
+#define WORLD_VOXELS_LAYOUT_ONLY
+#include "world_voxels.glsl"
 
 layout(location = 0) in vec2 uv;
 layout(location = 1) in vec4 color;
@@ -36,10 +38,8 @@ void main() {
         v[order.y] = face.y;
         v[order.z] = k;
         if (any(greaterThanEqual(v, frame.worldGridSize.xyz))) continue;
-        imageAtomicOr(voxels, ivec2((v.x >> 5) + (frame.worldGridSize.x + 31) / 32 * v.z, v.y),
-                      1u << uint(v.x & 31));
-        ivec3 b = v / 4; // its block (world_voxels.glsl)
-        int blockWords = ((frame.worldGridSize.x + 3) / 4 + 31) / 32;
-        imageAtomicOr(voxelBlocks, ivec2((b.x >> 5) + blockWords * b.z, b.y), 1u << uint(b.x & 31));
+        imageAtomicOr(voxels, voxelTexel(v), voxelBit(v.x));
+        ivec3 b = v / WORLD_BLOCK;
+        imageAtomicOr(voxelBlocks, blockTexel(b), voxelBit(b.x));
     }
 }

@@ -6,11 +6,10 @@
 // Its test of a segment walks every voxel the segment crosses (Amanatides and Woo 1987), so a
 // wall one voxel thick stops it, and crosses an empty block in one step.
 // The grid's place and size are the frame's (FrameUniforms.worldGridOrigin, worldGridSize).
-// Needs: frame, usampler2D voxels, usampler2D voxelBlocks.
+// Needs: frame; for the test, usampler2D voxels and voxelBlocks. With WORLD_VOXELS_LAYOUT_ONLY
+// defined, the layout alone (for the pass that writes the grid, whose images are storage images).
 #ifndef SSGI_WORLD_VOXELS_GLSL
 #define SSGI_WORLD_VOXELS_GLSL
-
-const int WORLD_BLOCK = 4; // voxels per block, per axis
 
 int voxelWords() {
     return (frame.worldGridSize.x + 31) / 32;
@@ -21,14 +20,23 @@ ivec3 blockCount() {
 int blockWords() {
     return (blockCount().x + 31) / 32;
 }
+// The texel holding voxel v's bit, and the bit.
+ivec2 voxelTexel(ivec3 v) {
+    return ivec2((v.x >> 5) + voxelWords() * v.z, v.y);
+}
+ivec2 blockTexel(ivec3 b) {
+    return ivec2((b.x >> 5) + blockWords() * b.z, b.y);
+}
+uint voxelBit(int x) {
+    return 1u << uint(x & 31);
+}
 
+#ifndef WORLD_VOXELS_LAYOUT_ONLY
 bool voxelOccupied(ivec3 v) {
-    uint word = texelFetch(voxels, ivec2((v.x >> 5) + voxelWords() * v.z, v.y), 0).r;
-    return ((word >> uint(v.x & 31)) & 1u) != 0u;
+    return (texelFetch(voxels, voxelTexel(v), 0).r & voxelBit(v.x)) != 0u;
 }
 bool blockOccupied(ivec3 b) {
-    uint word = texelFetch(voxelBlocks, ivec2((b.x >> 5) + blockWords() * b.z, b.y), 0).r;
-    return ((word >> uint(b.x & 31)) & 1u) != 0u;
+    return (texelFetch(voxelBlocks, blockTexel(b), 0).r & voxelBit(b.x)) != 0u;
 }
 
 // Where a ray from A along unit `dir` (1 / dir: `inverse`) leaves the box [lo, lo + side].
@@ -77,5 +85,7 @@ bool voxelSegmentOpen(vec3 a, vec3 b) {
     }
     return true;
 }
+
+#endif // WORLD_VOXELS_LAYOUT_ONLY
 
 #endif
