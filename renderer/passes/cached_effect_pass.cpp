@@ -47,11 +47,8 @@ void addKeepPass(FrameBuild& build, const EffectCache* cache,
                 vkCmdCopyImage(pc.cmd, from.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, to.image,
                                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
             }
-            const VkClearColorValue zero{};
-            const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
             for (const graph::ImageRef& image : cleared)
-                vkCmdClearColorImage(pc.cmd, pc.image(image).image,
-                                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &range);
+                vk::clearToZero(pc.cmd, pc.image(image).image);
         },
         // Only the first settled frame: after it no pass writes the pair's sides or the cleared
         // images while the frame stays settled (on a GPU, copying and clearing every settled

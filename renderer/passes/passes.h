@@ -68,6 +68,11 @@ struct FluxVpls {
 };
 FluxVpls addFluxVplPasses(FrameBuild& build, const GBufferAndRsm& inputs, bool moving);
 
+// A transfer pass `name` that clears `images` to zero on the frames `enabled` names
+// (clear_pass.cpp).
+void addClearPass(FrameBuild& build, const std::string& name,
+                  const std::vector<graph::ImageRef>& images, graph::EnabledFn enabled);
+
 // world.voxel_clear + world.voxelize, indirect_method 3: the scene's voxel occupancy grid, drawn
 // where the frame places it (FrameUniforms.worldGridOrigin, worldGridSize; world_grid.h) on
 // the frames FrameState::drawVoxels names (world_voxels_pass.cpp).

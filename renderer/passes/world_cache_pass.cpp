@@ -70,24 +70,8 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
     using graph::Use;
     // Empty keys are zeros, and so are the counters; the cells' values and points too, so that
     // every texel of the table holds a number (an entry's are written before they are read).
-    build.graph.addPass(
-        "world.clear", graph::PassKind::Transfer,
-        {{keys, Use::TransferDst},
-         {used, Use::TransferDst},
-         {stats, Use::TransferDst},
-         {irradiance, Use::TransferDst},
-         {points, Use::TransferDst},
-         {directions, Use::TransferDst},
-         {owner, Use::TransferDst}},
-        [keys, used, stats, irradiance, points, directions, owner](const graph::PassContext& pc) {
-            const VkClearColorValue zero{};
-            const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-            for (const graph::ImageRef& image :
-                 {keys, used, stats, irradiance, points, directions, owner})
-                vkCmdClearColorImage(pc.cmd, pc.image(image).image,
-                                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &range);
-        },
-        [](const FrameState& frame) { return frame.clearWorldCache; });
+    addClearPass(build, "world.clear", {keys, used, stats, irradiance, points, directions, owner},
+                 [](const FrameState& frame) { return frame.clearWorldCache; });
 
     ComputePassDesc insert{"world.insert", "world_insert.comp"};
     insert.images = {{"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
@@ -135,18 +119,9 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
         "world.dispatch_size", graph::PassKind::Transfer, {{stats, Use::TransferSrc}},
         [stats, sizes, commandOffset](const graph::PassContext& pc) {
             // After last frame's indirect read of the buffer.
-            VkBufferMemoryBarrier2 before{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2};
-            before.srcStageMask = VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT;
-            before.srcAccessMask = VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT;
-            before.dstStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-            before.dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-            before.srcQueueFamilyIndex = before.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-            before.buffer = sizes;
-            before.size = VK_WHOLE_SIZE;
-            VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-            dependency.bufferMemoryBarrierCount = 1;
-            dependency.pBufferMemoryBarriers = &before;
-            vkCmdPipelineBarrier2(pc.cmd, &dependency);
+            vk::bufferBarrier(pc.cmd, sizes, VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
+                              VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                              VK_ACCESS_2_TRANSFER_WRITE_BIT);
             VkBufferImageCopy region{};
             region.bufferOffset = commandOffset(pc.frame);
             region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
@@ -155,13 +130,9 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
             vkCmdCopyImageToBuffer(pc.cmd, pc.image(stats).image,
                                    VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, sizes, 1, &region);
             // Before the gather's indirect read of it.
-            VkBufferMemoryBarrier2 after = before;
-            after.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-            after.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-            after.dstStageMask = VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT;
-            after.dstAccessMask = VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT;
-            dependency.pBufferMemoryBarriers = &after;
-            vkCmdPipelineBarrier2(pc.cmd, &dependency);
+            vk::bufferBarrier(pc.cmd, sizes, VK_PIPELINE_STAGE_2_COPY_BIT,
+                              VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
+                              VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
         });
 
     ComputePassDesc gather{"world.gather", "world_gather.comp"};

@@ -1,9 +1,8 @@
 // world.voxel_clear + world.voxelize (indirect_method 3): the scene's voxel occupancy grid, the
 // representation the world cache tests its VPLs' visibility in. It does not depend on the view:
-// drawn on the first frame and again only after an object moved (FrameState::drawVoxels), the
-// whole scene at once. The grid lies around the scene's geometry inside the light's frustum
-// (world_grid.h), world_voxels cubic voxels along its longest side, and is drawn again when the
-// light or an object moves.
+// the whole scene is drawn into it on the first frame and again only after the light or an
+// object moved (FrameState::drawVoxels). The grid lies around the scene's geometry inside the
+// light's frustum (world_grid.h), world_voxels cubic voxels along its longest side.
 //   reads:  the scene's draws
 //   writes: world.voxels (R32UI, one bit a voxel), world.voxel_blocks (one bit for each 4 x 4 x 4
 //           voxels: world_voxels.glsl)
@@ -25,23 +24,13 @@ WorldGrid addWorldVoxelPasses(FrameBuild& build) {
         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     grid.voxels = build.graph.createImage("world.voxels", VK_FORMAT_R32_UINT, extent, usage, true);
     // Its 4 x 4 x 4 blocks (world_voxels.glsl), laid out the same way.
-    const int blocks = (side + 3) / 4;
+    const int blocks = (side + WORLD_BLOCK - 1) / WORLD_BLOCK;
     const VkExtent2D blockExtent{uint32_t((blocks + 31) / 32 * blocks), uint32_t(blocks)};
     grid.blocks =
         build.graph.createImage("world.voxel_blocks", VK_FORMAT_R32_UINT, blockExtent, usage, true);
     const graph::EnabledFn onVoxelFrames = [](const FrameState& frame) { return frame.drawVoxels; };
     using graph::Use;
-    build.graph.addPass(
-        "world.voxel_clear", graph::PassKind::Transfer,
-        {{grid.voxels, Use::TransferDst}, {grid.blocks, Use::TransferDst}},
-        [grid](const graph::PassContext& pc) {
-            const VkClearColorValue zero{};
-            const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-            for (const graph::ImageRef& image : {grid.voxels, grid.blocks})
-                vkCmdClearColorImage(pc.cmd, pc.image(image).image,
-                                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &range);
-        },
-        onVoxelFrames);
+    addClearPass(build, "world.voxel_clear", {grid.voxels, grid.blocks}, onVoxelFrames);
 
     // Two pixels a voxel along each of the view's axes: a triangle smaller than a voxel still
     // covers a pixel's centre more often.

@@ -58,6 +58,12 @@ void destroyImage(const Context& ctx, Image& image);
 void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from,
                   VkImageLayout to, VkPipelineStageFlags2 srcStages, VkAccessFlags2 srcAccess,
                   VkPipelineStageFlags2 dstStages, VkAccessFlags2 dstAccess);
+// Records the clearing of a colour image, in TRANSFER_DST_OPTIMAL, to zero (every channel).
+void clearToZero(VkCommandBuffer cmd, VkImage image);
+// Records the dependency of later accesses to a whole buffer on earlier ones.
+void bufferBarrier(VkCommandBuffer cmd, VkBuffer buffer, VkPipelineStageFlags2 srcStages,
+                   VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStages,
+                   VkAccessFlags2 dstAccess);
 
 // Sampled texture (SHADER_READ_ONLY_OPTIMAL afterwards) from tightly packed pixels.
 Image createTexture(Context& ctx, const std::string& name, VkFormat format, VkExtent2D extent,
