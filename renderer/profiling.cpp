@@ -23,10 +23,11 @@ PassStatistics statistics(const std::string& name, std::vector<double> values) {
     return s;
 }
 
-std::string row(const PassStatistics& s) {
-    char line[128];
-    std::snprintf(line, sizeof line, "%-18s %10.3f %10.3f %10.3f\n", s.name.c_str(), s.medianMs,
-                  s.minMs, s.maxMs);
+// A row of the table, its name left-aligned in a column `width` wide.
+std::string row(const PassStatistics& s, int width) {
+    char line[256];
+    std::snprintf(line, sizeof line, "%-*s %10.3f %10.3f %10.3f\n", width, s.name.c_str(),
+                  s.medianMs, s.minMs, s.maxMs);
     return line;
 }
 
@@ -79,12 +80,16 @@ std::string ProfileLog::table(const std::string& device) const {
                   s.timedFrames, s.timedFrames == 1 ? "" : "s", s.warmupFrames,
                   s.warmupFrames == 1 ? "" : "s");
     out += line;
-    std::snprintf(line, sizeof line, "%-18s %10s %10s %10s\n", "pass", "median ms", "min", "max");
+    int width = 18; // the names' column: as wide as the longest
+    for (const PassStatistics& p : s.passes)
+        width = std::max(width, int(std::min<size_t>(p.name.size(), 120)));
+    std::snprintf(line, sizeof line, "%-*s %10s %10s %10s\n", width, "pass", "median ms", "min",
+                  "max");
     out += line;
     for (const PassStatistics& p : s.passes)
-        out += row(p);
-    out += row(s.passSum);
-    out += row(s.host);
+        out += row(p, width);
+    out += row(s.passSum, width);
+    out += row(s.host, width);
     std::snprintf(line, sizeof line,
                   "the passes cover %.1f%% of the host time (submission to fence) in the worst "
                   "timed frame\n",

@@ -101,7 +101,7 @@ public:
     };
     std::optional<WorldCacheCounts> worldCacheCounts();
     // Where the world cache's voxel grid lay in the last frame, in the GPU's coordinates
-    // (frame_uniforms.h gpuOrigin); its images are "world.voxels" and "world.voxel_blocks".
+    // (frame_uniforms.h gpuOrigin); its images are "world.voxels" and "world.voxel_distance".
     const WorldGridPlacement& worldGrid() const { return worldGrid_; }
     VkRect2D refreshedTile(const std::string& effect) const;
     const graph::FrameGraph& frameGraph() const { return *graph_; }

@@ -175,16 +175,20 @@ TEST_F(WorldCacheTest, VoxelGridBlocksWhatTheTrianglesBlock) {
     const std::vector<float> words = renderer.readImage("world.voxels");
     const WorldGridPlacement& grid = renderer.worldGrid();
     const glm::dvec3 origin = gpuOrigin(scene.bounds);
-    const int side = int(scene.settings.world_voxels); // the images hold the largest grid
-    const uint32_t width = uint32_t((side + 31) / 32 * side);
-    const int rowWords = (grid.size.x + 31) / 32;
-    ASSERT_EQ(words.size(), size_t(4) * width * uint32_t(side));
+    // The images hold the largest grid, in 4 x 4 x 4 blocks of two texels (world_voxels.glsl).
+    const int blocks = (int(scene.settings.world_voxels) + 3) / 4;
+    const uint32_t width = uint32_t(2 * blocks * blocks);
+    const int rowBlocks = (grid.size.x + 3) / 4;
+    ASSERT_EQ(words.size(), size_t(4) * width * uint32_t(blocks));
     auto occupied = [&](glm::ivec3 v) {
         if (glm::any(glm::lessThan(v, glm::ivec3(0))) ||
             glm::any(glm::greaterThanEqual(v, grid.size)))
             return false;
-        const size_t texel = size_t(v.y) * width + size_t((v.x >> 5) + rowWords * v.z);
-        return ((std::bit_cast<uint32_t>(words[4 * texel]) >> (v.x & 31)) & 1u) != 0u;
+        const glm::ivec3 b = v / 4, local = v % 4;
+        const size_t texel =
+            size_t(b.y) * width + size_t(2 * (b.x + rowBlocks * b.z)) + size_t(local.z >> 1);
+        const int bit = local.x + 4 * local.y + 16 * (local.z & 1);
+        return ((std::bit_cast<uint32_t>(words[4 * texel]) >> bit) & 1u) != 0u;
     };
     auto gridBlocks = [&](glm::vec3 a, glm::vec3 b) {
         const float voxel = grid.voxel;

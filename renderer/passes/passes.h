@@ -77,7 +77,7 @@ void addClearPass(FrameBuild& build, const std::string& name,
 // where the frame places it (FrameUniforms.worldGridOrigin, worldGridSize; world_grid.h) on
 // the frames FrameState::drawVoxels names (world_voxels_pass.cpp).
 struct WorldGrid {
-    graph::ImageRef voxels, blocks;
+    graph::ImageRef voxels, distance; // world_voxels.glsl
 };
 WorldGrid addWorldVoxelPasses(FrameBuild& build);
 

@@ -5,7 +5,7 @@
 // and fills only the new ones. The table persists from frame to frame; without the cache it is
 // cleared every frame and every cell filled at once.
 //   reads:  gbuffer.view_depth, .normal, indirect.vpl_list (the flux's pool), the VPL map
-//           (indirect.vpl_position, .vpl_normal, .vpl_flux), world.voxels, .voxel_blocks
+//           (indirect.vpl_position, .vpl_normal, .vpl_flux), world.voxels, .voxel_distance
 //   writes: world.keys, .irradiance, .points, .used, .directions, .owner (the table), world.stats
 //   (its
 //           counters), world.gather_list (the cells that gather this frame), world.indirect (the
@@ -137,7 +137,7 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
 
     ComputePassDesc gather{"world.gather", "world_gather.comp"};
     gather.images = {{"voxels", grid.voxels, Use::Sampled},
-                     {"voxelBlocks", grid.blocks, Use::Sampled},
+                     {"voxelDistance", grid.distance, Use::Sampled},
                      {"vplList", vpls.list, Use::Sampled},
                      {"worldIrradiance", irradiance, Use::StorageReadWrite},
                      {"worldPoints", points, Use::Sampled},

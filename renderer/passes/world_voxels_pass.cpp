@@ -1,11 +1,14 @@
-// world.voxel_clear + world.voxelize (indirect_method 3): the scene's voxel occupancy grid, the
-// representation the world cache tests its VPLs' visibility in. It does not depend on the view:
-// the whole scene is drawn into it on the first frame and again only after the light or an
-// object moved (FrameState::drawVoxels). The grid lies around the scene's geometry inside the
-// light's frustum (world_grid.h), world_voxels cubic voxels along its longest side.
+// world.voxel_clear + world.voxelize + world.voxel_distance_x, _y, _z (indirect_method 3): the
+// scene's voxel occupancy grid, the representation the world cache tests its VPLs' visibility
+// in. It does not depend on the view: the whole scene is drawn into it on the first frame and
+// again only after the light or an object moved (FrameState::drawVoxels). The grid lies around
+// the scene's geometry inside the light's frustum (world_grid.h), world_voxels cubic voxels
+// along its longest side.
 //   reads:  the scene's draws
-//   writes: world.voxels (R32UI, one bit a voxel), world.voxel_blocks (one bit for each 4 x 4 x 4
-//           voxels: world_voxels.glsl)
+//   writes: world.voxels (R32UI, one bit a voxel, 4 x 4 x 4 to two texels), world.voxel_distance
+//           (R8UI, each block's distance to the nearest occupied one; it and
+//           world.voxel_distance_xy hold the passes' partial distances between them:
+//           world_voxels.glsl)
 #include "passes/passes.h"
 
 #include <algorithm>
@@ -19,18 +22,15 @@ WorldGrid addWorldVoxelPasses(FrameBuild& build) {
     // frame's (FrameUniforms.worldGridOrigin, worldGridSize; world_grid.h), which change when
     // the light or an object moves.
     const int side = int(build.settings.world_voxels);
-    const VkExtent2D extent{uint32_t((side + 31) / 32 * side), uint32_t(side)};
+    const int blocks = (side + WORLD_BLOCK - 1) / WORLD_BLOCK;
     const VkImageUsageFlags usage =
         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    // Two texels a block (world_voxels.glsl).
+    const VkExtent2D extent{uint32_t(2 * blocks * blocks), uint32_t(blocks)};
     grid.voxels = build.graph.createImage("world.voxels", VK_FORMAT_R32_UINT, extent, usage, true);
-    // Its 4 x 4 x 4 blocks (world_voxels.glsl), laid out the same way.
-    const int blocks = (side + WORLD_BLOCK - 1) / WORLD_BLOCK;
-    const VkExtent2D blockExtent{uint32_t((blocks + 31) / 32 * blocks), uint32_t(blocks)};
-    grid.blocks =
-        build.graph.createImage("world.voxel_blocks", VK_FORMAT_R32_UINT, blockExtent, usage, true);
     const graph::EnabledFn onVoxelFrames = [](const FrameState& frame) { return frame.drawVoxels; };
     using graph::Use;
-    addClearPass(build, "world.voxel_clear", {grid.voxels, grid.blocks}, onVoxelFrames);
+    addClearPass(build, "world.voxel_clear", {grid.voxels}, onVoxelFrames);
 
     // Two pixels a voxel along each of the view's axes: a triangle smaller than a voxel still
     // covers a pixel's centre more often.
@@ -41,19 +41,16 @@ WorldGrid addWorldVoxelPasses(FrameBuild& build) {
         desc.vertices = sceneVertexInput();
         desc.vertexShader = "world_voxelize.vert";
         desc.fragmentShader = "world_voxelize.frag";
-        desc.bindings = {
-            {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, "FrameBlock"},
-            {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, "baseColorTexture"},
-            {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, "voxels", false, VK_FORMAT_R32_UINT},
-            {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, "voxelBlocks", false, VK_FORMAT_R32_UINT}};
+        desc.bindings = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, "FrameBlock"},
+                         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, "baseColorTexture"},
+                         {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, "voxels", false, VK_FORMAT_R32_UINT}};
         desc.pushConstantSize = sizeof(shader::DrawConstants);
         desc.vertexSpec = {{{"AXIS", axis}}};
         desc.fragmentSpec = {{{"AXIS", axis}, {"SUPERSAMPLE", kSupersample}}};
         pipelines.push_back(build.graphicsPipeline(desc));
     }
     build.graph.addPass(
-        "world.voxelize", graph::PassKind::Graphics,
-        {{grid.voxels, Use::StorageReadWrite}, {grid.blocks, Use::StorageReadWrite}},
+        "world.voxelize", graph::PassKind::Graphics, {{grid.voxels, Use::StorageReadWrite}},
         [&build, grid, side, pipelines](const graph::PassContext& pc) {
             // Each axis's view holds the largest grid (world_voxelize.vert).
             const VkExtent2D view{uint32_t(side * kSupersample), uint32_t(side * kSupersample)};
@@ -67,16 +64,38 @@ WorldGrid addWorldVoxelPasses(FrameBuild& build) {
                 vkCmdSetViewport(pc.cmd, 0, 1, &viewport);
                 vkCmdSetScissor(pc.cmd, 0, 1, &scissor);
                 const VkImageView voxels = pc.image(grid.voxels).view;
-                const VkImageView blocks = pc.image(grid.blocks).view;
                 build.sceneGpu.draw(pc.cmd, pipelines[size_t(axis)], build.frameUniforms.buffer,
-                                    build.frameUniforms.size, [&](vk::Descriptors& d) {
-                                        d.storageImage(2, voxels);
-                                        d.storageImage(3, blocks);
-                                    });
+                                    build.frameUniforms.size,
+                                    [&](vk::Descriptors& d) { d.storageImage(2, voxels); });
                 vkCmdEndRendering(pc.cmd);
             }
         },
         onVoxelFrames);
+
+    // Each block's distance to the nearest occupied one, an axis a pass: x from the voxels
+    // into the distance image (the distance along the row), y from it into the xy image, z from
+    // that back into the distance image, which then holds the whole distance.
+    const VkExtent2D distanceExtent{uint32_t(blocks * blocks), uint32_t(blocks)};
+    const graph::ImageRef distance = build.graph.createImage(
+        "world.voxel_distance", VK_FORMAT_R8_UINT, distanceExtent, usage, true);
+    const graph::ImageRef afterY = build.graph.createImage(
+        "world.voxel_distance_xy", VK_FORMAT_R8_UINT, distanceExtent, usage, true);
+    const graph::ImageRef sources[3] = {grid.voxels, distance, afterY};
+    const graph::ImageRef targets[3] = {distance, afterY, distance};
+    for (int axis = 0; axis < 3; ++axis) {
+        ComputePassDesc pass{std::string("world.voxel_distance_") + "xyz"[axis],
+                             "world_voxel_distance.comp"};
+        pass.images = {{"source", sources[axis], Use::Sampled},
+                       {"distanceOut", targets[axis], Use::StorageWrite}};
+        pass.spec = {{{"AXIS", axis}}};
+        addComputePass(
+            build, std::move(pass),
+            [blocks](const ComputeRecorder& r) {
+                r.dispatch(uint32_t(blocks), uint32_t(blocks * blocks));
+            },
+            onVoxelFrames);
+    }
+    grid.distance = distance;
     return grid;
 }
 

@@ -16,7 +16,7 @@ const float OFFSET = 2.5; // voxels
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
 layout(set = 0, binding = 1) uniform usampler2D voxels;
-layout(set = 0, binding = 2) uniform usampler2D voxelBlocks;
+layout(set = 0, binding = 2) uniform usampler2D voxelDistance;
 layout(set = 0, binding = 3) uniform sampler2D vplList;
 layout(set = 0, binding = 4, rgba32f) uniform image2D worldIrradiance;
 layout(set = 0, binding = 5) uniform sampler2D worldPoints;

@@ -1,7 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// world.voxelize: marks the voxels a fragment covers in the occupancy grid, and their blocks
-// (world_voxels.glsl).
+// world.voxelize: marks the voxels a fragment covers in the occupancy grid (world_voxels.glsl).
 // The viewport has SUPERSAMPLE pixels per voxel along each of its axes, so that a triangle
 // smaller than a voxel still covers a pixel centre; along depth, every voxel the fragment's
 // depth spans within its pixel is marked, so that a triangle steep to the view leaves no gaps.
@@ -13,7 +12,6 @@ layout(constant_id = 1) const int SUPERSAMPLE = 2;
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
 layout(set = 0, binding = 1) uniform sampler2D baseColorTexture;
 layout(set = 0, binding = 2, r32ui) uniform coherent uimage2D voxels;
-layout(set = 0, binding = 3, r32ui) uniform coherent uimage2D voxelBlocks;
 layout(push_constant) uniform DrawBlock { DrawConstants draw; };
 #include "base_color.glsl"
 #define WORLD_VOXELS_LAYOUT_ONLY
@@ -38,8 +36,6 @@ void main() {
         v[order.y] = face.y;
         v[order.z] = k;
         if (any(greaterThanEqual(v, frame.worldGridSize.xyz))) continue;
-        imageAtomicOr(voxels, voxelTexel(v), voxelBit(v.x));
-        ivec3 b = v / WORLD_BLOCK;
-        imageAtomicOr(voxelBlocks, blockTexel(b), voxelBit(b.x));
+        imageAtomicOr(voxels, blockTexel(v / WORLD_BLOCK) + ivec2(voxelWord(v), 0), voxelBit(v));
     }
 }

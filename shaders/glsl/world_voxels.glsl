@@ -1,42 +1,43 @@
-// The voxel occupancy grid of indirect_method 3 (world_voxelize.frag writes it), at two levels:
-// - voxels: one bit a voxel, 32 voxels along x to a word, the word of voxel (x, y, z) at texel
-//   (x / 32 + voxelWords() z, y) of an R32UI image;
-// - blocks: one bit for each 4 x 4 x 4 voxels, set where any of them is occupied, laid out the
-//   same way (blockWords(), blocks per axis gridSize / 4 rounded up).
-// Its test of a segment walks every voxel the segment crosses (Amanatides and Woo 1987), so a
-// wall one voxel thick stops it, and crosses an empty block in one step.
+// The voxel occupancy grid of indirect_method 3 (world_voxelize.frag writes it), in blocks of
+// 4 x 4 x 4 voxels (WORLD_BLOCK; blocks per axis gridSize / 4 rounded up):
+// - voxels: a block's 64 voxels as 64 bits in two R32UI texels, block b's at texels
+//   (2 (b.x + blocks along x * b.z) + 0 or 1, b.y); voxel v's bit is v's place in its block,
+//   x + 4 y + 16 z, the second texel holding z 2 and 3 (voxelWord, voxelBit);
+// - for each block the distance to the nearest occupied one (world_voxel_distance.comp), in
+//   blocks along the farthest axis, at texel (x + blocks along x * z, y) of an R8UI image.
+// Its test of a segment walks every voxel the segment crosses in an occupied block (Amanatides
+// and Woo 1987), so a wall one voxel thick stops it, with the block's two words read once, and
+// crosses the cube of empty blocks around an empty block in one step.
 // The grid's place and size are the frame's (FrameUniforms.worldGridOrigin, worldGridSize).
-// Needs: frame; for the test, usampler2D voxels and voxelBlocks. With WORLD_VOXELS_LAYOUT_ONLY
-// defined, the layout alone (for the pass that writes the grid, whose images are storage images).
+// Needs: frame; for the test, usampler2D voxels and voxelDistance. With WORLD_VOXELS_LAYOUT_ONLY
+// defined, the layout alone (for the passes that write the grid, whose images are storage
+// images).
 #ifndef SSGI_WORLD_VOXELS_GLSL
 #define SSGI_WORLD_VOXELS_GLSL
 
-int voxelWords() {
-    return (frame.worldGridSize.x + 31) / 32;
-}
 ivec3 blockCount() {
     return (frame.worldGridSize.xyz + WORLD_BLOCK - 1) / WORLD_BLOCK;
 }
-int blockWords() {
-    return (blockCount().x + 31) / 32;
-}
-// The texel holding voxel v's bit, and the bit.
-ivec2 voxelTexel(ivec3 v) {
-    return ivec2((v.x >> 5) + voxelWords() * v.z, v.y);
-}
+// The texel of block b's first word; its second is the next texel.
 ivec2 blockTexel(ivec3 b) {
-    return ivec2((b.x >> 5) + blockWords() * b.z, b.y);
+    return ivec2(2 * (b.x + blockCount().x * b.z), b.y);
 }
-uint voxelBit(int x) {
-    return 1u << uint(x & 31);
+// Which of its block's two words holds voxel v's bit (0 or 1), and the bit.
+int voxelWord(ivec3 v) {
+    return (v.z & 3) >> 1;
+}
+uint voxelBit(ivec3 v) {
+    ivec3 local = v & 3;
+    return 1u << uint(local.x + 4 * local.y + 16 * (local.z & 1));
+}
+ivec2 distanceTexel(ivec3 b) {
+    return ivec2(b.x + blockCount().x * b.z, b.y);
 }
 
 #ifndef WORLD_VOXELS_LAYOUT_ONLY
-bool voxelOccupied(ivec3 v) {
-    return (texelFetch(voxels, voxelTexel(v), 0).r & voxelBit(v.x)) != 0u;
-}
-bool blockOccupied(ivec3 b) {
-    return (texelFetch(voxelBlocks, blockTexel(b), 0).r & voxelBit(b.x)) != 0u;
+// 0 for an occupied block, else d: every block within d - 1 of b (along each axis) is empty.
+int blockDistance(ivec3 b) {
+    return int(texelFetch(voxelDistance, distanceTexel(b), 0).r);
 }
 
 // Where a ray from A along unit `dir` (1 / dir: `inverse`) leaves the box [lo, lo + side].
@@ -67,21 +68,31 @@ bool voxelSegmentOpen(vec3 a, vec3 b) {
     bool leaving = true;
     // A step's length at least a thousandth of a voxel, so that the walk always moves on.
     for (int i = 0; i < 4096 && s < end; ++i) {
-        vec3 P = A + dir * (s + 1e-3);
-        ivec3 v = clamp(ivec3(floor(P)), ivec3(0), last);
+        ivec3 v = clamp(ivec3(floor(A + dir * (s + 1e-3))), ivec3(0), last);
         ivec3 block = v / WORLD_BLOCK;
-        if (!blockOccupied(block)) {
+        int empty = blockDistance(block) - 1; // the radius of the cube of empty blocks around
+        if (empty >= 0) {
             leaving = false;
-            s = boxExit(A, inverse, vec3(block * WORLD_BLOCK), float(WORLD_BLOCK)) + 1e-3;
+            s = boxExit(A, inverse, vec3((block - empty) * WORLD_BLOCK),
+                        float((2 * empty + 1) * WORLD_BLOCK)) +
+                1e-3;
             continue;
         }
-        float exit = boxExit(A, inverse, vec3(v), 1.0);
-        if (voxelOccupied(v)) {
-            if (!leaving && len - exit > 2.0) return false;
-        } else {
-            leaving = false;
+        ivec2 texel = blockTexel(block);
+        uvec2 words = uvec2(texelFetch(voxels, texel, 0).r,
+                            texelFetch(voxels, texel + ivec2(1, 0), 0).r);
+        // The block's voxels one by one, until the walk leaves it.
+        for (; s < end && i < 4096; ++i) {
+            float exit = boxExit(A, inverse, vec3(v), 1.0);
+            if ((words[voxelWord(v)] & voxelBit(v)) != 0u) {
+                if (!leaving && len - exit > 2.0) return false;
+            } else {
+                leaving = false;
+            }
+            s = exit + 1e-3;
+            v = clamp(ivec3(floor(A + dir * (s + 1e-3))), ivec3(0), last);
+            if (v / WORLD_BLOCK != block) break;
         }
-        s = exit + 1e-3;
     }
     return true;
 }
