@@ -115,7 +115,7 @@ namespace ssgi {
     X(world_cell_angle, double, 0.02, 1e-4, 1, "World cache",                                      \
       "method 3: the angle a cell spans from the camera (radians): a cell at distance d is the "   \
       "power of two nearest below d x this wide")                                                  \
-    X(world_vpls, int, 32, 2, 1024, "World cache",                                                 \
+    X(world_vpls, int, 48, 2, 1024, "World cache",                                                 \
       "method 3: VPLs a cell gathers, with their visibility, in a frame's refresh (half by flux, "  \
       "half next to it)")                                                                          \
     X(world_frames, int, 16, 1, 512, "World cache",                                                \

@@ -385,6 +385,7 @@ struct WorldConstants {
 SSGI_CHECK_SIZE(WorldConstants, 64);
 #define WORLD_BLOCK 4 // voxels a side of the voxel grid's blocks (world_voxels.glsl)
 #define WORLD_DISTANCE_CAP 8u // the farthest distance, in blocks, world.voxel_distance holds
+#define WORLD_NEW_CELL_FRAMES 8 // a new cell's first gather, in frames of samples (cached)
 #define WORLD_VIEW_LIGHT 0 // the bounce, interpolated between cells
 #define WORLD_VIEW_CELLS 1 // each pixel's own cell's value, its edges unblended
 #define WORLD_VIEW_AGE 2   // each pixel's own cell: green its samples' share of world_frames,

@@ -13,6 +13,7 @@ layout(local_size_x = 64) in;
 layout(constant_id = 0) const int POOL = 2048; // the flux's VPLs drawn this frame
 const float NEAR = 0.5;   // contacts nearer than this many cell sides are not resolved
 const float OFFSET = 2.5; // voxels
+const float ROULETTE = 1.0; // below this times the mean light, a VPL's visibility is a gamble
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
 layout(set = 0, binding = 1) uniform usampler2D voxels;
@@ -42,7 +43,7 @@ float luminance(vec3 c) {
 // times `weight` (the texels of the VPL map it stands for); 0 where it is hidden in the voxel
 // grid. `texelScale` turns the weight into the texels a full cell's sample stands for.
 vec3 vplLight(vec3 p, vec3 n, vec3 q, vec3 nq, vec3 flux, float weight, float texelScale,
-              float near2, inout vec4 directional) {
+              float near2, inout vec4 directional, inout vec2 seen, uint random) {
     vec3 toVpl = q - p;
     float distance2 = dot(toVpl, toVpl);
     vec3 D = toVpl * inversesqrt(max(distance2, 1e-30));
@@ -61,9 +62,18 @@ vec3 vplLight(vec3 p, vec3 n, vec3 q, vec3 nq, vec3 flux, float weight, float te
     // surface's voxels stand a voxel or two proud of it, and a segment that grazes it from
     // nearer is blocked by its own surface (one uncached frame at 128x128, 0.5 / 1.5 / 2.5
     // voxels: the bunny 0.00256 / 0.00175 / 0.00149, Sponza 0.0110 / 0.0082 / 0.0080).
+    float toP = cosQ * weight / (PI * PI * d2); // the light towards p, before p's cosine
+    // Russian roulette on the visibility test (its walk is most of the gather's cost): a VPL
+    // whose light at p, unoccluded, is below ROULETTE times the mean of the gather's VPLs before
+    // it is tested with that fraction for its probability, and counts 1 / probability times where
+    // open; a stronger one is always tested. The estimate stays unbiased.
+    float light = luminance(flux) * cosP * toP;
+    float probability = seen.y > 0.0 ? min(1.0, light * seen.y / (ROULETTE * seen.x)) : 1.0;
+    seen += vec2(light, 1.0);
+    if (float(random >> 8) * (1.0 / 16777216.0) >= probability) return vec3(0.0);
     float offset = OFFSET * frame.worldGridOrigin.w;
     if (!voxelSegmentOpen(p + n * offset, q + nq * offset)) return vec3(0.0);
-    float toP = cosQ * weight / (PI * PI * d2); // the light towards p, before p's cosine
+    toP /= probability;
     directional += luminance(flux) * toP * vec4(1.0, D);
     return flux * (cosP * toP);
 }
@@ -83,6 +93,7 @@ vec3 vplLight(vec3 p, vec3 n, vec3 q, vec3 nq, vec3 flux, float weight, float te
 vec3 gather(vec3 p, vec3 n, int count, uint start, float turn, float frames, float near2,
             out vec4 directional) {
     directional = vec4(0.0);
+    vec2 seen = vec2(0.0); // the unoccluded light of the VPLs so far, and how many
     float total = texelFetch(vplList, ivec2(POOL, 0), 0).r;
     if (total <= 0.0) return vec3(0.0);
     float side = constants.change.w; // the VPL map's side
@@ -103,7 +114,7 @@ vec3 gather(vec3 p, vec3 n, int count, uint start, float turn, float frames, flo
         float inDisk = distance(texel, center) <= radius ? pNear : 0.0;
         float weight = 1.0 / (float(count) * (pFlux + inDisk));
         sum += vplLight(p, n, position.xyz, normal.xyz, fluxProbability.rgb, weight, texelScale,
-                        near2, directional);
+                        near2, directional, seen, worldHash(start + uint(j) * 2u));
     }
     for (int j = 0; j < count; ++j) {
         float r = radius * sqrt((float(j) + 0.5) / float(count));
@@ -116,7 +127,7 @@ vec3 gather(vec3 p, vec3 n, int count, uint start, float turn, float frames, flo
         float pFlux = luminance(flux) / total;
         float weight = 1.0 / (float(count) * (pFlux + pNear));
         sum += vplLight(p, n, position.xyz, texelFetch(vplNormal, texel, 0).xyz, flux, weight,
-                        texelScale, near2, directional);
+                        texelScale, near2, directional, seen, worldHash(start + uint(j) * 2u + 1u));
     }
     return sum;
 }

@@ -7,7 +7,7 @@
 // cells within a cell of its box (old and new place) and shortens every other cell's memory to a
 // quarter of world_frames, since the VPLs it gathers from all changed a little. Then a cell is
 // listed for world.gather (world_gather.comp) with the frames' worth of VPLs it gathers:
-// - a new or restarted cell at once, uncached world_frames, cached four;
+// - a new or restarted cell at once, uncached world_frames, cached WORLD_NEW_CELL_FRAMES;
 // - an older cell with fewer than world_frames frames of samples, one, while the frame's
 //   refreshes (world_cells_per_frame) last;
 // - a full one not at all: its value stands while the light and the objects stay still.
@@ -35,7 +35,6 @@ layout(push_constant) uniform WorldBlock { WorldConstants constants; };
 #include "gbuffer_position.glsl"
 #include "world_cache.glsl"
 
-const float NEW_CELL_FRAMES = 4.0; // a new cell's first gather, in frames of samples (cached)
 
 bool nearMovedBox(vec3 p, float reach) {
     for (int i = 0; i < int(frame.motion.x); ++i) {
@@ -84,7 +83,7 @@ void main() {
     if (count != cell.a) imageStore(worldIrradiance, entry, vec4(cell.rgb, count));
     float gathered;
     if (count == 0.0) {
-        gathered = constants.table.w != 0 ? min(NEW_CELL_FRAMES, frames) : frames;
+        gathered = constants.table.w != 0 ? min(float(WORLD_NEW_CELL_FRAMES), frames) : frames;
         imageAtomicAdd(worldStats, ivec2(WORLD_STAT_NEW, row), 1u);
     } else if (count < frames &&
                imageAtomicAdd(worldStats, ivec2(WORLD_STAT_BUDGET, row), 1u) <
