@@ -122,7 +122,7 @@ namespace ssgi {
       "method 3: frames of world_vpls a cell accumulates before it stops (uncached, all at once)") \
     X(world_cells_per_frame, int, 2048, 0, 1 << 24, "World cache",                                 \
       "method 3: cells refreshed a frame beyond the new ones (which are always filled)")           \
-    X(world_table_bits, int, 17, 8, 22, "World cache",                                             \
+    X(world_table_bits, int, 18, 8, 22, "World cache",                                             \
       "method 3: the hash table holds 2^bits cells")                                               \
     X(world_lifetime, int, 120, 1, 1 << 24, "World cache",                                         \
       "method 3: frames a cell stays while no pixel uses it")                                      \

@@ -81,10 +81,23 @@ void main() {
     vec3 f = u - vec3(base);
     vec3 sum = vec3(0.0);
     float weights = 0.0;
+    // The layer of cells along the normal's axis that holds the pixel first, then the other,
+    // each from the corner nearest the pixel. A surface across that axis (a floor, a wall) has
+    // cells in one layer only: where the other's nearest corner is absent, so are its others
+    // (but where the surface ends at a layer's edge), and its lookups are left out.
+    int axis = direction / 2;
+    ivec3 nearest = ivec3(greaterThanEqual(f, vec3(0.5)));
     for (int corner = 0; corner < 8; ++corner) {
-        ivec3 offset = ivec3(corner & 1, (corner >> 1) & 1, corner >> 2);
+        ivec3 offset;
+        offset[axis] = corner >> 2;
+        offset[(axis + 1) % 3] = corner & 1;
+        offset[(axis + 2) % 3] = (corner >> 1) & 1;
+        offset ^= nearest;
         ivec2 entry = findCell(base + offset, level, direction);
-        if (entry.x < 0) continue;
+        if (entry.x < 0) {
+            if (corner == 4) break;
+            continue;
+        }
         vec4 cell = texelFetch(worldIrradiance, entry, 0);
         if (cell.a == 0.0) continue;
         vec3 w3 = mix(1.0 - f, f, vec3(offset));

@@ -45,7 +45,6 @@ bool nearMovedBox(vec3 p, float reach) {
 }
 
 void main() {
-    loadPixelToWorld(); // pixel_to_world.glsl
     ivec2 entry = ivec2(gl_GlobalInvocationID.xy);
     uint now = uint(frame.patternFrame);
     if (entry == ivec2(0)) { // the gather's y and z workgroups
@@ -55,6 +54,7 @@ void main() {
     if (any(greaterThanEqual(entry, imageSize(worldKeys)))) return;
     uint key = imageLoad(worldKeys, entry).r;
     if (key == WORLD_EMPTY || key == WORLD_EVICTED) return;
+    loadPixelToWorld(); // pixel_to_world.glsl: after the empty entries, most of the table
     int row = int(now) & 1;
     if (now - texelFetch(worldUsed, entry, 0).r > uint(constants.table.z)) {
         imageStore(worldKeys, entry, uvec4(WORLD_EVICTED)); // a tombstone (world_cache.glsl)
