@@ -49,7 +49,8 @@ constexpr StorageFormat kStorageFormats[] = {{1, VK_FORMAT_R32G32B32A32_SFLOAT, 
                                              {9, VK_FORMAT_R16_SFLOAT, "r16f"},
                                              {30, VK_FORMAT_R32G32B32A32_UINT, "rgba32ui"},
                                              {35, VK_FORMAT_R32G32_UINT, "rg32ui"},
-                                             {33, VK_FORMAT_R32_UINT, "r32ui"}};
+                                             {33, VK_FORMAT_R32_UINT, "r32ui"},
+                                             {39, VK_FORMAT_R8_UINT, "r8ui"}};
 
 // The Vulkan format an Image Format operand names; UNDEFINED for Unknown and the rest.
 VkFormat vulkanFormat(uint32_t imageFormat) {

@@ -51,6 +51,10 @@ std::vector<float> decodeTexels(VkFormat format, const uint8_t* bytes, size_t co
             std::memcpy(out, bytes + 4 * i, 4);
             out[3] = 1.0f;
             break;
+        case VK_FORMAT_R8_UINT: // small whole numbers (distances): their values
+            out[0] = float(bytes[i]);
+            out[3] = 1.0f;
+            break;
         case VK_FORMAT_R32_UINT: // keys, bit masks and counts: their bits, as the header says
             std::memcpy(out, bytes + 4 * i, 4);
             out[3] = 1.0f;
