@@ -75,9 +75,9 @@ std::vector<float> Renderer::readImage(const std::string& name) {
             }
         if (name == cache.name() + ".count") // the count, and whether it is due (1) or not (0)
             for (size_t i = 0; i < texels.size(); i += 4) {
-                const float stored = texels[i];
-                texels[i] = std::abs(stored);
-                texels[i + 1] = std::signbit(stored) ? 1.0f : 0.0f;
+                const CountTexel t = unpackCount(uint8_t(std::lround(texels[i] * 255.0f)));
+                texels[i] = t.count;
+                texels[i + 1] = t.due ? 1.0f : 0.0f;
             }
     }
     return texels;

@@ -76,6 +76,8 @@ uint32_t formatTexelSize(VkFormat format) {
     case VK_FORMAT_R16_SFLOAT:
     case VK_FORMAT_D16_UNORM:
         return 2;
+    case VK_FORMAT_R8_UNORM:
+        return 1;
     case VK_FORMAT_R16G16B16A16_SFLOAT:
     case VK_FORMAT_R32G32_UINT:
         return 8;

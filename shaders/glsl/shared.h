@@ -141,6 +141,33 @@ SSGI_INLINE int interleavedFilterReach(int radius, int interleave) {
 #define REPROJECTION_POSITION_BITS 26
 #define REPROJECTION_FOUND_BIT 30
 
+// A cache's count texel (R8_UNORM, one byte; cache.h kCountFormat): the rotations accumulated
+// at a pixel (0: it holds nothing) in its low 7 bits, as half steps up to CACHE_COUNT_HALVES and
+// whole ones above, to CACHE_COUNT_MAX (cache_rotations' largest value), and in bit 7 whether
+// the temporal pass asked for it to be computed next frame (reuse while moving). A count between
+// steps (a blend's effective number of samples where the blur budget cut the history's weight) is
+// rounded down, so that a pixel never counts more samples than its blend holds; the counts the
+// cache writes as such (0, a resize's half sample, whole counts, an exact effect's 1.5) are steps.
+// A due pixel holds one computation or more, so code 0 always means "nothing".
+#define CACHE_COUNT_HALVES 32
+#define CACHE_COUNT_MAX 95
+#define CACHE_COUNT_DUE 128
+SSGI_INLINE float countCode(float count, bool due) {
+    float c = count < float(CACHE_COUNT_MAX) ? count : float(CACHE_COUNT_MAX);
+    // The 1/1000 absorbs float rounding of a blend that is a whole number of samples.
+    float steps = c <= float(CACHE_COUNT_HALVES) ? floor(2.0f * c + 1e-3f)
+                                                 : float(CACHE_COUNT_HALVES) + floor(c + 1e-3f);
+    return steps + (due ? float(CACHE_COUNT_DUE) : 0.0f);
+}
+SSGI_INLINE float countOfCode(float code) {
+    float steps = code >= float(CACHE_COUNT_DUE) ? code - float(CACHE_COUNT_DUE) : code;
+    return steps <= float(2 * CACHE_COUNT_HALVES) ? 0.5f * steps
+                                                  : steps - float(CACHE_COUNT_HALVES);
+}
+SSGI_INLINE bool dueOfCode(float code) {
+    return code >= float(CACHE_COUNT_DUE);
+}
+
 // CacheConstants.refreshTileCorner packs a pixel's x and y into one int (screens are narrower).
 #define REFRESH_TILE_ROW 65536
 

@@ -59,7 +59,7 @@ layout(set = 0, binding = 3) uniform usampler2D reprojection;
     layout(set = 0, binding = first + 1) uniform sampler2D historyValue##k;                       \
     layout(set = 0, binding = first + 2) uniform sampler2D historyCount##k;                       \
     layout(set = 0, binding = first + 3) uniform writeonly image2D newValue##k;                   \
-    layout(set = 0, binding = first + 4, r16f) uniform writeonly image2D newCount##k;
+    layout(set = 0, binding = first + 4) uniform writeonly image2D newCount##k;
 EFFECT_SLOT(0, 4)
 EFFECT_SLOT(1, 9)
 EFFECT_SLOT(2, 14)
@@ -124,7 +124,7 @@ vec4 historyAt(CacheConstants cache, bool scalar, sampler2D historyValue, sample
         ivec2 offset = ivec2(i & 1, i >> 1);
         ivec2 q = clamp(base + offset, ivec2(0), last);
         if ((r.footprint & (1 << i)) == 0 || texelFetch(historyCount, q, 0).r == 0.0)
-            continue; // -0 is never stored (packCount)
+            continue; // 0: holds nothing (packCount)
         float w = (offset.x == 1 ? f.x : 1.0 - f.x) * (offset.y == 1 ? f.y : 1.0 - f.y);
         vec2 d = (vec2(offset) - f) * toPixels;
         vec4 v = historyTexel(historyValue, scalar, q, carried);

@@ -23,17 +23,17 @@ bool exactEffect(CacheConstants cache) {
     return cache.rotations <= 1;
 }
 
-// A cache's count texel (R16F, EffectCache::countHistory, cache.h CountTexel): the rotations
-// accumulated (0: the pixel holds nothing), negative where the pixel is due. A due pixel's count
-// is at least 1, so -0 never stands for "due, holds nothing".
+// A cache's count texel (R8_UNORM, EffectCache::countHistory; shared.h countCode): the rotations
+// accumulated (0: the pixel holds nothing), and whether the pixel is due. Sampled, the byte reads
+// as code / 255, which is 0 only where the pixel holds nothing.
 float packCount(float count, bool due) {
-    return due ? -count : count;
+    return countCode(count, due) / 255.0;
 }
 float unpackCount(float stored) {
-    return abs(stored);
+    return countOfCode(round(stored * 255.0));
 }
 bool unpackDue(float stored) {
-    return stored < 0.0;
+    return dueOfCode(round(stored * 255.0));
 }
 
 struct Reprojection {
