@@ -65,6 +65,13 @@ std::vector<float> Renderer::readImage(const std::string& name) {
         return readReprojection(ref, screen ? std::optional(build_->output()) : std::nullopt);
     std::vector<float> texels =
         graph_->download(ref, screen ? std::optional(build_->output()) : std::nullopt);
+    if (graph_->image(ref).format == kScalarValueFormat) // a scalar effect's value as RGB + computed
+        for (size_t i = 0; i < texels.size(); i += 4) {
+            const float value = texels[i];
+            const bool skipped = value == kScalarSkipped;
+            texels[i] = texels[i + 1] = texels[i + 2] = skipped ? 0.0f : value;
+            texels[i + 3] = skipped ? 0.0f : 1.0f;
+        }
     for (const EffectCache& cache : build_->caches.effects) {
         if (cache.effect.scalar &&
             name == cache.name() + ".history") // RG (value, blur) as RGB + blur
@@ -105,19 +112,34 @@ std::vector<float> Renderer::readRsmVpls(graph::ImageRef ref) {
 
 // The reprojection pass's texels (shared.h REPROJECTION_*): where each pixel's surface lay in
 // last frame's image, in its texels (x, y), the offset of the texel that holds it from the
-// nearest one ((dx + 1) + 3 (dy + 1); -1 where none does) and the bilinear footprint's bits.
+// nearest one ((dx + 1) + 3 (dy + 1); -1 where none does) and the bilinear footprint's bits. The
+// whole texels follow from the pixel's world position, as reprojection.glsl unpacks them.
 std::vector<float> Renderer::readReprojection(graph::ImageRef ref, std::optional<VkRect2D> area) {
     const std::vector<uint8_t> bytes = graph_->readTexels(ref, area);
-    std::vector<float> texels(bytes.size() / sizeof(uint32_t) * 2);
-    constexpr uint32_t position = (1u << REPROJECTION_POSITION_BITS) - 1u;
-    for (size_t i = 0; i < texels.size(); i += 4) {
-        uint32_t t[2];
-        std::memcpy(t, &bytes[2 * i], sizeof(t));
-        const bool found = (t[0] >> REPROJECTION_FOUND_BIT) & 1u;
-        texels[i] = float(t[0] & position) / float(REPROJECTION_SUBTEXEL);
-        texels[i + 1] = float(t[1] & position) / float(REPROJECTION_SUBTEXEL);
-        texels[i + 2] = found ? float((t[0] >> REPROJECTION_POSITION_BITS) & 15u) : -1.0f;
-        texels[i + 3] = float((t[1] >> REPROJECTION_POSITION_BITS) & 15u);
+    const size_t count = bytes.size() / sizeof(uint32_t);
+    const std::vector<float> position =
+        area ? readImage("gbuffer.position") : std::vector<float>(4 * count, 0.0f);
+    const glm::vec2 size(float(build_->size.width), float(build_->size.height));
+    constexpr uint32_t fractionMask = (1u << REPROJECTION_FRACTION_BITS) - 1u;
+    std::vector<float> texels(4 * count);
+    for (size_t i = 0; i < count; ++i) {
+        uint32_t t = 0;
+        std::memcpy(&t, &bytes[4 * i], sizeof(t));
+        const int offset = int((t >> REPROJECTION_OFFSET_SHIFT) & 15u) - 1;
+        float* out = &texels[4 * i];
+        out[2] = float(offset); // -1: not found
+        out[3] = float((t >> REPROJECTION_FOOTPRINT_SHIFT) & 15u);
+        if (offset < 0) continue;
+        const float* world = &position[4 * i];
+        const glm::vec4 clip = reprojectedInto_ * glm::vec4(world[0], world[1], world[2], 1.0f);
+        const glm::vec2 projected = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * size;
+        const glm::vec2 fraction =
+            glm::vec2(float(t & fractionMask),
+                      float((t >> REPROJECTION_FRACTION_BITS) & fractionMask)) /
+            float(REPROJECTION_SUBTEXEL);
+        const glm::vec2 point = glm::round(projected - fraction) + fraction;
+        out[0] = point.x;
+        out[1] = point.y;
     }
     return texels;
 }

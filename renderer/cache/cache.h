@@ -72,6 +72,12 @@ struct CountTexel {
 uint8_t packCount(CountTexel t);
 CountTexel unpackCount(uint8_t code);
 
+// A scalar effect's value of the frame (CachedEffect::scalar): one half float, never negative
+// where computed, kScalarSkipped (temporal.glsl SCALAR_SKIPPED) where the effect skipped the
+// pixel; any other effect's value is RGBA16F, its alpha 0 (SKIPPED) where skipped.
+constexpr VkFormat kScalarValueFormat = VK_FORMAT_R16_SFLOAT;
+constexpr float kScalarSkipped = -1.0f;
+
 // An effect whose value of this frame is made (`value`) and not yet blended into its history:
 // the frame's next temporal pass carries it (temporal_pass.cpp).
 struct WaitingEffect {

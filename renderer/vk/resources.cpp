@@ -171,9 +171,13 @@ void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
 }
 
 void clearToZero(VkCommandBuffer cmd, VkImage image) {
-    const VkClearColorValue zero{};
+    clearTo(cmd, image, 0.0f);
+}
+
+void clearTo(VkCommandBuffer cmd, VkImage image, float value) {
+    const VkClearColorValue colour{{value, value, value, value}};
     const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    vkCmdClearColorImage(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &range);
+    vkCmdClearColorImage(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &colour, 1, &range);
 }
 
 void bufferBarrier(VkCommandBuffer cmd, VkBuffer buffer, VkPipelineStageFlags2 srcStages,

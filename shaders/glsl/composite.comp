@@ -27,7 +27,7 @@ layout(set = 0, binding = 8) uniform sampler2D term0;
 layout(set = 0, binding = 9) uniform sampler2D term1;
 layout(set = 0, binding = 10) uniform sampler2D term2;
 layout(set = 0, binding = 11) uniform sampler2D term3;
-layout(set = 0, binding = 12, rgba32f) uniform writeonly image2D hdrImage;
+layout(set = 0, binding = 12, rgba16f) uniform writeonly image2D hdrImage;
 layout(set = 0, binding = 13, rgba8) uniform writeonly image2D ldrImage;
 layout(push_constant) uniform CompositeBlock { CompositeConstants constants; };
 
@@ -158,6 +158,12 @@ void main() {
     // Colours are encoded for display; normals, depth and visibilities are data, shown as is.
     bool isData = view == VIEW_NORMAL || view == VIEW_RSM_NORMAL || view == VIEW_DEPTH ||
                   view == VIEW_SHADOW || view == VIEW_PEEL || view == VIEW_CONTACT || termIsData;
-    imageStore(hdrImage, written, vec4(view == VIEW_FINAL ? hdr : value, 1.0));
+    // Half floats: a finite value past the largest saturates there rather than turning into
+    // infinity; a NaN or an infinity stays what it is, the renderer's failure (image_io.cpp).
+    vec3 stored = view == VIEW_FINAL ? hdr : value;
+    const float HALF_MAX = 65504.0;
+    bvec3 notFinite = bvec3(ivec3(isnan(stored)) + ivec3(isinf(stored)));
+    stored = mix(clamp(stored, -HALF_MAX, HALF_MAX), stored, notFinite);
+    imageStore(hdrImage, written, vec4(stored, 1.0));
     imageStore(ldrImage, written, vec4(isData ? shown : encodeSrgb(shown), 1.0));
 }

@@ -132,14 +132,16 @@ SSGI_INLINE int interleavedFilterReach(int radius, int interleave) {
     return max(radius, interleave / 2);
 }
 
-// The reprojection pass's image (RG32UI; reprojection.glsl packReprojection): each word holds,
-// in its bits 0 to REPROJECTION_POSITION_BITS - 1, where the surface lay in last frame's image
-// along one axis, in history texels times REPROJECTION_SUBTEXEL (rounded down); above them, x
-// holds the texel's offset from the nearest one ((dx + 1) + 3 (dy + 1)) and y the bilinear
-// footprint, 4 bits each, and bit REPROJECTION_FOUND_BIT of x whether a texel holds the surface.
+// The reprojection pass's image (R32UI; reprojection.glsl packReprojection): one word holds, in
+// its bits 0 to 11 and 12 to 23, where the surface lay in last frame's image within its texel
+// along x and y, in REPROJECTION_SUBTEXELs of a texel; in bits 24 to 27 the offset of the texel
+// that holds the surface from the one the point lies in, (dx + 1) + 3 (dy + 1) + 1, or 0 where
+// none does; in bits 28 to 31 the bilinear footprint. The whole texels follow from the pixel's
+// world position (reprojection.glsl unpackReprojection).
 #define REPROJECTION_SUBTEXEL 4096
-#define REPROJECTION_POSITION_BITS 26
-#define REPROJECTION_FOUND_BIT 30
+#define REPROJECTION_FRACTION_BITS 12
+#define REPROJECTION_OFFSET_SHIFT 24
+#define REPROJECTION_FOOTPRINT_SHIFT 28
 
 // A cache's count texel (R8_UNORM, one byte; cache.h kCountFormat): the rotations accumulated
 // at a pixel (0: it holds nothing) in its low 7 bits, as half steps up to CACHE_COUNT_HALVES and
