@@ -112,6 +112,7 @@ private:
     graph::ImageRef imageNamed(const std::string& name) const;
     const EffectCache* metaOf(const std::string& name) const;
     std::vector<float> readRsmVpls(graph::ImageRef ref);     // readImage's decoding of "rsm.vpls"
+    std::vector<float> readHdr(graph::ImageRef ref);         // and of "hdr"
     std::vector<float> readReprojection(graph::ImageRef ref, // and of "reprojection"
                                         std::optional<VkRect2D> area);
     void updateUniforms(const Camera& camera);

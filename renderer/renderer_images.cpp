@@ -58,6 +58,7 @@ std::vector<float> Renderer::readImage(const std::string& name) {
     const graph::ImageRef ref = imageNamed(name);
     if (!ref.valid()) throw InputError("no image named '" + name + "' in the frame");
     if (name == "rsm.vpls") return readRsmVpls(ref);
+    if (name == "hdr") return readHdr(ref);
     // A screen image is read where the output lies in it: its guard band left out.
     const VkExtent2D e = graph_->image(ref).extent;
     const bool screen = e.width == build_->size.width && e.height == build_->size.height;
@@ -106,6 +107,23 @@ std::vector<float> Renderer::readRsmVpls(graph::ImageRef ref) {
             texels[i + c] = root * root * lastLightColor_[c] * share;
         }
         texels[i + 3] = axisDepth;
+    }
+    return texels;
+}
+
+// The composite's HDR output: three 21-bit floats in two words (shared.h hdrBits,
+// composite.comp packHdr), alpha 1.
+std::vector<float> Renderer::readHdr(graph::ImageRef ref) {
+    const std::vector<uint8_t> bytes = graph_->readTexels(ref);
+    std::vector<float> texels(bytes.size() / sizeof(uint32_t) * 2);
+    for (size_t i = 0; i < texels.size(); i += 4) {
+        uint32_t t[2];
+        std::memcpy(t, &bytes[2 * i], sizeof(t));
+        constexpr uint32_t bits21 = (1u << 21) - 1u;
+        texels[i] = shader::hdrValue(t[0] & bits21);
+        texels[i + 1] = shader::hdrValue(((t[0] >> 21) | (t[1] << 11)) & bits21);
+        texels[i + 2] = shader::hdrValue((t[1] >> 10) & bits21);
+        texels[i + 3] = 1.0f;
     }
     return texels;
 }

@@ -14,7 +14,10 @@ using vec3 = glm::vec3;
 using vec4 = glm::vec4;
 using mat4 = glm::mat4;
 using ivec4 = glm::ivec4;
+using uint = glm::uint;
 using glm::clamp;
+using glm::floatBitsToUint;
+using glm::uintBitsToFloat;
 using glm::length;
 using glm::max;
 using glm::mix;
@@ -168,6 +171,22 @@ SSGI_INLINE float countOfCode(float code) {
 }
 SSGI_INLINE bool dueOfCode(float code) {
     return code >= float(CACHE_COUNT_DUE);
+}
+
+// The composite's HDR output (`hdr`, RG32UI): R, G and B as 21-bit floats, a float's sign,
+// exponent and 12 of its 23 mantissa bits, R in x's bits 0-20, G in x's bits 21-31 and y's 0-9,
+// B in y's 10-30: a float's range (an EXR keeps what half floats cannot hold), infinities and
+// NaNs included, to within 1/4096 of the value. Rounded to odd (the last kept bit set where any
+// dropped one is), so that the half float the EXR stores where the image fits one (image_io.cpp)
+// is the float's own nearest half, as if nothing had been dropped on the way.
+#define HDR_DROPPED_BITS 11
+SSGI_INLINE uint hdrBits(float v) {
+    uint bits = floatBitsToUint(v);
+    uint dropped = bits & ((1u << HDR_DROPPED_BITS) - 1u);
+    return (bits >> HDR_DROPPED_BITS) | (dropped != 0u ? 1u : 0u);
+}
+SSGI_INLINE float hdrValue(uint bits21) {
+    return uintBitsToFloat(bits21 << HDR_DROPPED_BITS);
 }
 
 // CacheConstants.refreshTileCorner packs a pixel's x and y into one int (screens are narrower).
