@@ -147,7 +147,7 @@ private:
     WorldGridPlacement worldGrid_;      // the world cache's voxel grid, in the GPU's coordinates
     glm::mat4 previousViewProjection_{1.0f};
     glm::mat4 previousPixelToWorld_{1.0f}; // FrameUniforms::pixelToWorld of the last frame
-    glm::mat4 reprojectedInto_{1.0f}; // its previousViewProjection: what its reprojection used
+    glm::mat4 reprojectedInto_{1.0f};      // its previousViewProjection: what its reprojection used
     glm::vec3 lastLightColor_{0.0f};       // its lightColor (the RSM's flux, rsm_vpl.glsl)
     Camera previousCamera_;
     bool cutRequested_ = false;

@@ -66,7 +66,8 @@ std::vector<float> Renderer::readImage(const std::string& name) {
         return readReprojection(ref, screen ? std::optional(build_->output()) : std::nullopt);
     std::vector<float> texels =
         graph_->download(ref, screen ? std::optional(build_->output()) : std::nullopt);
-    if (graph_->image(ref).format == kScalarValueFormat) // a scalar effect's value as RGB + computed
+    // A scalar effect's value (one half float, SCALAR_SKIPPED where skipped) as RGB + computed.
+    if (graph_->image(ref).format == kScalarValueFormat)
         for (size_t i = 0; i < texels.size(); i += 4) {
             const float value = texels[i];
             const bool skipped = value == kScalarSkipped;

@@ -1,13 +1,14 @@
-// The cache's packed images hold every value the cache writes: a count's byte with its due flag
-// in the top bit (shared.h countCode; cache.h packCount; temporal.glsl), and the reprojection's
-// fixed-point point, texel offset and footprint in two words (shared.h REPROJECTION_*;
-// reprojection.glsl).
+// The frame's packed images hold every value written into them: a cache's count, a byte with its
+// due flag in the top bit (shared.h countCode; cache.h packCount; temporal.glsl), the
+// reprojection's point within its texel, texel offset and footprint in one word (shared.h
+// REPROJECTION_*; reprojection.glsl), and the HDR output's 21-bit floats (shared.h hdrBits).
 #include "cache/cache.h"
 #include "renderer.h"
 #include "scene/camera.h"
 #include "support.h"
 
 #include <cmath>
+#include <cstring>
 
 using namespace ssgi;
 
@@ -52,6 +53,41 @@ TEST(CacheFormats, ACountAndItsDueFlagRoundTripEveryValueTheCacheWrites) {
     EXPECT_FALSE(none.due);
     EXPECT_EQ(packCount({float(CACHE_COUNT_MAX), true}), 255);
     EXPECT_EQ(unpackCount(255).count, float(CACHE_COUNT_MAX));
+}
+
+// A float rounded to nearest, ties to even, at `bits` mantissa bits: within half floats' normal
+// range, at 10 bits, the half float an EXR stores.
+float roundedMantissa(float v, int bits) {
+    uint32_t b = 0;
+    std::memcpy(&b, &v, 4);
+    const int dropped = 23 - bits;
+    const uint32_t lsb = (b >> dropped) & 1u;
+    b = ((b + ((1u << (dropped - 1)) - 1u) + lsb) >> dropped) << dropped;
+    std::memcpy(&v, &b, 4);
+    return v;
+}
+
+// The HDR output's 21-bit floats (shared.h hdrBits): every float to within 1/4096, infinities and
+// NaNs as they are, and rounded to odd, so that halving the stored value (an EXR of an image
+// that fits half floats) gives the float's own nearest half.
+TEST(PackedFormats, TheHdrOutputHoldsEveryFloatAndHalvesAsTheFloatDoes) {
+    uint32_t state = 12345u;
+    auto next = [&state] { return state = state * 1664525u + 1013904223u; };
+    for (int i = 0; i < 200000; ++i) {
+        // Every exponent from 2^-30 to 2^40 and every mantissa, both signs.
+        const float v =
+            std::ldexp(1.0f + float(next() >> 9) / float(1u << 23), int(next() % 71) - 30) *
+            (next() & 1u ? -1.0f : 1.0f);
+        const float back = shader::hdrValue(shader::hdrBits(v));
+        ASSERT_LE(std::abs(back - v), std::abs(v) / 4096.0f) << v;
+        if (std::abs(v) >= 6.2e-5f && std::abs(v) <= 65504.0f)
+            ASSERT_EQ(roundedMantissa(back, 10), roundedMantissa(v, 10)) << v;
+    }
+    for (float v : {0.0f, -0.0f, 1.0f, 65504.0f, std::ldexp(1.0f, 127), -std::ldexp(1.5f, -100)})
+        EXPECT_EQ(shader::hdrValue(shader::hdrBits(v)), v);
+    EXPECT_EQ(shader::hdrValue(shader::hdrBits(INFINITY)), INFINITY);
+    EXPECT_EQ(shader::hdrValue(shader::hdrBits(-INFINITY)), -INFINITY);
+    EXPECT_TRUE(std::isnan(shader::hdrValue(shader::hdrBits(NAN))));
 }
 
 class CacheFormatsTest : public test::VulkanTest {
