@@ -156,6 +156,7 @@ void Renderer::updateUniforms(const Camera& worldCamera) {
     u.viewProjection = u.projection * u.view;
     u.inverseViewProjection = glm::inverse(u.viewProjection);
     u.previousViewProjection = frameIndex_ == 0 ? u.viewProjection : previousViewProjection_;
+    reprojectedInto_ = u.previousViewProjection;
     u.cameraMoved = u.viewProjection != u.previousViewProjection ? 1.0f : 0.0f;
     u.pixelToWorld = pixelToWorld(u.view, u.projection, size);
     u.previousPixelToWorld = frameIndex_ == 0 ? u.pixelToWorld : previousPixelToWorld_;

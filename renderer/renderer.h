@@ -112,6 +112,7 @@ private:
     graph::ImageRef imageNamed(const std::string& name) const;
     const EffectCache* metaOf(const std::string& name) const;
     std::vector<float> readRsmVpls(graph::ImageRef ref);     // readImage's decoding of "rsm.vpls"
+    std::vector<float> readHdr(graph::ImageRef ref);         // and of "hdr"
     std::vector<float> readReprojection(graph::ImageRef ref, // and of "reprojection"
                                         std::optional<VkRect2D> area);
     void updateUniforms(const Camera& camera);
@@ -146,6 +147,7 @@ private:
     WorldGridPlacement worldGrid_;      // the world cache's voxel grid, in the GPU's coordinates
     glm::mat4 previousViewProjection_{1.0f};
     glm::mat4 previousPixelToWorld_{1.0f}; // FrameUniforms::pixelToWorld of the last frame
+    glm::mat4 reprojectedInto_{1.0f};      // its previousViewProjection: what its reprojection used
     glm::vec3 lastLightColor_{0.0f};       // its lightColor (the RSM's flux, rsm_vpl.glsl)
     Camera previousCamera_;
     bool cutRequested_ = false;

@@ -58,6 +58,7 @@ std::vector<float> Renderer::readImage(const std::string& name) {
     const graph::ImageRef ref = imageNamed(name);
     if (!ref.valid()) throw InputError("no image named '" + name + "' in the frame");
     if (name == "rsm.vpls") return readRsmVpls(ref);
+    if (name == "hdr") return readHdr(ref);
     // A screen image is read where the output lies in it: its guard band left out.
     const VkExtent2D e = graph_->image(ref).extent;
     const bool screen = e.width == build_->size.width && e.height == build_->size.height;
@@ -65,6 +66,14 @@ std::vector<float> Renderer::readImage(const std::string& name) {
         return readReprojection(ref, screen ? std::optional(build_->output()) : std::nullopt);
     std::vector<float> texels =
         graph_->download(ref, screen ? std::optional(build_->output()) : std::nullopt);
+    // A scalar effect's value (one half float, SCALAR_SKIPPED where skipped) as RGB + computed.
+    if (graph_->image(ref).format == kScalarValueFormat)
+        for (size_t i = 0; i < texels.size(); i += 4) {
+            const float value = texels[i];
+            const bool skipped = value == kScalarSkipped;
+            texels[i] = texels[i + 1] = texels[i + 2] = skipped ? 0.0f : value;
+            texels[i + 3] = skipped ? 0.0f : 1.0f;
+        }
     for (const EffectCache& cache : build_->caches.effects) {
         if (cache.effect.scalar &&
             name == cache.name() + ".history") // RG (value, blur) as RGB + blur
@@ -75,9 +84,9 @@ std::vector<float> Renderer::readImage(const std::string& name) {
             }
         if (name == cache.name() + ".count") // the count, and whether it is due (1) or not (0)
             for (size_t i = 0; i < texels.size(); i += 4) {
-                const float stored = texels[i];
-                texels[i] = std::abs(stored);
-                texels[i + 1] = std::signbit(stored) ? 1.0f : 0.0f;
+                const CountTexel t = unpackCount(uint8_t(std::lround(texels[i] * 255.0f)));
+                texels[i] = t.count;
+                texels[i + 1] = t.due ? 1.0f : 0.0f;
             }
     }
     return texels;
@@ -103,21 +112,53 @@ std::vector<float> Renderer::readRsmVpls(graph::ImageRef ref) {
     return texels;
 }
 
-// The reprojection pass's texels (shared.h REPROJECTION_*): where each pixel's surface lay in
-// last frame's image, in its texels (x, y), the offset of the texel that holds it from the
-// nearest one ((dx + 1) + 3 (dy + 1); -1 where none does) and the bilinear footprint's bits.
-std::vector<float> Renderer::readReprojection(graph::ImageRef ref, std::optional<VkRect2D> area) {
-    const std::vector<uint8_t> bytes = graph_->readTexels(ref, area);
+// The composite's HDR output: three 21-bit floats in two words (shared.h hdrBits,
+// composite.comp packHdr), alpha 1.
+std::vector<float> Renderer::readHdr(graph::ImageRef ref) {
+    const std::vector<uint8_t> bytes = graph_->readTexels(ref);
     std::vector<float> texels(bytes.size() / sizeof(uint32_t) * 2);
-    constexpr uint32_t position = (1u << REPROJECTION_POSITION_BITS) - 1u;
     for (size_t i = 0; i < texels.size(); i += 4) {
         uint32_t t[2];
         std::memcpy(t, &bytes[2 * i], sizeof(t));
-        const bool found = (t[0] >> REPROJECTION_FOUND_BIT) & 1u;
-        texels[i] = float(t[0] & position) / float(REPROJECTION_SUBTEXEL);
-        texels[i + 1] = float(t[1] & position) / float(REPROJECTION_SUBTEXEL);
-        texels[i + 2] = found ? float((t[0] >> REPROJECTION_POSITION_BITS) & 15u) : -1.0f;
-        texels[i + 3] = float((t[1] >> REPROJECTION_POSITION_BITS) & 15u);
+        constexpr uint32_t bits21 = (1u << 21) - 1u;
+        texels[i] = shader::hdrValue(t[0] & bits21);
+        texels[i + 1] = shader::hdrValue(((t[0] >> 21) | (t[1] << 11)) & bits21);
+        texels[i + 2] = shader::hdrValue((t[1] >> 10) & bits21);
+        texels[i + 3] = 1.0f;
+    }
+    return texels;
+}
+
+// The reprojection pass's texels (shared.h REPROJECTION_*): where each pixel's surface lay in
+// last frame's image, in its texels (x, y), the offset of the texel that holds it from the
+// nearest one ((dx + 1) + 3 (dy + 1); -1 where none does) and the bilinear footprint's bits. The
+// whole texels follow from the pixel's world position, as reprojection.glsl unpacks them.
+std::vector<float> Renderer::readReprojection(graph::ImageRef ref, std::optional<VkRect2D> area) {
+    const std::vector<uint8_t> bytes = graph_->readTexels(ref, area);
+    const size_t count = bytes.size() / sizeof(uint32_t);
+    const std::vector<float> position =
+        area ? readImage("gbuffer.position") : std::vector<float>(4 * count, 0.0f);
+    const glm::vec2 size(float(build_->size.width), float(build_->size.height));
+    constexpr uint32_t fractionMask = (1u << REPROJECTION_FRACTION_BITS) - 1u;
+    std::vector<float> texels(4 * count);
+    for (size_t i = 0; i < count; ++i) {
+        uint32_t t = 0;
+        std::memcpy(&t, &bytes[4 * i], sizeof(t));
+        const int offset = int((t >> REPROJECTION_OFFSET_SHIFT) & 15u) - 1;
+        float* out = &texels[4 * i];
+        out[2] = float(offset); // -1: not found
+        out[3] = float((t >> REPROJECTION_FOOTPRINT_SHIFT) & 15u);
+        if (offset < 0) continue;
+        const float* world = &position[4 * i];
+        const glm::vec4 clip = reprojectedInto_ * glm::vec4(world[0], world[1], world[2], 1.0f);
+        const glm::vec2 projected = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * size;
+        const glm::vec2 fraction =
+            glm::vec2(float(t & fractionMask),
+                      float((t >> REPROJECTION_FRACTION_BITS) & fractionMask)) /
+            float(REPROJECTION_SUBTEXEL);
+        const glm::vec2 point = glm::round(projected - fraction) + fraction;
+        out[0] = point.x;
+        out[1] = point.y;
     }
     return texels;
 }

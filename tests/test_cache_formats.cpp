@@ -1,25 +1,29 @@
-// The cache's packed images hold every value the cache writes: a count's half float with its due
-// flag in the sign (cache.h packCount; temporal.glsl), and the reprojection's fixed-point point,
-// texel offset and footprint in two words (shared.h REPROJECTION_*; reprojection.glsl).
+// The frame's packed images hold every value written into them: a cache's count, a byte with its
+// due flag in the top bit (shared.h countCode; cache.h packCount; temporal.glsl), the
+// reprojection's point within its texel, texel offset and footprint in one word (shared.h
+// REPROJECTION_*; reprojection.glsl), and the HDR output's 21-bit floats (shared.h hdrBits).
 #include "cache/cache.h"
 #include "renderer.h"
 #include "scene/camera.h"
 #include "support.h"
 
 #include <cmath>
+#include <cstring>
 
 using namespace ssgi;
 
 namespace {
 
 // Every count the temporal pass stores: 0 (holds nothing), half a sample (a resize), 1, an exact
-// effect's EXACT_BLURRED (1.5), whole counts up to the rotations (the default 36 and a long 1000),
-// and the effective number of samples where the blur budget cut the history's weight,
-// 1 / ((1 - w)^2 / n + w^2), from a sliver of this frame's weight to nearly all of it.
+// effect's EXACT_BLURRED (1.5), whole counts up to the rotations (the default 36 and the most,
+// CACHE_COUNT_MAX), and the effective number of samples where the blur budget cut the history's
+// weight, 1 / ((1 - w)^2 / n + w^2), from a sliver of this frame's weight to nearly all of it.
 std::vector<float> countsTheCacheWrites() {
-    std::vector<float> counts = {0.0f, 0.5f, 1.0f, 1.5f, 2.0f, 35.0f, 36.0f, 1000.0f};
-    for (float n : {1.0f, 2.0f, 35.0f, 36.0f})
-        for (float w : {1e-3f, 0.01f, 0.1f, 0.5f, 0.9f, 0.999f})
+    std::vector<float> counts = {0.0f, 0.5f, 1.5f};
+    for (int n = 1; n <= CACHE_COUNT_MAX; ++n)
+        counts.push_back(float(n));
+    for (float n : {1.0f, 2.0f, 31.0f, 35.0f, 36.0f, float(CACHE_COUNT_MAX)})
+        for (float w : {0.0f, 1e-3f, 0.01f, 0.1f, 0.5f, 0.9f, 0.999f, 1.0f})
             counts.push_back(1.0f / ((1.0f - w) * (1.0f - w) / n + w * w));
     return counts;
 }
@@ -30,16 +34,60 @@ TEST(CacheFormats, ACountAndItsDueFlagRoundTripEveryValueTheCacheWrites) {
             if (due && count < 1.0f) continue; // a due pixel holds one computation or more
             const CountTexel back = unpackCount(packCount({count, due}));
             EXPECT_EQ(back.due, due) << count;
-            // A half float: whole numbers to 2048 exactly, the rest to 11 bits.
-            if (count == std::floor(count) && count <= 2048.0f)
-                EXPECT_EQ(back.count, count) << due;
-            else
-                EXPECT_NEAR(back.count, count, count / 2048.0f) << due;
+            // Half steps to CACHE_COUNT_HALVES, whole ones above: a step is held exactly (a
+            // whole number of samples computed in floats within a thousandth of one too), any
+            // other count rounded down, never by a step or more.
+            const float step = count <= float(CACHE_COUNT_HALVES) ? 0.5f : 1.0f;
+            const float nearest = std::round(count / step) * step;
+            if (std::abs(count - nearest) < 1e-3f)
+                EXPECT_EQ(back.count, nearest) << count << " due " << due;
+            else {
+                EXPECT_LE(back.count, count) << due;
+                EXPECT_GT(back.count, count - step) << due;
+            }
         }
-    // Holding nothing is +0, never due.
-    const CountTexel none = unpackCount(packCount({0.0f, false}));
+    // Holding nothing is code 0, which no due pixel has; the most rotations fit with the flag.
+    EXPECT_EQ(packCount({0.0f, false}), 0);
+    const CountTexel none = unpackCount(0);
     EXPECT_EQ(none.count, 0.0f);
     EXPECT_FALSE(none.due);
+    EXPECT_EQ(packCount({float(CACHE_COUNT_MAX), true}), 255);
+    EXPECT_EQ(unpackCount(255).count, float(CACHE_COUNT_MAX));
+}
+
+// A float rounded to nearest, ties to even, at `bits` mantissa bits: within half floats' normal
+// range, at 10 bits, the half float an EXR stores.
+float roundedMantissa(float v, int bits) {
+    uint32_t b = 0;
+    std::memcpy(&b, &v, 4);
+    const int dropped = 23 - bits;
+    const uint32_t lsb = (b >> dropped) & 1u;
+    b = ((b + ((1u << (dropped - 1)) - 1u) + lsb) >> dropped) << dropped;
+    std::memcpy(&v, &b, 4);
+    return v;
+}
+
+// The HDR output's 21-bit floats (shared.h hdrBits): every float to within 1/4096, infinities and
+// NaNs as they are, and rounded to odd, so that halving the stored value (an EXR of an image
+// that fits half floats) gives the float's own nearest half.
+TEST(PackedFormats, TheHdrOutputHoldsEveryFloatAndHalvesAsTheFloatDoes) {
+    uint32_t state = 12345u;
+    auto next = [&state] { return state = state * 1664525u + 1013904223u; };
+    for (int i = 0; i < 200000; ++i) {
+        // Every exponent from 2^-30 to 2^40 and every mantissa, both signs.
+        const float v =
+            std::ldexp(1.0f + float(next() >> 9) / float(1u << 23), int(next() % 71) - 30) *
+            (next() & 1u ? -1.0f : 1.0f);
+        const float back = shader::hdrValue(shader::hdrBits(v));
+        ASSERT_LE(std::abs(back - v), std::abs(v) / 4096.0f) << v;
+        if (std::abs(v) >= 6.2e-5f && std::abs(v) <= 65504.0f)
+            ASSERT_EQ(roundedMantissa(back, 10), roundedMantissa(v, 10)) << v;
+    }
+    for (float v : {0.0f, -0.0f, 1.0f, 65504.0f, std::ldexp(1.0f, 127), -std::ldexp(1.5f, -100)})
+        EXPECT_EQ(shader::hdrValue(shader::hdrBits(v)), v);
+    EXPECT_EQ(shader::hdrValue(shader::hdrBits(INFINITY)), INFINITY);
+    EXPECT_EQ(shader::hdrValue(shader::hdrBits(-INFINITY)), -INFINITY);
+    EXPECT_TRUE(std::isnan(shader::hdrValue(shader::hdrBits(NAN))));
 }
 
 class CacheFormatsTest : public test::VulkanTest {

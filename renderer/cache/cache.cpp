@@ -2,21 +2,18 @@
 // constants its passes read, and what restarts or carries a history.
 #include "cache/cache.h"
 
-#include <glm/gtc/packing.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 
 namespace ssgi {
 
-uint16_t packCount(CountTexel t) {
-    return glm::packHalf1x16(t.due ? -t.count : t.count);
+uint8_t packCount(CountTexel t) {
+    return uint8_t(shader::countCode(t.count, t.due));
 }
 
-CountTexel unpackCount(uint16_t bits) {
-    const float n = glm::unpackHalf1x16(bits);
-    return {std::abs(n), std::signbit(n)};
+CountTexel unpackCount(uint8_t code) {
+    return {shader::countOfCode(float(code)), shader::dueOfCode(float(code))};
 }
 
 EffectCache* createCache(graph::FrameGraph& graph, CacheSet& caches, const Settings& settings,
@@ -30,9 +27,9 @@ EffectCache* createCache(graph::FrameGraph& graph, CacheSet& caches, const Setti
     c.valueHistory = graph.createHistory(
         name + ".history", effect.scalar ? VK_FORMAT_R16G16_SFLOAT : VK_FORMAT_R16G16B16A16_SFLOAT,
         size, usage);
-    // Counts are whole numbers up to cache_rotations, or a blend's effective number of samples:
-    // a half float holds them to 1/1000 of their value, and its sign whether the pixel is due
-    // (temporal.glsl packCount).
+    // Counts are whole numbers up to cache_rotations, half a sample, or a blend's effective
+    // number of samples: one byte holds them to half a sample, and whether the pixel is due
+    // (shared.h countCode).
     c.countHistory = graph.createHistory(name + ".count", kCountFormat, size, usage);
     // Each effect its own order of tiles, from its name: the same whatever the frame adds
     // before it.
@@ -119,13 +116,10 @@ void carryCaches(graph::FrameGraph& from, const CacheSet& fromCaches, VkExtent2D
             // blur, starts over; the others blend the new frames into the resampled image, the
             // first with two thirds of the weight.
             std::vector<uint8_t> count = last(old.countHistory);
-            for (size_t i = 0; i + 2 <= count.size(); i += 2) {
-                uint16_t n = 0;
-                std::memcpy(&n, &count[i], 2);
+            for (uint8_t& code : count) {
                 // The first frame at the new size computes what its cache lacks: none is due.
-                const CountTexel t = unpackCount(n);
-                n = packCount({std::min(t.count, 0.5f), false});
-                std::memcpy(&count[i], &n, 2);
+                const CountTexel t = unpackCount(code);
+                code = packCount({std::min(t.count, 0.5f), false});
             }
             to.carryHistory(cache.countHistory, fromSize, count);
             carried = true;

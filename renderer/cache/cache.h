@@ -61,16 +61,22 @@ struct EffectCache {
 
 // A cache's count texel: the rotations accumulated at a pixel (0: it holds nothing; a blend's
 // effective number of samples where the blur budget cut the history's weight), and whether the
-// temporal pass asked for it to be computed next frame (reuse while moving). One half float, the
-// count's magnitude with `due` in its sign: a count that is due is at least 1, so no due pixel
-// is -0 (temporal.glsl packCount, unpackCount).
-constexpr VkFormat kCountFormat = VK_FORMAT_R16_SFLOAT;
+// temporal pass asked for it to be computed next frame (reuse while moving). One byte, the
+// count in half steps to CACHE_COUNT_HALVES and whole ones to CACHE_COUNT_MAX with `due` in its
+// top bit (shared.h countCode; temporal.glsl packCount, unpackCount).
+constexpr VkFormat kCountFormat = VK_FORMAT_R8_UNORM;
 struct CountTexel {
     float count = 0.0f;
     bool due = false;
 };
-uint16_t packCount(CountTexel t);
-CountTexel unpackCount(uint16_t bits);
+uint8_t packCount(CountTexel t);
+CountTexel unpackCount(uint8_t code);
+
+// A scalar effect's value of the frame (CachedEffect::scalar): one half float, never negative
+// where computed, kScalarSkipped (temporal.glsl SCALAR_SKIPPED) where the effect skipped the
+// pixel; any other effect's value is RGBA16F, its alpha 0 (SKIPPED) where skipped.
+constexpr VkFormat kScalarValueFormat = VK_FORMAT_R16_SFLOAT;
+constexpr float kScalarSkipped = -1.0f;
 
 // An effect whose value of this frame is made (`value`) and not yet blended into its history:
 // the frame's next temporal pass carries it (temporal_pass.cpp).

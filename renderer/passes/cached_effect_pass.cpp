@@ -47,8 +47,13 @@ void addKeepPass(FrameBuild& build, const EffectCache* cache,
                 vkCmdCopyImage(pc.cmd, from.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, to.image,
                                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
             }
-            for (const graph::ImageRef& image : cleared)
-                vk::clearToZero(pc.cmd, pc.image(image).image);
+            for (const graph::ImageRef& image : cleared) {
+                const vk::Image& cleared = pc.image(image);
+                if (cleared.format == kScalarValueFormat) // SCALAR_SKIPPED
+                    vk::clearTo(pc.cmd, cleared.image, kScalarSkipped);
+                else
+                    vk::clearToZero(pc.cmd, cleared.image); // SKIPPED
+            }
         },
         // Only the first settled frame: after it no pass writes the pair's sides or the cleared
         // images while the frame stays settled (on a GPU, copying and clearing every settled
@@ -68,8 +73,10 @@ graph::ImageRef addCachedComputePass(FrameBuild& build, const GBuffer& gbuffer,
     const std::string& name = desc.effect.name;
     const EffectCache* cache =
         createCache(build.graph, build.caches, build.settings, build.size, desc.effect);
+    // A scalar effect's value is one half float, SCALAR_SKIPPED where skipped (temporal.glsl
+    // effectValue); any other's RGB and whether it was computed.
     const graph::ImageRef raw = build.graph.createImage(
-        name, VK_FORMAT_R16G16B16A16_SFLOAT, build.size,
+        name, desc.effect.scalar ? kScalarValueFormat : VK_FORMAT_R16G16B16A16_SFLOAT, build.size,
         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
     // On settled frames the effect's image reads "skipped" (what the tests and
     // bench/computed_pixels.py count as computed).

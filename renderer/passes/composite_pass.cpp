@@ -16,7 +16,9 @@ CompositeOutputs addCompositePass(FrameBuild& build, const GBufferAndRsm& in,
     const VkImageUsageFlags storage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     CompositeOutputs out;
     const VkExtent2D output = build.output().extent;
-    out.hdr = build.graph.createImage("hdr", VK_FORMAT_R32G32B32A32_SFLOAT, output, storage);
+    // Three 21-bit floats in two words (shared.h HDR_*): a float's range, as the EXR keeps what
+    // half floats cannot hold (image_io.cpp), in half the bytes of RGBA32F.
+    out.hdr = build.graph.createImage("hdr", VK_FORMAT_R32G32_UINT, output, storage);
     out.ldr = build.graph.createImage("ldr", VK_FORMAT_R8G8B8A8_UNORM, output, storage);
     using graph::Use;
     ComputePassDesc pass{"composite", "composite.comp"};

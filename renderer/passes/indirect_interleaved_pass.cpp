@@ -9,8 +9,9 @@
 //           visibility test's light check); the filter also last frame's indirect.history (what
 //           a skipped neighbour holds)
 //   writes: indirect + indirect.directional (each pixel's subset: irradiance / pi, and the L1
-//           sums of its VPLs' light), indirect.filtered_x + .filtered_x_directional (after the
-//           x axis), indirect again (after the y axis: the result; the y pass binds
+//           sums of its VPLs' light), indirect.filtered_x (with the cache, this frame's side of
+//           indirect.history, which the temporal pass overwrites) + .filtered_x_directional
+//           (after the x axis), indirect again (after the y axis: the result; the y pass binds
 //           indirect.directional, unused by then, as its directional target and writes none)
 #include "passes/passes.h"
 
@@ -27,10 +28,14 @@ graph::ImageRef addInterleavedIndirectPasses(FrameBuild& build, const GBufferAnd
         return build.graph.createImage(name, VK_FORMAT_R16G16B16A16_SFLOAT, build.size, usage);
     };
     // Four full-resolution images: the subsets' estimates go into `indirect`, which the y axis
-    // overwrites with the result once the x axis has read them (`result` below).
+    // overwrites with the result once the x axis has read them (`result` below). With the cache,
+    // the x axis's estimates go into the side of the history pair that the frame's temporal pass
+    // writes: nothing reads that side before then (the filter reads last frame's, the other), so
+    // it serves as working memory and the four are never alive together in the shared block.
     const graph::ImageRef subsets = image("indirect");
     const graph::ImageRef subsetsDirectional = image("indirect.directional");
-    const graph::ImageRef across = image("indirect.filtered_x");
+    const graph::ImageRef across =
+        cache ? graph::FrameGraph::current(cache->valueHistory) : image("indirect.filtered_x");
     const graph::ImageRef acrossDirectional = image("indirect.filtered_x_directional");
     // k^2 subsets of at least one VPL each: k at most the square root of the VPL count.
     const int vpls = int(build.settings.indirect_vpls);

@@ -3,7 +3,7 @@
 // a settled frame, which computes no effect: the image is persistent and keeps what it held. Before
 // the G-buffer has a history, nothing is found anywhere.
 //   reads:  gbuffer.view_depth, gbuffer.normal, last frame's gbuffer.view_depth
-//   writes: reprojection (RG32UI: reprojection.glsl packReprojection)
+//   writes: reprojection (R32UI: reprojection.glsl packReprojection)
 // Without the cache the image is a texel that nothing writes: what the effects' passes bind in
 // its place (an unsigned image, as their shaders declare), which they never read.
 #include "passes/passes.h"
@@ -13,7 +13,7 @@ namespace ssgi {
 void addReprojectionPass(FrameBuild& build, const GBuffer& gbuffer) {
     const bool cached = build.settings.cache;
     const graph::ImageRef image = build.graph.createImage(
-        "reprojection", VK_FORMAT_R32G32_UINT, cached ? build.size : VkExtent2D{1, 1},
+        "reprojection", VK_FORMAT_R32_UINT, cached ? build.size : VkExtent2D{1, 1},
         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, /*persistent=*/true);
     build.caches.reprojection = image;
     if (!cached) return;

@@ -3,6 +3,7 @@
 #include "scene/settings.h"
 
 #include "scene/scene.h"
+#include "shared.h" // CACHE_COUNT_MAX: the most rotations a count holds
 
 #include <cmath>
 #include <cstdio>

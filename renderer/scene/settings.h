@@ -139,7 +139,7 @@ namespace ssgi {
     X(cache_screen_edge, bool, true, 0, 1, "Temporal cache",                                       \
       "where the camera moves the screen's edges across the AO's radius, its history starts over " \
       "(what it saw beyond the edge is not what this view sees)")                                  \
-    X(cache_rotations, int, 36, 1, 1e6, "Temporal cache",                                          \
+    X(cache_rotations, int, 36, 1, CACHE_COUNT_MAX, "Temporal cache",                              \
       "pattern rotations until a pixel is converged")                                              \
     X(cache_rotation_deg, double, 10.0, -360, 360, "Temporal cache",                               \
       "turn of every sampling pattern a frame")                                                    \

@@ -77,6 +77,7 @@ uint32_t formatTexelSize(VkFormat format) {
     case VK_FORMAT_D16_UNORM:
         return 2;
     case VK_FORMAT_R8_UINT:
+    case VK_FORMAT_R8_UNORM:
         return 1;
     case VK_FORMAT_R16G16B16A16_SFLOAT:
     case VK_FORMAT_R32G32_UINT:
@@ -171,9 +172,13 @@ void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
 }
 
 void clearToZero(VkCommandBuffer cmd, VkImage image) {
-    const VkClearColorValue zero{};
+    clearTo(cmd, image, 0.0f);
+}
+
+void clearTo(VkCommandBuffer cmd, VkImage image, float value) {
+    const VkClearColorValue colour{{value, value, value, value}};
     const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    vkCmdClearColorImage(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &range);
+    vkCmdClearColorImage(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &colour, 1, &range);
 }
 
 void bufferBarrier(VkCommandBuffer cmd, VkBuffer buffer, VkPipelineStageFlags2 srcStages,

@@ -60,6 +60,8 @@ void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
                   VkPipelineStageFlags2 dstStages, VkAccessFlags2 dstAccess);
 // Records the clearing of a colour image, in TRANSFER_DST_OPTIMAL, to zero (every channel).
 void clearToZero(VkCommandBuffer cmd, VkImage image);
+// Every channel of a colour image (in TRANSFER_DST_OPTIMAL) set to `value`.
+void clearTo(VkCommandBuffer cmd, VkImage image, float value);
 // Records the dependency of later accesses to a whole buffer on earlier ones.
 void bufferBarrier(VkCommandBuffer cmd, VkBuffer buffer, VkPipelineStageFlags2 srcStages,
                    VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStages,

@@ -39,6 +39,10 @@ std::vector<float> decodeTexels(VkFormat format, const uint8_t* bytes, size_t co
             for (int c = 0; c < 4; ++c)
                 out[c] = bytes[4 * i + c] / 255.0f;
             break;
+        case VK_FORMAT_R8_UNORM:
+            out[0] = bytes[i] / 255.0f;
+            out[3] = 1.0f;
+            break;
         case VK_FORMAT_D16_UNORM: {
             uint16_t d = 0;
             std::memcpy(&d, bytes + 2 * i, 2);

@@ -18,7 +18,7 @@ layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
 layout(set = 0, binding = 3) uniform sampler2D historyViewDepth;
 layout(set = 0, binding = 4) uniform usampler2D reprojection;
 layout(set = 0, binding = 5) uniform sampler2D historyCount;
-layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D aoImage;
+layout(set = 0, binding = 6) uniform writeonly image2D aoImage; // r16f: the AO (r)
 layout(push_constant) uniform AoBlock { AoConstants constants; };
 
 #include "gbuffer_position.glsl"
@@ -42,7 +42,7 @@ void main() {
     }
     vec3 p = position.xyz;
     if (converged(pixel, p, constants.cache)) {
-        imageStore(aoImage, pixel, SKIPPED); // converged: the cache holds the value
+        imageStore(aoImage, pixel, SCALAR_SKIPPED); // converged: the cache holds it
         return;
     }
     vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;

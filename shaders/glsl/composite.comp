@@ -27,7 +27,7 @@ layout(set = 0, binding = 8) uniform sampler2D term0;
 layout(set = 0, binding = 9) uniform sampler2D term1;
 layout(set = 0, binding = 10) uniform sampler2D term2;
 layout(set = 0, binding = 11) uniform sampler2D term3;
-layout(set = 0, binding = 12, rgba32f) uniform writeonly image2D hdrImage;
+layout(set = 0, binding = 12, rg32ui) uniform writeonly uimage2D hdrImage; // packHdr
 layout(set = 0, binding = 13, rgba8) uniform writeonly image2D ldrImage;
 layout(push_constant) uniform CompositeBlock { CompositeConstants constants; };
 
@@ -64,6 +64,12 @@ void occludeSky(int role, vec4 term, inout vec3 sky) {
 }
 void addLight(int role, vec4 term, vec3 albedo, inout vec3 hdr) {
     if (role == TERM_IRRADIANCE) hdr += albedo * term.rgb;
+}
+
+// The HDR output's texel (shared.h hdrBits).
+uvec2 packHdr(vec3 v) {
+    uvec3 b = uvec3(hdrBits(v.r), hdrBits(v.g), hdrBits(v.b));
+    return uvec2(b.r | (b.g << 21), (b.g >> 11) | (b.b << 10));
 }
 
 void main() {
@@ -158,6 +164,6 @@ void main() {
     // Colours are encoded for display; normals, depth and visibilities are data, shown as is.
     bool isData = view == VIEW_NORMAL || view == VIEW_RSM_NORMAL || view == VIEW_DEPTH ||
                   view == VIEW_SHADOW || view == VIEW_PEEL || view == VIEW_CONTACT || termIsData;
-    imageStore(hdrImage, written, vec4(view == VIEW_FINAL ? hdr : value, 1.0));
+    imageStore(hdrImage, written, uvec4(packHdr(view == VIEW_FINAL ? hdr : value), 0u, 0u));
     imageStore(ldrImage, written, vec4(isData ? shown : encodeSrgb(shown), 1.0));
 }

@@ -51,10 +51,10 @@ float directionalAt(vec4 sums, vec3 m) {
 // frames, at the texel the reprojection pass found for it (reused while the camera moves, most
 // pixels around a computed one are skipped, and a filter over the computed ones alone would
 // average a few subsets, which differ by block: the error shows the blocks). Not found: none.
-bool skippedEstimate(ivec2 q, out vec3 estimate) {
+bool skippedEstimate(ivec2 q, vec3 world, out vec3 estimate) {
     estimate = vec3(0.0);
     if (constants.cache.historyValid == 0) return false;
-    SurfaceReprojection s = unpackReprojection(texelFetch(reprojection, q, 0).xy);
+    SurfaceReprojection s = unpackReprojection(texelFetch(reprojection, q, 0).x, world);
     if (!s.found || texelFetch(historyCount, s.texel, 0).r == 0.0) return false;
     estimate = texelFetch(historyValue, s.texel, 0).rgb;
     return true;
@@ -79,8 +79,9 @@ bool surfaceNeighbour(ivec2 q, float distance, vec3 p, vec3 n, float footprint,
     vec4 estimate = texelFetch(estimates, q, 0);
     // Skipped, or background (stored alike; its reprojection finds nothing).
     s.skipped = wasSkipped(estimate);
-    if (s.skipped && !skippedEstimate(q, estimate.rgb)) return false;
-    vec3 delta = gbufferPosition(q).xyz - p;
+    vec3 world = gbufferPosition(q).xyz;
+    if (s.skipped && !skippedEstimate(q, world, estimate.rgb)) return false;
+    vec3 delta = world - p;
     if (abs(dot(n, delta)) > 1.5 * footprint * max(1.0, distance)) return false;
     vec3 nq = texelFetch(gbufferNormal, q, 0).xyz;
     if (dot(n, nq) < 0.5) return false; // another face

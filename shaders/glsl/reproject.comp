@@ -12,7 +12,7 @@ layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; }
 layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
 layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
 layout(set = 0, binding = 3) uniform sampler2D historyViewDepth;
-layout(set = 0, binding = 4, rg32ui) uniform writeonly uimage2D reprojectionImage;
+layout(set = 0, binding = 4, r32ui) uniform writeonly uimage2D reprojectionImage;
 layout(push_constant) uniform ReprojectionBlock { ReprojectionConstants constants; };
 
 #include "gbuffer_position.glsl"
@@ -28,5 +28,5 @@ void main() {
     if (position.w != 0.0 && constants.historyValid != 0)
         s = reprojectSurface(position.xyz, texelFetch(gbufferNormal, pixel, 0).xyz,
                              constants.epsilon, constants.thinGeometry != 0);
-    imageStore(reprojectionImage, pixel, uvec4(packReprojection(s), 0u, 0u));
+    imageStore(reprojectionImage, pixel, uvec4(packReprojection(s), 0u, 0u, 0u));
 }

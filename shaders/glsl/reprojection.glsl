@@ -71,39 +71,49 @@ SurfaceReprojection reprojectSurface(vec3 world, vec3 normal, float epsilonPixel
     return s;
 }
 
-// The reprojection pass's image packs a SurfaceReprojection per pixel in two 32-bit words
-// (RG32UI; the layout is shared.h's REPROJECTION_*): the point in fixed point, with a history up
-// to 2^26 / REPROJECTION_SUBTEXEL = 16384 texels a side: within half a 4096th of a texel of
-// the float point (a whole 4096th where that would cross into the next texel), so that a still
-// camera's point, a float within rounding of its texel's centre, is the centre exactly. Nothing
-// found is (0, 0).
-const uint REPROJECTION_POSITION_MASK = (1u << REPROJECTION_POSITION_BITS) - 1u;
-uvec2 packReprojection(SurfaceReprojection s) {
-    if (!s.found) return uvec2(0u);
+// The reprojection pass's image packs a SurfaceReprojection per pixel in one 32-bit word (R32UI;
+// the layout is shared.h's REPROJECTION_*): the point's place within its texel in fixed point,
+// within half a 4096th of a texel of the float point (a whole 4096th where that would cross into
+// the next texel), so that a still camera's point, a float within rounding of its texel's centre,
+// is the centre exactly; the offset of the texel that holds the surface, and the footprint.
+// Which texel the point lies in is not stored: whoever unpacks it projects the pixel's world
+// position as reprojectSurface did, which lands within float rounding (far below half a texel)
+// of the stored point, so the whole texels are those that put the stored fraction nearest to it.
+// Nothing found is 0 (its offset code is 1 to 9).
+const uint REPROJECTION_FRACTION_MASK = (1u << REPROJECTION_FRACTION_BITS) - 1u;
+uint packReprojection(SurfaceReprojection s) {
+    if (!s.found) return 0u;
     ivec2 size = textureSize(historyViewDepth, 0);
-    ivec2 offset = s.texel - ivec2(s.uv * vec2(size)) + 1;
+    ivec2 lies = ivec2(s.uv * vec2(size)); // the texel the point lies in
+    ivec2 offset = s.texel - lies + 1;
     vec2 point = s.uv * vec2(size) * float(REPROJECTION_SUBTEXEL);
     uvec2 position = uvec2(round(point));
     // Rounded to the nearest step, unless that takes it into the next texel: the offset counts
     // from the texel the point lies in.
-    bvec2 crossed = notEqual(position / uint(REPROJECTION_SUBTEXEL), uvec2(s.uv * vec2(size)));
+    bvec2 crossed = notEqual(position / uint(REPROJECTION_SUBTEXEL), uvec2(lies));
     position = mix(position, uvec2(floor(point)), crossed);
-    position = min(position, uvec2(REPROJECTION_POSITION_MASK));
-    uint x = position.x | (uint(offset.x + 3 * offset.y) << REPROJECTION_POSITION_BITS) |
-             (1u << REPROJECTION_FOUND_BIT);
-    uint y = position.y | (uint(s.footprint) << REPROJECTION_POSITION_BITS);
-    return uvec2(x, y);
+    uvec2 fraction = position & uvec2(REPROJECTION_FRACTION_MASK);
+    return fraction.x | (fraction.y << REPROJECTION_FRACTION_BITS) |
+           (uint(offset.x + 3 * offset.y + 1) << REPROJECTION_OFFSET_SHIFT) |
+           (uint(s.footprint) << REPROJECTION_FOOTPRINT_SHIFT);
 }
-SurfaceReprojection unpackReprojection(uvec2 packed) {
+// `world`: the pixel's world position (gbufferPosition), from which the texel was found.
+SurfaceReprojection unpackReprojection(uint packed, vec3 world) {
     SurfaceReprojection s = SurfaceReprojection(false, vec2(0.0), ivec2(0), 0);
-    if ((packed.x & (1u << REPROJECTION_FOUND_BIT)) == 0u) return s;
+    int offset = int((packed >> REPROJECTION_OFFSET_SHIFT) & 15u) - 1;
+    if (offset < 0) return s;
     vec2 size = vec2(textureSize(historyViewDepth, 0));
-    vec2 texels = vec2(packed & uvec2(REPROJECTION_POSITION_MASK)) / float(REPROJECTION_SUBTEXEL);
+    vec4 clip = frame.previousViewProjection * vec4(world, 1.0);
+    vec2 projected = (clip.xy / clip.w * 0.5 + 0.5) * size;
+    vec2 fraction = vec2(packed & REPROJECTION_FRACTION_MASK,
+                         (packed >> REPROJECTION_FRACTION_BITS) & REPROJECTION_FRACTION_MASK) /
+                    float(REPROJECTION_SUBTEXEL);
+    vec2 whole = round(projected - fraction);
+    vec2 texels = whole + fraction;
     s.found = true;
     s.uv = texels / size;
-    s.footprint = int((packed.y >> REPROJECTION_POSITION_BITS) & 15u);
-    int offset = int((packed.x >> REPROJECTION_POSITION_BITS) & 15u);
-    s.texel = ivec2(texels) + ivec2(offset % 3, offset / 3) - 1;
+    s.footprint = int((packed >> REPROJECTION_FOOTPRINT_SHIFT) & 15u);
+    s.texel = ivec2(whole) + ivec2(offset % 3, offset / 3) - 1;
     return s;
 }
 

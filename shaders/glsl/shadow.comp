@@ -26,7 +26,7 @@ layout(set = 0, binding = 4) uniform sampler2D shadowMapBack;
 layout(set = 0, binding = 5) uniform sampler2D historyViewDepth;
 layout(set = 0, binding = 6) uniform usampler2D reprojection;
 layout(set = 0, binding = 7) uniform sampler2D historyCount;
-layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D shadowImage;
+layout(set = 0, binding = 8) uniform writeonly image2D shadowImage; // r16f: the shadow (r)
 layout(push_constant) uniform ShadowBlock { ShadowConstants constants; };
 
 #include "gbuffer_position.glsl"
@@ -177,7 +177,7 @@ void main() {
         return;
     }
     if (converged(pixel, position.xyz, constants.cache)) {
-        imageStore(shadowImage, pixel, SKIPPED); // converged: the cache holds the value
+        imageStore(shadowImage, pixel, SCALAR_SKIPPED); // converged: the cache holds it
         return;
     }
     vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;

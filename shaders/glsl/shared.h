@@ -14,7 +14,10 @@ using vec3 = glm::vec3;
 using vec4 = glm::vec4;
 using mat4 = glm::mat4;
 using ivec4 = glm::ivec4;
+using uint = glm::uint;
 using glm::clamp;
+using glm::floatBitsToUint;
+using glm::uintBitsToFloat;
 using glm::length;
 using glm::max;
 using glm::mix;
@@ -132,14 +135,59 @@ SSGI_INLINE int interleavedFilterReach(int radius, int interleave) {
     return max(radius, interleave / 2);
 }
 
-// The reprojection pass's image (RG32UI; reprojection.glsl packReprojection): each word holds,
-// in its bits 0 to REPROJECTION_POSITION_BITS - 1, where the surface lay in last frame's image
-// along one axis, in history texels times REPROJECTION_SUBTEXEL (rounded down); above them, x
-// holds the texel's offset from the nearest one ((dx + 1) + 3 (dy + 1)) and y the bilinear
-// footprint, 4 bits each, and bit REPROJECTION_FOUND_BIT of x whether a texel holds the surface.
+// The reprojection pass's image (R32UI; reprojection.glsl packReprojection): one word holds, in
+// its bits 0 to 11 and 12 to 23, where the surface lay in last frame's image within its texel
+// along x and y, in REPROJECTION_SUBTEXELs of a texel; in bits 24 to 27 the offset of the texel
+// that holds the surface from the one the point lies in, (dx + 1) + 3 (dy + 1) + 1, or 0 where
+// none does; in bits 28 to 31 the bilinear footprint. The whole texels follow from the pixel's
+// world position (reprojection.glsl unpackReprojection).
 #define REPROJECTION_SUBTEXEL 4096
-#define REPROJECTION_POSITION_BITS 26
-#define REPROJECTION_FOUND_BIT 30
+#define REPROJECTION_FRACTION_BITS 12
+#define REPROJECTION_OFFSET_SHIFT 24
+#define REPROJECTION_FOOTPRINT_SHIFT 28
+
+// A cache's count texel (R8_UNORM, one byte; cache.h kCountFormat): the rotations accumulated
+// at a pixel (0: it holds nothing) in its low 7 bits, as half steps up to CACHE_COUNT_HALVES and
+// whole ones above, to CACHE_COUNT_MAX (cache_rotations' largest value), and in bit 7 whether
+// the temporal pass asked for it to be computed next frame (reuse while moving). A count between
+// steps (a blend's effective number of samples where the blur budget cut the history's weight) is
+// rounded down, so that a pixel never counts more samples than its blend holds; the counts the
+// cache writes as such (0, a resize's half sample, whole counts, an exact effect's 1.5) are steps.
+// A due pixel holds one computation or more, so code 0 always means "nothing".
+#define CACHE_COUNT_HALVES 32
+#define CACHE_COUNT_MAX 95
+#define CACHE_COUNT_DUE 128
+SSGI_INLINE float countCode(float count, bool due) {
+    float c = count < float(CACHE_COUNT_MAX) ? count : float(CACHE_COUNT_MAX);
+    // The 1/1000 absorbs float rounding of a blend that is a whole number of samples.
+    float steps = c <= float(CACHE_COUNT_HALVES) ? floor(2.0f * c + 1e-3f)
+                                                 : float(CACHE_COUNT_HALVES) + floor(c + 1e-3f);
+    return steps + (due ? float(CACHE_COUNT_DUE) : 0.0f);
+}
+SSGI_INLINE float countOfCode(float code) {
+    float steps = code >= float(CACHE_COUNT_DUE) ? code - float(CACHE_COUNT_DUE) : code;
+    return steps <= float(2 * CACHE_COUNT_HALVES) ? 0.5f * steps
+                                                  : steps - float(CACHE_COUNT_HALVES);
+}
+SSGI_INLINE bool dueOfCode(float code) {
+    return code >= float(CACHE_COUNT_DUE);
+}
+
+// The composite's HDR output (`hdr`, RG32UI): R, G and B as 21-bit floats, a float's sign,
+// exponent and 12 of its 23 mantissa bits, R in x's bits 0-20, G in x's bits 21-31 and y's 0-9,
+// B in y's 10-30: a float's range (an EXR keeps what half floats cannot hold), infinities and
+// NaNs included, to within 1/4096 of the value. Rounded to odd (the last kept bit set where any
+// dropped one is), so that the half float the EXR stores where the image fits one (image_io.cpp)
+// is the float's own nearest half, as if nothing had been dropped on the way.
+#define HDR_DROPPED_BITS 11
+SSGI_INLINE uint hdrBits(float v) {
+    uint bits = floatBitsToUint(v);
+    uint dropped = bits & ((1u << HDR_DROPPED_BITS) - 1u);
+    return (bits >> HDR_DROPPED_BITS) | (dropped != 0u ? 1u : 0u);
+}
+SSGI_INLINE float hdrValue(uint bits21) {
+    return uintBitsToFloat(bits21 << HDR_DROPPED_BITS);
+}
 
 // CacheConstants.refreshTileCorner packs a pixel's x and y into one int (screens are narrower).
 #define REFRESH_TILE_ROW 65536

@@ -59,7 +59,7 @@ layout(set = 0, binding = 3) uniform usampler2D reprojection;
     layout(set = 0, binding = first + 1) uniform sampler2D historyValue##k;                       \
     layout(set = 0, binding = first + 2) uniform sampler2D historyCount##k;                       \
     layout(set = 0, binding = first + 3) uniform writeonly image2D newValue##k;                   \
-    layout(set = 0, binding = first + 4, r16f) uniform writeonly image2D newCount##k;
+    layout(set = 0, binding = first + 4) uniform writeonly image2D newCount##k;
 EFFECT_SLOT(0, 4)
 EFFECT_SLOT(1, 9)
 EFFECT_SLOT(2, 14)
@@ -124,7 +124,7 @@ vec4 historyAt(CacheConstants cache, bool scalar, sampler2D historyValue, sample
         ivec2 offset = ivec2(i & 1, i >> 1);
         ivec2 q = clamp(base + offset, ivec2(0), last);
         if ((r.footprint & (1 << i)) == 0 || texelFetch(historyCount, q, 0).r == 0.0)
-            continue; // -0 is never stored (packCount)
+            continue; // 0: holds nothing (packCount)
         float w = (offset.x == 1 ? f.x : 1.0 - f.x) * (offset.y == 1 ? f.y : 1.0 - f.y);
         vec2 d = (vec2(offset) - f) * toPixels;
         vec4 v = historyTexel(historyValue, scalar, q, carried);
@@ -169,7 +169,7 @@ struct Carried {
 // reprojection pass found at `s` (world position `world`), by the effect's constants `cache`.
 Carried carry(CacheConstants cache, bool scalar, sampler2D current, sampler2D historyValue,
               sampler2D historyCount, ivec2 pixel, vec3 world, SurfaceReprojection s) {
-    vec4 now = texelFetch(current, pixel, 0);
+    vec4 now = effectValue(current, scalar, pixel);
     float stored = s.found ? texelFetch(historyCount, s.texel, 0).r : 0.0;
     Reprojection r = reprojectInto(s, stored, world, cache);
     float spread = 0.0;
@@ -245,7 +245,7 @@ Carried carry(CacheConstants cache, bool scalar, sampler2D current, sampler2D hi
                     for (int x = -1; x <= 1; ++x) {
                         ivec2 q = clamp(pixel + 2 * ivec2(x, y), ivec2(0),
                                         ivec2(frame.viewport.xy) - 1);
-                        vec4 neighbour = texelFetch(current, q, 0);
+                        vec4 neighbour = effectValue(current, scalar, q);
                         if (neighbour.a < 0.5) continue;
                         sum += neighbour.rgb;
                         sumSquares += neighbour.rgb * neighbour.rgb;
@@ -327,7 +327,7 @@ void main() {
     // Nothing drawn here: each effect's value as it is, holding nothing.
     bool background = position.w == 0.0;
     SurfaceReprojection s = SurfaceReprojection(false, vec2(0.0), ivec2(0), 0);
-    if (!background) s = unpackReprojection(texelFetch(reprojection, pixel, 0).xy);
+    if (!background) s = unpackReprojection(texelFetch(reprojection, pixel, 0).x, position.xyz);
 #define CARRY_SLOT(k)                                                                             \
     if (EFFECTS > k) {                                                                            \
         bool scalar = (SCALAR_HISTORIES & (1 << k)) != 0;                                         \

@@ -17,23 +17,32 @@ const vec4 SKIPPED = vec4(0.0);
 bool wasSkipped(vec4 value) {
     return value.a < 0.5;
 }
+// A scalar effect's value of the frame (the shadow, the AO: CachedEffect::scalar) is one half
+// float (R16F), never negative where computed; a pixel it skips holds SCALAR_SKIPPED.
+const vec4 SCALAR_SKIPPED = vec4(-1.0);
+// An effect's value of the frame as value (rgb) and whether it was computed (alpha: 1, or 0 for
+// SKIPPED), whichever layout holds it.
+vec4 effectValue(sampler2D image, bool scalar, ivec2 pixel) {
+    vec4 t = texelFetch(image, pixel, 0);
+    return !scalar ? t : t.r < 0.0 ? SKIPPED : vec4(t.rrr, 1.0);
+}
 
 // An exact effect (CachedEffect::exact: computed without noise) converges in one rotation.
 bool exactEffect(CacheConstants cache) {
     return cache.rotations <= 1;
 }
 
-// A cache's count texel (R16F, EffectCache::countHistory, cache.h CountTexel): the rotations
-// accumulated (0: the pixel holds nothing), negative where the pixel is due. A due pixel's count
-// is at least 1, so -0 never stands for "due, holds nothing".
+// A cache's count texel (R8_UNORM, EffectCache::countHistory; shared.h countCode): the rotations
+// accumulated (0: the pixel holds nothing), and whether the pixel is due. Sampled, the byte reads
+// as code / 255, which is 0 only where the pixel holds nothing.
 float packCount(float count, bool due) {
-    return due ? -count : count;
+    return countCode(count, due) / 255.0;
 }
 float unpackCount(float stored) {
-    return abs(stored);
+    return countOfCode(round(stored * 255.0));
 }
 bool unpackDue(float stored) {
-    return stored < 0.0;
+    return dueOfCode(round(stored * 255.0));
 }
 
 struct Reprojection {
@@ -131,7 +140,7 @@ Reprojection reprojectInto(SurfaceReprojection s, float stored, vec3 world, Cach
 // An effect's pass, which binds its own counts as `historyCount`: its reprojection of `pixel`.
 Reprojection reproject(ivec2 pixel, vec3 world, CacheConstants cache) {
     if (cache.historyValid == 0) return Reprojection(false, vec2(0.0), ivec2(0), 0.0, 0, false);
-    SurfaceReprojection s = unpackReprojection(texelFetch(reprojection, pixel, 0).xy);
+    SurfaceReprojection s = unpackReprojection(texelFetch(reprojection, pixel, 0).x, world);
     float stored = s.found ? texelFetch(historyCount, s.texel, 0).r : 0.0;
     return reprojectInto(s, stored, world, cache);
 }
