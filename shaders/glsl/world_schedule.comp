@@ -3,9 +3,10 @@
 // world.schedule (indirect_method 3): one invocation per entry of the world cache
 // (world_cache.glsl), which decides what the cell does this frame. A cell made this frame first
 // takes its point and normal from the G-buffer at the pixel its pixels chose (world.owner). A cell no pixel used for
-// table.z frames is evicted. A moved light restarts every cell; a moved object restarts the
-// cells within a cell of its box (old and new place) and shortens every other cell's memory to a
-// quarter of world_frames, since the VPLs it gathers from all changed a little. Then a cell is
+// table.z frames is evicted. A moved light or object restarts every cell: the RSM is drawn
+// again, and every cell's VPLs and their visibility may have changed (keeping the cells away
+// from a moved object, with their memory shortened, left the first frames after the move well
+// above a fresh start's error, docs/stability.md). Then a cell is
 // listed for world.gather (world_gather.comp) with the frames' worth of VPLs it gathers:
 // - a new or restarted cell at once, uncached world_frames, cached WORLD_NEW_CELL_FRAMES;
 // - an older cell with fewer than world_frames frames of samples, one, while the frame's
@@ -35,14 +36,6 @@ layout(push_constant) uniform WorldBlock { WorldConstants constants; };
 #include "gbuffer_position.glsl"
 #include "world_cache.glsl"
 
-
-bool nearMovedBox(vec3 p, float reach) {
-    for (int i = 0; i < int(frame.motion.x); ++i) {
-        vec3 lo = frame.movedBoxes[2 * i].xyz - reach, hi = frame.movedBoxes[2 * i + 1].xyz + reach;
-        if (all(greaterThanEqual(p, lo)) && all(lessThanEqual(p, hi))) return true;
-    }
-    return false;
-}
 
 void main() {
     ivec2 entry = ivec2(gl_GlobalInvocationID.xy);
@@ -74,12 +67,7 @@ void main() {
     vec4 cell = imageLoad(worldIrradiance, entry);
     float frames = constants.cells.z;
     float count = cell.a;
-    if (constants.change.y > 0.0) count = 0.0;
-    if (constants.change.z > 0.0) {
-        vec3 p = imageLoad(worldPoints, entry).xyz;
-        float side = worldCellSide(worldLevel(distance(p, frame.cameraPosition.xyz)));
-        count = nearMovedBox(p, side) ? 0.0 : min(count, max(1.0, floor(frames / 4.0)));
-    }
+    if (constants.change.y > 0.0 || constants.change.z > 0.0) count = 0.0;
     if (count != cell.a) imageStore(worldIrradiance, entry, vec4(cell.rgb, count));
     float gathered;
     if (count == 0.0) {
