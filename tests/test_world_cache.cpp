@@ -77,6 +77,21 @@ TEST_F(WorldCacheTest, AFullCellKeepsItsValueWhileTheCameraMoves) {
     EXPECT_GT(counts->live, 0u);
 }
 
+// Every live cell of `after` holds a new cell's first gather alone, and a value other than
+// `before`'s: the table restarted. Returns the live cells.
+int expectEveryCellRestarted(const Cells& before, const Cells& after) {
+    int live = 0, changed = 0;
+    for (size_t i = 0; i < after.keys.size(); ++i) {
+        if (!after.live(i)) continue;
+        ++live;
+        EXPECT_EQ(after.irradiance[i].a, kNewCellFrames) << "entry " << i;
+        if (after.irradiance[i] != before.irradiance[i]) ++changed;
+    }
+    EXPECT_GT(live, 100);
+    EXPECT_EQ(changed, live);
+    return live;
+}
+
 // A moved light restarts every cell: the next frame each holds a new cell's first gather alone.
 TEST_F(WorldCacheTest, AMovedLightRestartsEveryCell) {
     Renderer renderer(test::context(), scene, {kSize, kSize, "final"});
@@ -88,23 +103,18 @@ TEST_F(WorldCacheTest, AMovedLightRestartsEveryCell) {
     renderer.setLight(light);
     renderer.renderFrame(scene.camera);
     const Cells after = readCells(renderer);
-    int live = 0, changed = 0;
-    for (size_t i = 0; i < after.keys.size(); ++i) {
-        if (!after.live(i)) continue;
-        ++live;
-        EXPECT_EQ(after.irradiance[i].a, kNewCellFrames) << "entry " << i;
-        if (after.irradiance[i] != before.irradiance[i]) ++changed;
-    }
-    EXPECT_GT(live, 100);
-    EXPECT_EQ(changed, live);
+    const int live = expectEveryCellRestarted(before, after);
     const auto counts = renderer.worldCacheCounts();
     ASSERT_TRUE(counts.has_value());
     EXPECT_EQ(counts->filled, uint32_t(live));
     // A still frame after it refreshes without restarting.
     renderer.renderFrame(scene.camera);
     const Cells still = readCells(renderer);
-    for (size_t i = 0; i < still.keys.size(); ++i)
-        if (still.live(i)) EXPECT_GT(still.irradiance[i].a, kNewCellFrames);
+    for (size_t i = 0; i < still.keys.size(); ++i) {
+        if (still.live(i)) {
+            EXPECT_GT(still.irradiance[i].a, kNewCellFrames);
+        }
+    }
 }
 
 // A moved object restarts every cell, as a moved light does: each holds a new cell's first
@@ -120,15 +130,7 @@ TEST_F(WorldCacheTest, AMovedObjectRestartsEveryCell) {
     renderer.setTime(1.0f);
     renderer.renderFrame(moving.camera);
     const Cells after = readCells(renderer);
-    int live = 0, changed = 0;
-    for (size_t i = 0; i < after.keys.size(); ++i) {
-        if (!after.live(i)) continue;
-        ++live;
-        EXPECT_EQ(after.irradiance[i].a, kNewCellFrames) << "entry " << i;
-        if (after.irradiance[i] != before.irradiance[i]) ++changed;
-    }
-    EXPECT_GT(live, 100);
-    EXPECT_EQ(changed, live);
+    expectEveryCellRestarted(before, after);
 }
 
 // With a table of 8192 entries for about two thousand cells, some two hundred keys share home
