@@ -109,10 +109,10 @@ namespace ssgi {
       "(light_depth_min) may tell it open: the step's stretch seen open above the VPL's surface")  \
     X(indirect_half_res, bool, true, 0, 1, "Indirect light",                                       \
       "method 0: gather at half resolution and upsample (1), or every pixel at full (0)")          \
-    X(world_voxels, int, 128, 8, 512, "World cache",                                               \
+    X(world_voxels, int, 256, 8, 512, "World cache",                                               \
       "method 3: voxels along the scene's longest side in the occupancy grid its visibility "      \
       "test walks")                                                                                \
-    X(world_cell_angle, double, 0.02, 1e-4, 1, "World cache",                                      \
+    X(world_cell_angle, double, 0.03, 1e-4, 1, "World cache",                                      \
       "method 3: the angle a cell spans from the camera (radians): a cell at distance d is the "   \
       "power of two nearest below d x this wide")                                                  \
     X(world_vpls, int, 48, 2, 1024, "World cache",                                                 \
@@ -120,9 +120,11 @@ namespace ssgi {
       "half next to it)")                                                                          \
     X(world_frames, int, 16, 1, 512, "World cache",                                                \
       "method 3: frames of world_vpls a cell accumulates before it stops (uncached, all at once)") \
-    X(world_cells_per_frame, int, 2048, 0, 1 << 24, "World cache",                                 \
+    X(world_new_cell_frames, int, 8, 1, 512, "World cache",                                        \
+      "method 3, cached: frames of world_vpls a new cell gathers at once (at most world_frames)")  \
+    X(world_cells_per_frame, int, 1024, 0, 1 << 24, "World cache",                                 \
       "method 3: cells refreshed a frame beyond the new ones (which are always filled)")           \
-    X(world_table_bits, int, 18, 8, 22, "World cache",                                             \
+    X(world_table_bits, int, 17, 8, 22, "World cache",                                             \
       "method 3: the hash table holds 2^bits cells")                                               \
     X(world_lifetime, int, 120, 1, 1 << 24, "World cache",                                         \
       "method 3: frames a cell stays while no pixel uses it")                                      \

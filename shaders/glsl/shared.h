@@ -420,7 +420,8 @@ SSGI_CHECK_SIZE(SkyTriangles, 16 + 3 * 32 * 16);
 // with the visibility of a voxel occupancy grid (world_voxels.glsl), which pixels look up.
 struct WorldConstants {
     // x: the angle a cell spans from the camera (world_cell_angle, radians); y: unused; z: frames
-    // of samples a cell accumulates (world_frames); w: unused
+    // of samples a cell accumulates (world_frames); w: frames of samples a new cell gathers at
+    // once, cached (world_new_cell_frames)
     vec4 cells;
     ivec4 table; // x: the table images' width; y: entries; z: frames unused before eviction; w: 1 cached
     // x: VPLs a cell gathers a frame; y: cells refreshed a frame beyond the new ones; z: the
@@ -433,7 +434,6 @@ struct WorldConstants {
 SSGI_CHECK_SIZE(WorldConstants, 64);
 #define WORLD_BLOCK 4 // voxels a side of the voxel grid's blocks (world_voxels.glsl)
 #define WORLD_DISTANCE_CAP 8u // the farthest distance, in blocks, world.voxel_distance holds
-#define WORLD_NEW_CELL_FRAMES 8 // a new cell's first gather, in frames of samples (cached)
 #define WORLD_VIEW_LIGHT 0 // the bounce, interpolated between cells
 #define WORLD_VIEW_CELLS 1 // each pixel's own cell's value, its edges unblended
 #define WORLD_VIEW_AGE 2   // each pixel's own cell: green its samples' share of world_frames,

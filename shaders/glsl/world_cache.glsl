@@ -17,10 +17,11 @@
 //   world.directions RGBA32F  the mean of its gathers' light as an L1 spherical harmonic of its
 //                             luminance (world_gather.comp), to carry its value to other normals
 //   world.used       R32UI    the last frame a pixel used it (FrameUniforms.patternFrame)
-//   world.owner      R32UI    which pixel gives a new cell its point: WORLD_OWNERLESS, then
-//                             the largest of its pixels' ownerRank (the first pixel in the
-//                             image's order, whichever thread runs first), then WORLD_SETTLED
-//                             once world.schedule has taken the point from it
+//   world.owner      R32UI    which of this frame's pixels may give the cell its point: the
+//                             largest of its pixels' ownerRank (the first pixel in the image's
+//                             order, whichever thread runs first), WORLD_OWNERLESS where no
+//                             pixel used it; world.schedule takes the point from it where the
+//                             cell starts (new or restarted) and empties it for the next frame
 // Needs: constants (WorldConstants), common.glsl.
 #ifndef SSGI_WORLD_CACHE_GLSL
 #define SSGI_WORLD_CACHE_GLSL
@@ -29,7 +30,6 @@ const int WORLD_PROBES = 16;
 const uint WORLD_EMPTY = 0u;
 const uint WORLD_EVICTED = 1u;
 const uint WORLD_OWNERLESS = 0u;
-const uint WORLD_SETTLED = 0xffffffffu;
 // A pixel's claim to give its cell its point: larger for a pixel earlier in the image.
 uint ownerRank(ivec2 pixel, int width) {
     return 0xfffffffeu - uint(pixel.x + pixel.y * width);

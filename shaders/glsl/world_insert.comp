@@ -2,8 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 // world.insert (indirect_method 3): every pixel finds its own cell in the world cache
 // (world_cache.glsl), or makes it in the first empty or evicted entry among its probes, and
-// marks it used this frame; a new cell's pixels vote for the one whose point and normal it will
-// gather at (world.owner; world_schedule.comp takes them). Invocation 0 also clears the next
+// marks it used this frame; a cell's pixels vote for the one whose point and normal it gathers
+// at if it starts this frame (world.owner; world_schedule.comp takes them). Invocation 0 also clears the next
 // frame's row of counters.
 #include "shared.h"
 #include "common.glsl"
@@ -63,10 +63,11 @@ void main() {
     }
     if (found.x >= 0) {
         if (imageLoad(worldUsed, found).r != now) imageStore(worldUsed, found, uvec4(now));
-        // A new cell's point is its first pixel's in the image, whichever thread runs first, so
-        // that the same frame makes the same cells wherever they lie in the table.
-        if (imageLoad(worldOwner, found).r != WORLD_SETTLED)
-            imageAtomicMax(worldOwner, found, ownerRank(pixel, int(frame.viewport.x)));
+        // A starting cell's point is its first pixel's in the image, whichever thread runs
+        // first, so that the same frame makes the same cells wherever they lie in the table.
+        // Every frame votes: a cell restarted after an object moved takes its point anew.
+        uint rank = ownerRank(pixel, int(frame.viewport.x));
+        if (imageLoad(worldOwner, found).r < rank) imageAtomicMax(worldOwner, found, rank);
         return;
     }
     imageAtomicAdd(worldStats, ivec2(WORLD_STAT_FULL, int(now) & 1), 1u);

@@ -1,14 +1,15 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // world.schedule (indirect_method 3): one invocation per entry of the world cache
-// (world_cache.glsl), which decides what the cell does this frame. A cell made this frame first
-// takes its point and normal from the G-buffer at the pixel its pixels chose (world.owner). A cell no pixel used for
-// table.z frames is evicted. A moved light or object restarts every cell: the RSM is drawn
-// again, and every cell's VPLs and their visibility may have changed (keeping the cells away
-// from a moved object, with their memory shortened, left the first frames after the move well
-// above a fresh start's error, docs/stability.md). Then a cell is
+// (world_cache.glsl), which decides what the cell does this frame. A cell no pixel used for
+// table.z frames is evicted. A moved light or object restarts every cell in view and evicts the
+// others: the RSM is drawn again, and every cell's VPLs and their visibility may have changed
+// (keeping the cells away from a moved object, with their memory shortened, left the first
+// frames after the move well above a fresh start's error, docs/stability.md). A cell that
+// starts this frame, made or restarted, takes its point and normal from the G-buffer at the
+// pixel its pixels chose (world.owner). Then a cell is
 // listed for world.gather (world_gather.comp) with the frames' worth of VPLs it gathers:
-// - a new or restarted cell at once, uncached world_frames, cached WORLD_NEW_CELL_FRAMES;
+// - a new or restarted cell at once, uncached world_frames, cached world_new_cell_frames;
 // - an older cell with fewer than world_frames frames of samples, one, while the frame's
 //   refreshes (world_cells_per_frame) last;
 // - a full one not at all: its value stands while the light and the objects stay still.
@@ -49,29 +50,37 @@ void main() {
     if (key == WORLD_EMPTY || key == WORLD_EVICTED) return;
     loadPixelToWorld(); // pixel_to_world.glsl: after the empty entries, most of the table
     int row = int(now) & 1;
-    if (now - texelFetch(worldUsed, entry, 0).r > uint(constants.table.z)) {
+    // A moved light or object restarts every cell; one no pixel uses this frame is evicted
+    // instead (its point may lie where the object was, and a cell out of sight would gather for
+    // nothing): the pixels that come back to it make it anew.
+    bool changed = constants.change.y > 0.0 || constants.change.z > 0.0;
+    uint unused = now - texelFetch(worldUsed, entry, 0).r;
+    if (unused > uint(constants.table.z) || (changed && unused != 0u)) {
         imageStore(worldKeys, entry, uvec4(WORLD_EVICTED)); // a tombstone (world_cache.glsl)
         imageStore(worldOwner, entry, uvec4(WORLD_OWNERLESS));
         imageAtomicAdd(worldStats, ivec2(WORLD_STAT_EVICTED, row), 1u);
         return;
     }
     imageAtomicAdd(worldStats, ivec2(WORLD_STAT_LIVE, row), 1u);
-    // A cell made this frame takes its point and normal from the pixel its pixels chose.
-    uint owner = imageLoad(worldOwner, entry).r;
-    if (owner != WORLD_SETTLED) {
-        ivec2 pixel = ownerPixel(owner, int(frame.viewport.x));
-        imageStore(worldPoints, entry, vec4(gbufferPosition(pixel).xyz,
-                                            packCellNormal(texelFetch(gbufferNormal, pixel, 0).xyz)));
-        imageStore(worldOwner, entry, uvec4(WORLD_SETTLED));
-    }
     vec4 cell = imageLoad(worldIrradiance, entry);
     float frames = constants.cells.z;
-    float count = cell.a;
-    if (constants.change.y > 0.0 || constants.change.z > 0.0) count = 0.0;
+    float count = changed ? 0.0 : cell.a;
     if (count != cell.a) imageStore(worldIrradiance, entry, vec4(cell.rgb, count));
+    // A cell that starts this frame (made, or restarted) takes its point and normal from the
+    // pixel its pixels chose: after an object moved, the old point may lie where it was.
+    uint owner = imageLoad(worldOwner, entry).r;
+    if (owner != WORLD_OWNERLESS) {
+        if (count == 0.0) {
+            ivec2 pixel = ownerPixel(owner, int(frame.viewport.x));
+            imageStore(worldPoints, entry,
+                       vec4(gbufferPosition(pixel).xyz,
+                            packCellNormal(texelFetch(gbufferNormal, pixel, 0).xyz)));
+        }
+        imageStore(worldOwner, entry, uvec4(WORLD_OWNERLESS));
+    }
     float gathered;
     if (count == 0.0) {
-        gathered = constants.table.w != 0 ? min(float(WORLD_NEW_CELL_FRAMES), frames) : frames;
+        gathered = constants.table.w != 0 ? min(constants.cells.w, frames) : frames;
         imageAtomicAdd(worldStats, ivec2(WORLD_STAT_NEW, row), 1u);
     } else if (count < frames &&
                imageAtomicAdd(worldStats, ivec2(WORLD_STAT_BUDGET, row), 1u) <
