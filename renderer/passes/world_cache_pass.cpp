@@ -27,8 +27,9 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
     const uint32_t vplMapSide =
         (build.rsmSize.width + uint32_t(settings.indirect_vpl_cluster) - 1) /
         uint32_t(settings.indirect_vpl_cluster);
-    base.cells = glm::vec4(float(settings.world_cell_angle), 0.0f, float(settings.world_frames),
-                           float(settings.world_new_cell_frames));
+    base.cells =
+        glm::vec4(float(settings.world_cell_angle), settings.world_level_reuse ? 1.0f : 0.0f,
+                  float(settings.world_frames), float(settings.world_new_cell_frames));
     base.table = glm::ivec4(int(table.width), int(table.width * table.height),
                             int(settings.world_lifetime), settings.cache ? 1 : 0);
     const int pool = int(std::max(settings.indirect_flux_pool, settings.indirect_flux_vpls));

@@ -115,6 +115,9 @@ namespace ssgi {
     X(world_cell_angle, double, 0.03, 1e-4, 1, "World cache",                                      \
       "method 3: the angle a cell spans from the camera (radians): a cell at distance d is the "   \
       "power of two nearest below d x this wide")                                                  \
+    X(world_level_reuse, bool, true, 0, 1, "World cache",                                        \
+      "method 3: a pixel whose own cell is absent takes the cell one level coarser or finer at "   \
+      "its point, if an earlier frame gathered it, rather than making its own")                   \
     X(world_vpls, int, 48, 2, 1024, "World cache",                                                 \
       "method 3: VPLs a cell gathers, with their visibility, in a frame's refresh (half by flux, "  \
       "half next to it)")                                                                          \

@@ -419,7 +419,8 @@ SSGI_CHECK_SIZE(SkyTriangles, 16 + 3 * 32 * 16);
 // space (world_cache.glsl), each the bounce gathered at one surface point from the flux's VPLs
 // with the visibility of a voxel occupancy grid (world_voxels.glsl), which pixels look up.
 struct WorldConstants {
-    // x: the angle a cell spans from the camera (world_cell_angle, radians); y: unused; z: frames
+    // x: the angle a cell spans from the camera (world_cell_angle, radians); y: 1 where a pixel
+    // may take the cell one level coarser or finer (world_level_reuse); z: frames
     // of samples a cell accumulates (world_frames); w: frames of samples a new cell gathers at
     // once, cached (world_new_cell_frames)
     vec4 cells;

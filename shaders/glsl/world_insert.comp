@@ -14,7 +14,7 @@ layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; }
 layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
 layout(set = 0, binding = 2) uniform sampler2D gbufferNormal;
 layout(set = 0, binding = 3, r32ui) uniform coherent uimage2D worldKeys;
-layout(set = 0, binding = 4, rgba32f) uniform writeonly image2D worldIrradiance;
+layout(set = 0, binding = 4, rgba32f) uniform image2D worldIrradiance;
 layout(set = 0, binding = 5, r32ui) uniform uimage2D worldOwner;
 layout(set = 0, binding = 6, r32ui) uniform uimage2D worldUsed;
 layout(set = 0, binding = 7, r32ui) uniform coherent uimage2D worldStats;
@@ -23,6 +23,16 @@ layout(push_constant) uniform WorldBlock { WorldConstants constants; };
 
 #include "gbuffer_position.glsl"
 #include "world_cache.glsl"
+
+// The entry holding the key, or (-1, -1): a key lies before the first empty entry.
+ivec2 findCell(WorldKey key) {
+    for (int probe = 0; probe < WORLD_PROBES; ++probe) {
+        uint held = imageLoad(worldKeys, worldEntry(key.home, probe)).r;
+        if (held == key.checksum) return worldEntry(key.home, probe);
+        if (held == WORLD_EMPTY) break;
+    }
+    return ivec2(-1);
+}
 
 void main() {
     loadPixelToWorld(); // pixel_to_world.glsl
@@ -37,13 +47,16 @@ void main() {
     vec3 p = position.xyz;
     vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     int level = worldLevel(distance(p, frame.cameraPosition.xyz));
-    WorldKey key = worldKey(worldCellOf(p, level), level, worldDirection(n));
-    // The key where it already is, before the first empty entry...
-    ivec2 found = ivec2(-1);
-    for (int probe = 0; probe < WORLD_PROBES && found.x < 0; ++probe) {
-        uint held = imageLoad(worldKeys, worldEntry(key.home, probe)).r;
-        if (held == key.checksum) found = worldEntry(key.home, probe);
-        if (held == WORLD_EMPTY) break;
+    int direction = worldDirection(n);
+    WorldKey key = worldKey(worldCellOf(p, level), level, direction);
+    // The key where it already is...
+    ivec2 found = findCell(key);
+    // ...or, where it is not, the cell one level coarser or finer at the pixel's point if an
+    // earlier frame gathered it (worldLevelHeld)...
+    for (int step = 0; step < 2 && found.x < 0 && constants.cells.y != 0.0; ++step) {
+        int other = level + (step == 0 ? 1 : -1);
+        ivec2 entry = findCell(worldKey(worldCellOf(p, other), other, direction));
+        if (entry.x >= 0 && imageLoad(worldIrradiance, entry).a > 0.0) found = entry;
     }
     // ...or in the first empty or evicted entry, which another pixel of the same cell may take
     // first (every pixel of a cell tries the same entries in the same order).

@@ -60,9 +60,20 @@ void main() {
     vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     int level = worldLevel(distance(p, frame.cameraPosition.xyz));
     int direction = worldDirection(n);
+    // The level world.insert chose: the pixel's own, or where its own cell is absent, the one
+    // coarser or finer whose cell it took instead.
+    ivec2 own = findCell(worldCellOf(p, level), level, direction);
+    for (int step = 0; step < 2 && own.x < 0 && constants.cells.y != 0.0; ++step) {
+        int other = level + (step == 0 ? 1 : -1);
+        ivec2 entry = findCell(worldCellOf(p, other), other, direction);
+        if (entry.x >= 0 && texelFetch(worldIrradiance, entry, 0).a > 0.0) {
+            own = entry;
+            level = other;
+        }
+    }
     int view = constants.work.w;
     if (view != WORLD_VIEW_LIGHT) {
-        ivec2 entry = findCell(worldCellOf(p, level), level, direction);
+        ivec2 entry = own;
         vec4 shown = vec4(1.0, 0.0, 0.0, 1.0); // no cell: red
         if (entry.x >= 0) {
             vec4 cell = texelFetch(worldIrradiance, entry, 0);
@@ -93,7 +104,7 @@ void main() {
         offset[(axis + 1) % 3] = corner & 1;
         offset[(axis + 2) % 3] = (corner >> 1) & 1;
         offset ^= nearest;
-        ivec2 entry = findCell(base + offset, level, direction);
+        ivec2 entry = corner == 0 ? own : findCell(base + offset, level, direction);
         if (entry.x < 0) {
             if (corner == 4) break;
             continue;

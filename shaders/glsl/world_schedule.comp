@@ -57,6 +57,9 @@ void main() {
     uint unused = now - texelFetch(worldUsed, entry, 0).r;
     if (unused > uint(constants.table.z) || (changed && unused != 0u)) {
         imageStore(worldKeys, entry, uvec4(WORLD_EVICTED)); // a tombstone (world_cache.glsl)
+        // No samples: world.insert takes a cell's samples for its having been gathered before
+        // this frame, and a cell made here this frame reads as none whichever pixel writes first.
+        imageStore(worldIrradiance, entry, vec4(0.0));
         imageStore(worldOwner, entry, uvec4(WORLD_OWNERLESS));
         imageAtomicAdd(worldStats, ivec2(WORLD_STAT_EVICTED, row), 1u);
         return;
