@@ -8,8 +8,8 @@
 
 #include <cmath>
 #include <map>
-#include <tuple>
 #include <ostream>
+#include <tuple>
 
 using namespace ssgi;
 using namespace ssgi::stability;

@@ -103,7 +103,8 @@ TEST_F(WorldCacheTest, AMovedLightRestartsEveryCell) {
     renderer.setLight(light);
     renderer.renderFrame(scene.camera);
     const Cells after = readCells(renderer);
-    const int live = expectEveryCellRestarted(before, after, float(scene.settings.world_new_cell_frames));
+    const int live =
+        expectEveryCellRestarted(before, after, float(scene.settings.world_new_cell_frames));
     const auto counts = renderer.worldCacheCounts();
     ASSERT_TRUE(counts.has_value());
     EXPECT_EQ(counts->filled, uint32_t(live));
