@@ -1,10 +1,11 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // world.insert (indirect_method 3): every pixel finds its own cell in the world cache
-// (world_cache.glsl), or makes it in the first empty or evicted entry among its probes, and
-// marks it used this frame; a cell's pixels vote for the one whose point and normal it gathers
-// at if it starts this frame (world.owner; world_schedule.comp takes them). Invocation 0 also clears the next
-// frame's row of counters.
+// (world_cache.glsl) or, where that is absent, a gathered cell one level coarser or finer at its
+// point; else it makes its own in the first empty or evicted entry among its probes. It marks
+// the cell used this frame, and a cell's pixels vote for the one whose point and normal it
+// gathers at if it starts this frame (world.owner; world_schedule.comp takes them). Invocation 0
+// also clears the next frame's row of counters.
 #include "shared.h"
 #include "common.glsl"
 
@@ -52,7 +53,9 @@ void main() {
     // The key where it already is...
     ivec2 found = findCell(key);
     // ...or, where it is not, the cell one level coarser or finer at the pixel's point if an
-    // earlier frame gathered it (worldLevelHeld)...
+    // earlier frame gathered it (world_level_reuse: a camera moving nearer or further would
+    // otherwise remake a surface's cells each time its distance crosses a power of two;
+    // world_lookup.comp takes the same level)...
     for (int step = 0; step < 2 && found.x < 0 && constants.cells.y != 0.0; ++step) {
         int other = level + (step == 0 ? 1 : -1);
         ivec2 entry = findCell(worldKey(worldCellOf(p, other), other, direction));

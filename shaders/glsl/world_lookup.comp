@@ -2,10 +2,12 @@
 #extension GL_GOOGLE_include_directive : require
 // world.lookup (indirect_method 3): the bounce at every pixel, looked up in the world cache
 // (world_cache.glsl) rather than gathered. The value is interpolated between the eight cells
-// around the pixel at its level and with its normal's direction, trilinearly by the pixel's
-// place between their centres, so that no cell's edge shows; a cell absent or still empty
-// drops out of the weights. Each cell's value is carried over from its own normal to the
-// pixel's by its light's directional estimate (toNormal). The debug views (WORLD_VIEW_*) show each pixel's own cell instead.
+// around the pixel at the level world.insert took (its own, or one coarser or finer where its
+// own cell is absent) and with its normal's direction, trilinearly by the pixel's place between
+// their centres, so that no cell's edge shows; a cell absent or still empty drops out of the
+// weights. Each cell's value is carried over from its own normal to the pixel's by its light's
+// directional estimate (toNormal). The debug views (WORLD_VIEW_*) show each pixel's own cell
+// instead.
 #include "shared.h"
 #include "common.glsl"
 
