@@ -100,4 +100,38 @@ ivec3 worldCellOf(vec3 p, int level) {
     return ivec3(floor(p / worldCellSide(level)));
 }
 
+// What a shader that finds cells defines, reading the table through the binding it has
+// (world.insert's storage images, world.lookup's samplers): entry e's key, and its frames of
+// samples (world.irradiance's a).
+uint worldKeyAt(ivec2 e);
+float worldSamplesAt(ivec2 e);
+
+// The entry holding the key, or (-1, -1): a key lies before the first empty entry.
+ivec2 findCell(WorldKey key) {
+    for (int probe = 0; probe < WORLD_PROBES; ++probe) {
+        uint held = worldKeyAt(worldEntry(key.home, probe));
+        if (held == key.checksum) return worldEntry(key.home, probe);
+        if (held == WORLD_EMPTY) break;
+    }
+    return ivec2(-1);
+}
+
+// The cell a pixel at p with the normal's `direction` takes, world.insert's and world.lookup's
+// one rule: its own at `level`, or where that is absent, the cell one level coarser, else one
+// finer, at p that an earlier frame gathered (world_level_reuse: a camera moving nearer or
+// further would otherwise remake a surface's cells each time its distance crosses a power of
+// two), `level` then becoming that cell's; (-1, -1) where none is (world.insert makes its own).
+ivec2 findPixelCell(vec3 p, inout int level, int direction) {
+    ivec2 own = findCell(worldKey(worldCellOf(p, level), level, direction));
+    for (int step = 0; step < 2 && own.x < 0 && constants.cells.y != 0.0; ++step) {
+        int other = level + (step == 0 ? 1 : -1);
+        ivec2 entry = findCell(worldKey(worldCellOf(p, other), other, direction));
+        if (entry.x >= 0 && worldSamplesAt(entry) > 0.0) {
+            own = entry;
+            level = other;
+        }
+    }
+    return own;
+}
+
 #endif

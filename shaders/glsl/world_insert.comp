@@ -25,14 +25,11 @@ layout(push_constant) uniform WorldBlock { WorldConstants constants; };
 #include "gbuffer_position.glsl"
 #include "world_cache.glsl"
 
-// The entry holding the key, or (-1, -1): a key lies before the first empty entry.
-ivec2 findCell(WorldKey key) {
-    for (int probe = 0; probe < WORLD_PROBES; ++probe) {
-        uint held = imageLoad(worldKeys, worldEntry(key.home, probe)).r;
-        if (held == key.checksum) return worldEntry(key.home, probe);
-        if (held == WORLD_EMPTY) break;
-    }
-    return ivec2(-1);
+uint worldKeyAt(ivec2 e) {
+    return imageLoad(worldKeys, e).r;
+}
+float worldSamplesAt(ivec2 e) {
+    return imageLoad(worldIrradiance, e).a;
 }
 
 void main() {
@@ -49,20 +46,12 @@ void main() {
     vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     int level = worldLevel(distance(p, frame.cameraPosition.xyz));
     int direction = worldDirection(n);
+    // The cell where it already is (its own, or a neighbouring level's: findPixelCell, the
+    // lookup's rule too)...
+    ivec2 found = findPixelCell(p, level, direction);
+    // ...or its own, made in the first empty or evicted entry, which another pixel of the same
+    // cell may take first (every pixel of a cell tries the same entries in the same order).
     WorldKey key = worldKey(worldCellOf(p, level), level, direction);
-    // The key where it already is...
-    ivec2 found = findCell(key);
-    // ...or, where it is not, the cell one level coarser or finer at the pixel's point if an
-    // earlier frame gathered it (world_level_reuse: a camera moving nearer or further would
-    // otherwise remake a surface's cells each time its distance crosses a power of two;
-    // world_lookup.comp takes the same level)...
-    for (int step = 0; step < 2 && found.x < 0 && constants.cells.y != 0.0; ++step) {
-        int other = level + (step == 0 ? 1 : -1);
-        ivec2 entry = findCell(worldKey(worldCellOf(p, other), other, direction));
-        if (entry.x >= 0 && imageLoad(worldIrradiance, entry).a > 0.0) found = entry;
-    }
-    // ...or in the first empty or evicted entry, which another pixel of the same cell may take
-    // first (every pixel of a cell tries the same entries in the same order).
     for (int probe = 0; probe < WORLD_PROBES && found.x < 0; ++probe) {
         ivec2 entry = worldEntry(key.home, probe);
         uint seen = imageLoad(worldKeys, entry).r;

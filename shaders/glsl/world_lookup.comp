@@ -27,16 +27,11 @@ layout(push_constant) uniform WorldBlock { WorldConstants constants; };
 #include "gbuffer_position.glsl"
 #include "world_cache.glsl"
 
-// The entry holding the cell, or (-1, -1).
-ivec2 findCell(ivec3 cell, int level, int direction) {
-    WorldKey key = worldKey(cell, level, direction);
-    for (int probe = 0; probe < WORLD_PROBES; ++probe) {
-        ivec2 entry = worldEntry(key.home, probe);
-        uint held = texelFetch(worldKeys, entry, 0).r;
-        if (held == key.checksum) return entry;
-        if (held == WORLD_EMPTY) break; // no key lies past an empty entry
-    }
-    return ivec2(-1);
+uint worldKeyAt(ivec2 e) {
+    return texelFetch(worldKeys, e, 0).r;
+}
+float worldSamplesAt(ivec2 e) {
+    return texelFetch(worldIrradiance, e, 0).a;
 }
 
 // What carries a cell's value over to normal n: the ratio of its light's directional estimate
@@ -62,17 +57,8 @@ void main() {
     vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
     int level = worldLevel(distance(p, frame.cameraPosition.xyz));
     int direction = worldDirection(n);
-    // The level world.insert chose: the pixel's own, or where its own cell is absent, the one
-    // coarser or finer whose cell it took instead.
-    ivec2 own = findCell(worldCellOf(p, level), level, direction);
-    for (int step = 0; step < 2 && own.x < 0 && constants.cells.y != 0.0; ++step) {
-        int other = level + (step == 0 ? 1 : -1);
-        ivec2 entry = findCell(worldCellOf(p, other), other, direction);
-        if (entry.x >= 0 && texelFetch(worldIrradiance, entry, 0).a > 0.0) {
-            own = entry;
-            level = other;
-        }
-    }
+    // The cell and level world.insert took (world_cache.glsl).
+    ivec2 own = findPixelCell(p, level, direction);
     int view = constants.work.w;
     if (view != WORLD_VIEW_LIGHT) {
         ivec2 entry = own;
@@ -106,7 +92,7 @@ void main() {
         offset[(axis + 1) % 3] = corner & 1;
         offset[(axis + 2) % 3] = (corner >> 1) & 1;
         offset ^= nearest;
-        ivec2 entry = corner == 0 ? own : findCell(base + offset, level, direction);
+        ivec2 entry = corner == 0 ? own : findCell(worldKey(base + offset, level, direction));
         if (entry.x < 0) {
             if (corner == 4) break;
             continue;

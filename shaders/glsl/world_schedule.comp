@@ -37,7 +37,6 @@ layout(push_constant) uniform WorldBlock { WorldConstants constants; };
 #include "gbuffer_position.glsl"
 #include "world_cache.glsl"
 
-
 void main() {
     ivec2 entry = ivec2(gl_GlobalInvocationID.xy);
     uint now = uint(frame.patternFrame);
