@@ -135,13 +135,13 @@ TEST_F(WorldCacheTest, AMovedObjectRestartsEveryCell) {
     renderer.setTime(1.0f);
     renderer.renderFrame(moving.camera);
     const Cells after = readCells(renderer);
-    expectEveryCellRestarted(before, after, float(scene.settings.world_new_cell_frames));
+    expectEveryCellRestarted(before, after, float(moving.settings.world_new_cell_frames));
 }
 
 // With a table of 4096 entries for about thirteen hundred cells, some two hundred keys share
-// home entries and take the probes after them; every cell is still found and gathers what it would
-// alone (its VPLs follow its key, not its entry), so the bounce is the same, bit for bit, as
-// with 2^17 entries.
+// home entries and take the probes after them; every cell is still found and gathers what it
+// would alone (its VPLs follow its key, not its entry), so the bounce is the same, bit for bit,
+// as with 2^17 entries.
 TEST_F(WorldCacheTest, CollidingKeysKeepTheirOwnValues) {
     scene.settings.cache = false;
     auto bounce = [&](int bits, Renderer::WorldCacheCounts& counts) {
@@ -180,15 +180,15 @@ TEST_F(WorldCacheTest, VoxelGridBlocksWhatTheTrianglesBlock) {
     const WorldGridPlacement& grid = renderer.worldGrid();
     const glm::dvec3 origin = gpuOrigin(scene.bounds);
     // The images hold the largest grid, in 4 x 4 x 4 blocks of two texels (world_voxels.glsl).
-    const int blocks = (int(scene.settings.world_voxels) + 3) / 4;
+    const int blocks = (int(scene.settings.world_voxels) + WORLD_BLOCK - 1) / WORLD_BLOCK;
     const uint32_t width = uint32_t(2 * blocks * blocks);
-    const int rowBlocks = (grid.size.x + 3) / 4;
+    const int rowBlocks = (grid.size.x + WORLD_BLOCK - 1) / WORLD_BLOCK;
     ASSERT_EQ(words.size(), size_t(4) * width * uint32_t(blocks));
     auto occupied = [&](glm::ivec3 v) {
         if (glm::any(glm::lessThan(v, glm::ivec3(0))) ||
             glm::any(glm::greaterThanEqual(v, grid.size)))
             return false;
-        const glm::ivec3 b = v / 4, local = v % 4;
+        const glm::ivec3 b = v / WORLD_BLOCK, local = v % WORLD_BLOCK;
         const size_t texel =
             size_t(b.y) * width + size_t(2 * (b.x + rowBlocks * b.z)) + size_t(local.z >> 1);
         const int bit = local.x + 4 * local.y + 16 * (local.z & 1);
