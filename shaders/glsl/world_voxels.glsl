@@ -46,6 +46,12 @@ float boxExit(vec3 A, vec3 inverse, vec3 lo, float side) {
     return min(far.x, min(far.y, far.z));
 }
 
+// The voxel a walk from A along `dir` is in just past distance s (the walk's steps end on voxel
+// faces; a thousandth of a voxel on is inside the next), kept in the grid.
+ivec3 voxelAfter(vec3 A, vec3 dir, float s) {
+    return clamp(ivec3(floor(A + dir * (s + 1e-3))), ivec3(0), frame.worldGridSize.xyz - 1);
+}
+
 // Whether the segment from a to b (world space) crosses no occupied voxel. Both ends lie on
 // surfaces, in voxels the surfaces occupy: the walk leaves the voxels it starts in while they
 // are occupied (its own surface), and takes the occupied voxels within two voxels of b for b's
@@ -64,11 +70,10 @@ bool voxelSegmentOpen(vec3 a, vec3 b) {
     vec3 t0 = (vec3(0.0) - A) * inverse, t1 = (size - A) * inverse;
     float s = max(max(min(t0.x, t1.x), min(t0.y, t1.y)), max(min(t0.z, t1.z), 0.0));
     float end = min(min(max(t0.x, t1.x), max(t0.y, t1.y)), min(max(t0.z, t1.z), len));
-    ivec3 last = frame.worldGridSize.xyz - 1;
     bool leaving = true;
     // A step's length at least a thousandth of a voxel, so that the walk always moves on.
     for (int i = 0; i < 4096 && s < end; ++i) {
-        ivec3 v = clamp(ivec3(floor(A + dir * (s + 1e-3))), ivec3(0), last);
+        ivec3 v = voxelAfter(A, dir, s);
         ivec3 block = v / WORLD_BLOCK;
         int empty = blockDistance(block) - 1; // the radius of the cube of empty blocks around
         if (empty >= 0) {
@@ -90,7 +95,7 @@ bool voxelSegmentOpen(vec3 a, vec3 b) {
                 leaving = false;
             }
             s = exit + 1e-3;
-            v = clamp(ivec3(floor(A + dir * (s + 1e-3))), ivec3(0), last);
+            v = voxelAfter(A, dir, s);
             if (v / WORLD_BLOCK != block) break;
         }
     }
