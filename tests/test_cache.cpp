@@ -1,5 +1,6 @@
 // The temporal cache (thesis 3.1) at frames 1, 16 and 64: convergence, disocclusion, reuse of
 // converged pixels, tiled refresh, and the reset a moved light needs.
+#include "cache/cache.h"
 #include "cache/tile_refresh.h"
 #include "renderer.h"
 #include "scene/camera.h"
@@ -93,6 +94,49 @@ TEST_F(CacheTest, ConvergedPixelsAreSkippedAndASettledFrameComputesNothing) {
         if (frame > 37) EXPECT_EQ(computedFraction(renderer, "ao"), 0.0) << "frame " << frame;
     }
     EXPECT_EQ(firstFrame, 1.0);
+}
+
+// cache_samples: a cached effect takes that share of its samples a frame (at least one), an
+// effect computed anew every frame all of them.
+TEST(CacheSamples, ACachedEffectTakesItsShareOfItsSamples) {
+    Settings half;
+    half.cache_samples = 0.5;
+    EXPECT_EQ(samplesPerFrame(half, "ao", 8), 4);
+    EXPECT_EQ(samplesPerFrame(half, "shadow", 49), 25); // 24.5 rounds up
+    EXPECT_EQ(samplesPerFrame(half, "ao", 1), 1);
+    half.cache_samples = 0.01;
+    EXPECT_EQ(samplesPerFrame(half, "ao", 8), 1); // never none
+    half.cache_ao = false;
+    EXPECT_EQ(samplesPerFrame(half, "ao", 8), 8);
+    EXPECT_EQ(samplesPerFrame(half, "shadow", 12), 1);
+    half.cache = false;
+    EXPECT_EQ(samplesPerFrame(half, "shadow", 12), 12);
+}
+
+// A cached frame at cache_samples 0.5 computes the AO and the shadow exactly as one whose
+// sample counts are halved by hand; an uncached effect keeps its counts.
+TEST_F(CacheTest, HalfTheSamplesAreTheHalvedCounts) {
+    scene.settings.indirect = false;
+    auto firstFrame = [&](const Scene& s) {
+        Renderer renderer(test::context(), s, {64, 64, "final", {"ao", "shadow"}});
+        renderer.renderFrame(s.camera);
+        return std::pair{renderer.readImage("ao"), renderer.readImage("shadow")};
+    };
+    Scene shared = scene;
+    shared.settings.cache_samples = 0.5;
+    Scene byHand = scene;
+    byHand.settings.ao_directions = scene.settings.ao_directions / 2;
+    byHand.settings.ao_steps = scene.settings.ao_steps / 2;
+    byHand.settings.shadow_directions = scene.settings.shadow_directions / 2;
+    const auto [ao, shadow] = firstFrame(shared);
+    const auto [aoByHand, shadowByHand] = firstFrame(byHand);
+    EXPECT_EQ(ao, aoByHand);
+    EXPECT_EQ(shadow, shadowByHand);
+    const auto [aoWhole, shadowWhole] = firstFrame(scene);
+    EXPECT_NE(ao, aoWhole); // the share changed what was computed
+    EXPECT_NE(shadow, shadowWhole);
+    shared.settings.cache_ao = false; // the AO computed anew each frame: all its samples
+    EXPECT_EQ(firstFrame(shared).first, aoWhole);
 }
 
 // A settled frame computes nothing and changes nothing: its histories are converged, and the

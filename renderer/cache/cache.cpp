@@ -16,10 +16,19 @@ CountTexel unpackCount(uint8_t code) {
     return {shader::countOfCode(float(code)), shader::dueOfCode(float(code))};
 }
 
+bool effectCached(const Settings& settings, const std::string& name) {
+    return settings.cache && settingValue(settings, "cache_" + name) != 0.0;
+}
+
+int samplesPerFrame(const Settings& settings, const std::string& name, int count) {
+    if (!effectCached(settings, name)) return count;
+    return std::max(1, int(std::lround(double(count) * settings.cache_samples)));
+}
+
 EffectCache* createCache(graph::FrameGraph& graph, CacheSet& caches, const Settings& settings,
                          VkExtent2D size, const CachedEffect& effect) {
     const std::string& name = effect.name;
-    if (!settings.cache || settingValue(settings, "cache_" + name) == 0.0) return nullptr;
+    if (!effectCached(settings, name)) return nullptr;
     const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     EffectCache& c = caches.effects.emplace_back();
     c.effect = effect;

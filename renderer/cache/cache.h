@@ -94,8 +94,16 @@ struct CacheSet {
     uint32_t temporalPasses = 0;        // the temporal dispatches the frame has so far
 };
 
-// The temporal cache of `effect` when the settings cache it (cache and cache_<name> on), made
-// in `graph` at `size`; nullptr otherwise.
+// Whether the settings cache the effect `name`: cache and cache_<name> on.
+bool effectCached(const Settings& settings, const std::string& name);
+// Of an effect's `count` samples of one kind (directions, steps along them, taps), those a
+// frame takes: all of them where the effect is computed anew every frame; where its cache
+// accumulates frames, the share cache_samples of them (at least one), the frames before
+// supplying the rest (docs/temporal-cache.md, "Samples a frame").
+int samplesPerFrame(const Settings& settings, const std::string& name, int count);
+
+// The temporal cache of `effect` when the settings cache it (effectCached), made in `graph` at
+// `size`; nullptr otherwise.
 EffectCache* createCache(graph::FrameGraph& graph, CacheSet& caches, const Settings& settings,
                          VkExtent2D size, const CachedEffect& effect);
 

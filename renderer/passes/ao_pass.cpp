@@ -23,8 +23,8 @@ graph::ImageRef addAoPass(FrameBuild& build, const GBufferAndRsm& in) {
                    {"gbufferNormal", in.gbuffer.normal, Use::Sampled}};
     pass.pushSize = sizeof(shader::AoConstants);
     pass.spec = {{{"VARIANT", int(settings.ao_variant)},
-                  {"DIRECTIONS", int(settings.ao_directions)},
-                  {"STEPS", int(settings.ao_steps)}}};
+                  {"DIRECTIONS", samplesPerFrame(settings, "ao", int(settings.ao_directions))},
+                  {"STEPS", samplesPerFrame(settings, "ao", int(settings.ao_steps))}}};
     return addCachedComputePass(build, in.gbuffer, std::move(pass),
                                 [&build](const CachedRecorder& r) {
                                     shader::AoConstants constants{};

@@ -26,10 +26,12 @@ graph::ImageRef addShadowPass(FrameBuild& build, const GBufferAndRsm& in) {
                    {"shadowMapBack", in.shadowMapBack.valid() ? in.shadowMapBack : in.shadowMap,
                     Use::Sampled}};
     pass.pushSize = sizeof(shader::ShadowConstants);
-    pass.spec = {{{"TAPS", int(build.settings.shadow_taps)},
-                  {"VARIANT", int(build.settings.shadow_variant)},
-                  {"DIRECTIONS", int(build.settings.shadow_directions)},
-                  {"STEPS", int(build.settings.shadow_steps)}}};
+    const Settings& settings = build.settings;
+    pass.spec = {
+        {{"TAPS", samplesPerFrame(settings, "shadow", int(settings.shadow_taps))},
+         {"VARIANT", int(settings.shadow_variant)},
+         {"DIRECTIONS", samplesPerFrame(settings, "shadow", int(settings.shadow_directions))},
+         {"STEPS", int(build.settings.shadow_steps)}}};
     return addCachedComputePass(build, in.gbuffer, std::move(pass),
                                 [&build](const CachedRecorder& r) {
                                     shader::ShadowConstants constants{};

@@ -25,8 +25,8 @@ graph::ImageRef addSsdoPass(FrameBuild& build, const GBufferAndRsm& in, graph::I
                    {"directRadiance", direct, Use::Sampled},
                    secondLayerInput(in)};
     pass.pushSize = sizeof(shader::SsdoConstants);
-    pass.spec = {
-        {{"SAMPLES", int(settings.ssdo_samples)}, {"PEELING", in.secondLayer.valid() ? 1 : 0}}};
+    pass.spec = {{{"SAMPLES", samplesPerFrame(settings, "ssdo", int(settings.ssdo_samples))},
+                  {"PEELING", in.secondLayer.valid() ? 1 : 0}}};
     return addCachedComputePass(build, in.gbuffer, std::move(pass),
                                 [&build, rMax](const CachedRecorder& r) {
                                     shader::SsdoConstants constants{};

@@ -115,11 +115,11 @@ namespace ssgi {
     X(world_cell_angle, double, 0.03, 1e-4, 1, "World cache",                                      \
       "method 3: the angle a cell spans from the camera (radians): a cell at distance d is the "   \
       "power of two nearest below d x this wide")                                                  \
-    X(world_level_reuse, bool, true, 0, 1, "World cache",                                        \
+    X(world_level_reuse, bool, true, 0, 1, "World cache",                                          \
       "method 3: a pixel whose own cell is absent takes the cell one level coarser or finer at "   \
-      "its point, if an earlier frame gathered it, rather than making its own")                   \
+      "its point, if an earlier frame gathered it, rather than making its own")                    \
     X(world_vpls, int, 48, 2, 1024, "World cache",                                                 \
-      "method 3: VPLs a cell gathers, with their visibility, in a frame's refresh (half by flux, "  \
+      "method 3: VPLs a cell gathers, with their visibility, in a frame's refresh (half by flux, " \
       "half next to it)")                                                                          \
     X(world_frames, int, 16, 1, 512, "World cache",                                                \
       "method 3: frames of world_vpls a cell accumulates before it stops (uncached, all at once)") \
@@ -166,6 +166,10 @@ namespace ssgi {
     X(cache_temporal_slots, int, 4, 1, 4, "Temporal cache",                                        \
       "cached effects one temporal dispatch blends (4: all of a frame's in one; 1: a dispatch "    \
       "per effect, the same values)")                                                              \
+    X(cache_samples, double, 1.0, 0.01, 1, "Temporal cache",                                       \
+      "share of a cached effect's samples a frame takes, the cache accumulating the rest: the "    \
+      "AO's directions and steps, the shadow's directions (variant 1) or taps (variant 0), "       \
+      "SSDO's samples (1: as many as uncached; docs/temporal-cache.md)")                           \
     X(cache_shadow, bool, true, 0, 1, "Temporal cache",                                            \
       "the shadow term cached (1), or computed anew every frame")                                  \
     X(cache_ao, bool, true, 0, 1, "Temporal cache", "the AO cached (1), or computed anew")         \

@@ -186,6 +186,7 @@ ConvergedRun runConverged(vk::Context& ctx, const Scene& scene, const Step& last
     twice.ssdo_samples = std::min(2 * scene.settings.ssdo_samples, 64);
     twice.shadow_taps = std::min(2 * scene.settings.shadow_taps, 64);
     twice.shadow_directions = std::min(2 * scene.settings.shadow_directions, 64);
+    twice.cache_samples = 1.0; // every frame its whole samples
     // Its sampling patterns start where neither the tested renderer's nor the fresh start's
     // have been (4099 frames on: not a whole number of the patterns' turns), so that it shares
     // no sample with either: a reference that took the fresh start's own samples (its pattern
