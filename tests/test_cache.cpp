@@ -144,6 +144,7 @@ TEST_F(CacheTest, HalfTheSamplesAreTheHalvedCounts) {
 // missing, every other frame would show the side two frames old.
 TEST_F(CacheTest, ASettledFrameComputesNothingAndKeepsItsImage) {
     scene.settings.cache_rotations = 4;
+    scene.settings.indirect_method = 1; // the screen-space bounce, a cached effect read below
     Renderer renderer(test::context(), scene,
                       {64, 64, "final", {"shadow", "ao", "indirect", "hdr"}});
     const char* kept[] = {"hdr", "shadow.history", "ao.history", "indirect.history"};
@@ -209,6 +210,7 @@ TEST_F(CacheTest, DisoccludedPixelsStartOverAndTheRestContinue) {
 
 // Moving the light restarts the shadow (and the indirect light) but not the AO.
 TEST_F(CacheTest, AMovedLightResetsTheShadowButNotTheAo) {
+    scene.settings.indirect_method = 1; // the screen-space bounce, a cached effect read below
     Renderer renderer(test::context(), scene, {96, 96, "final", {"ao", "shadow", "indirect"}});
     for (int frame = 0; frame < 40; ++frame)
         renderer.renderFrame(scene.camera);

@@ -108,6 +108,7 @@ protected:
 // On the device: the counts a panning camera leaves lie within [0, rotations], and a due pixel
 // (its sign) holds one computation or more; some fall due, so the sign is exercised.
 TEST_F(CacheFormatsTest, TheDevicesCountsStayInRangeAndCarryTheirDueFlag) {
+    scene.settings.indirect_method = 1; // the screen-space bounce: its counts are read below
     Renderer r(test::context(), scene, RenderOptions{kSize, kSize});
     for (int f = 0; f < 40; ++f)
         r.renderFrame(turned(0.0f));

@@ -51,6 +51,7 @@ double rmse(const std::vector<float>& a, const std::vector<float>& b,
 // resampling aside (at most half a squared pixel); on a still camera none gathers any.
 TEST_F(CacheMotionTest, HistoriesCarryNoMoreBlurThanTheirBudget) {
     scene.settings.cache_blur_ao = 1.0;
+    scene.settings.indirect_method = 1; // the screen-space bounce, whose history has a budget
     scene.settings.cache_blur_indirect = 2.0;
     Renderer renderer(test::context(), scene, {kSize, kSize, "final"});
     const std::vector<float> position = [&] {

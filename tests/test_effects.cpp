@@ -25,6 +25,7 @@ glm::vec3 mean(const std::vector<glm::vec3>& values) {
 // the indirect light on, and not with it off.
 TEST_F(EffectTest, IndirectLightBleedsTheWallsColourOntoTheFloor) {
     Scene scene = loadScene(test::sourcePath("scenes/cornell-box.json"));
+    scene.settings.indirect_method = 1;
     scene.settings.indirect_vpls = 512;
     auto floorColour = [&](bool indirect, bool nearRed) {
         scene.settings.indirect = indirect;

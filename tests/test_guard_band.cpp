@@ -30,7 +30,8 @@ protected:
 };
 
 TEST_F(GuardBandTest, TheOutputKeepsItsSizeAndItsPixelsRays) {
-    const Scene scene = loadScene(test::sourcePath("scenes/cornell-box.json"));
+    Scene scene = loadScene(test::sourcePath("scenes/cornell-box.json"));
+    scene.settings.indirect_method = 1; // the screen-space bounce: its "indirect" image is read
     std::unique_ptr<Renderer> plain = rendered(scene, scene.camera, 0);
     std::unique_ptr<Renderer> banded = rendered(scene, scene.camera, 20);
     EXPECT_EQ(banded->size().width, kWidth);

@@ -82,7 +82,8 @@ class MovingObjectTest : public test::VulkanTest {};
 // A converged frame, the short block moved 11 cm: the pixels whose AO or shadow the move can
 // change start over, the rest keep their history, and two frames later no stale shadow is left.
 TEST_F(MovingObjectTest, AMovedObjectRestartsWhatItChangesAndLeavesNoStaleShadow) {
-    const Scene scene = loadScene(test::sourcePath(kScene));
+    Scene scene = loadScene(test::sourcePath(kScene));
+    scene.settings.indirect_method = 1; // the screen-space bounce: its history's meta is read
     const uint32_t w = 96, h = 96, converge = 40;
     auto shadowAt = [&](float time) {
         Renderer r(test::context(), scene, {w, h});

@@ -159,6 +159,7 @@ TEST_F(SsdoFixesTest, ContactShadowsLowerTheErrorWhereTheBunnyTouchesTheFloor) {
 // bounce to the reference's one bounce, summed over the image's top third.
 TEST_F(SsdoFixesTest, DepthPeelingGivesTheCornellBoxsCeilingItsBounce) {
     Scene scene = loadScene(test::sourcePath("scenes/cornell-box.json"));
+    scene.settings.indirect_method = 1; // the screen-space bounce, whose visibility test peels
     const uint32_t w = 128, h = 128;
     const std::vector<float> truth = referenceImage(scene, reference::Mode::Indirect, w, h, 1024);
     auto topRatio = [&](int peeling, bool lightCheck) {

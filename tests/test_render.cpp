@@ -136,6 +136,7 @@ TEST_F(RenderTest, RsmTexelsHoldTheShadowMapsDepthAndTheFloorsFlux) {
 // image, compared in 8x8-pixel blocks that average the noise out.
 TEST_F(RenderTest, EmptyBoxUnderACentredLightIsMirrorSymmetric) {
     Scene scene = loadScene(test::sourcePath("tests/scenes/empty-box.json"));
+    scene.settings.indirect_method = 1; // the bounce the whole image's bound was measured with
     test::Frame f = test::render(scene, 128, 128);
     auto asymmetry = [&](const std::vector<float>& image, uint32_t block) {
         double difference = 0.0, total = 0.0;
@@ -170,6 +171,7 @@ TEST_F(RenderTest, EmptyBoxUnderACentredLightIsMirrorSymmetric) {
 
 TEST_F(RenderTest, FrameReportsEveryPassInOrderWithTimings) {
     Scene scene = loadScene(test::sourcePath("tests/scenes/empty-box.json"));
+    scene.settings.indirect_method = 1; // the screen-space bounce, whose passes are listed below
     {
         // Under a sky, the sky visibility passes (cached) run just before the temporal pass
         // that blends every cached effect, the direct light and the composite.
@@ -219,7 +221,8 @@ TEST_F(RenderTest, FrameReportsEveryPassInOrderWithTimings) {
 // need apart (at 1920x1080 on the bunny, 87.0 of 181.7 MiB), the effects' raw outputs among
 // those that take turns, and no history is in it.
 TEST_F(RenderTest, TransientImagesShareMemory) {
-    const Scene scene = loadScene(test::sourcePath("scenes/cornell-box.json"));
+    Scene scene = loadScene(test::sourcePath("scenes/cornell-box.json"));
+    scene.settings.indirect_method = 1; // the screen-space bounce: its "indirect" image is shared
     Renderer renderer(test::context(), scene, {64, 64, "final"});
     const graph::FrameGraph& graph = renderer.frameGraph();
     const graph::FrameGraph::SharedMemory shared = graph.sharedMemory();
@@ -259,7 +262,8 @@ TEST_F(RenderTest, AbsurdSizesAreRejectedWithTheLimitNamed) {
 // the same one-bounce light. With the RSM's flux in 16-bit floats the centimetre scene's bounce
 // was exactly 0 and the metre scene's 6% short of the hectometre one's.
 TEST_F(RenderTest, TheBounceIsTheSameInAnyUnits) {
-    const Scene scene = loadScene(test::sourcePath("scenes/bunny.json"));
+    Scene scene = loadScene(test::sourcePath("scenes/bunny.json"));
+    scene.settings.indirect_method = 1; // the screen-space bounce: its "indirect" image is read
     std::vector<double> means;
     test::Frame reference;
     for (float k : {1.0f, 0.01f, 100.0f}) {

@@ -62,6 +62,7 @@ TEST_F(ResizeTest, EveryHistoryIsCarriedOverOrDroppedAsTheSettingSays) {
 // frames on the carried image is within twice a fresh start's error at the same age, for both
 // cache rules (the "recovers within 8 frames").
 TEST_F(ResizeTest, TheResizedImageKeepsUpWithAFreshStart) {
+    scene.settings.indirect_method = 1; // the screen-space bounce, carried over like the others
     for (int method : {0, 1}) {
         SCOPED_TRACE("cache_method " + std::to_string(method));
         Scene s = scene;

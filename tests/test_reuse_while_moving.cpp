@@ -21,6 +21,7 @@ protected:
     Scene scene = [] {
         Scene s = loadScene(test::sourcePath("scenes/cornell-box.json"));
         s.settings.cache_tile_shadow = s.settings.cache_tile_ao = 32;
+        s.settings.indirect_method = 1; // the screen-space bounce, one of kEffects
         return s;
     }();
 

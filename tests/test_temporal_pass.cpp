@@ -19,6 +19,7 @@ protected:
     // the scalar histories beside the colour ones.
     Scene scene = [] {
         Scene s = loadScene(test::sourcePath("scenes/cornell-box.json"));
+        s.settings.indirect_method = 1; // the screen-space bounce, one of the cached effects
         s.sky.zenith = glm::vec3(0.5f);
         s.sky.horizon = glm::vec3(0.3f);
         return s;

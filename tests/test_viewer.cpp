@@ -122,6 +122,8 @@ constexpr uint32_t kFrames = 10, kResizeAt = 5;
 // count shows the restarts alone (the budgets have their own tests in test_cache_motion).
 constexpr const char* kNoBlurBudget =
     " --set cache_blur_shadow=1e6 --set cache_blur_ao=1e6 --set cache_blur_indirect=1e6";
+// The screen-space bounce (indirect_method 1), whose history's count is read along the path.
+constexpr const char* kBounce = " --set indirect_method=1";
 
 TEST_F(Viewer, ScriptedPathWithResizeShowsSceneAndPanel) {
     if (!hasXvfb()) GTEST_SKIP() << "Xvfb is not installed (tools/setup.sh installs it)";
@@ -132,7 +134,7 @@ TEST_F(Viewer, ScriptedPathWithResizeShowsSceneAndPanel) {
         "DISPLAY=" + x.display(),
         scenePath + " --validation --size 640x400 --frames " + std::to_string(kFrames) +
             " --play-path --resize-at " + std::to_string(kResizeAt) + " 720x440 --set " +
-            "indirect_vpls=128" + kNoBlurBudget + " --screenshot " + path("viewer.png") +
+            "indirect_vpls=128" + kBounce + kNoBlurBudget + " --screenshot " + path("viewer.png") +
             " --report " + path("report.json") + " --record-into " + path("recorded.json"));
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_EQ(r.output.find("validation"), std::string::npos) << r.output;
@@ -207,6 +209,7 @@ TEST_F(Viewer, ScriptedPathWithResizeShowsSceneAndPanel) {
     // that image, up to the noise of different histories.
     Scene scene = loadScene(scenePath);
     scene.settings.indirect_vpls = 128;
+    scene.settings.indirect_method = 1;
     const uint32_t accumulated = kFrames - resizedAt;
     Renderer renderer(test::context(), scene, {sceneWidth, shot.height, "final"});
     const Camera camera = cameraAt(scene.cameraPath, scene.cameraPath.keys.back().time);

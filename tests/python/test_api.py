@@ -55,6 +55,7 @@ def test_reference_is_the_reference_programs_image(tmp_path):
 def test_compare_gives_the_compare_programs_figures(tmp_path):
     import json
     scene = ssgi.Scene(CORNELL)
+    scene.settings["indirect_method"] = 1  # the screen-space bounce, which reads indirect_vpls
     ssgi.write_image(tmp_path / "a.exr", ssgi.Renderer(scene, (64, 48)).render())
     scene.settings["indirect_vpls"] = 16
     ssgi.write_image(tmp_path / "b.exr", ssgi.Renderer(scene, (64, 48)).render())
