@@ -31,7 +31,7 @@ graph::ImageRef addShadowPass(FrameBuild& build, const GBufferAndRsm& in) {
         {{"TAPS", samplesPerFrame(settings, "shadow", int(settings.shadow_taps))},
          {"VARIANT", int(settings.shadow_variant)},
          {"DIRECTIONS", samplesPerFrame(settings, "shadow", int(settings.shadow_directions))},
-         {"STEPS", int(build.settings.shadow_steps)}}};
+         {"STEPS", int(settings.shadow_steps)}}};
     return addCachedComputePass(build, in.gbuffer, std::move(pass),
                                 [&build](const CachedRecorder& r) {
                                     shader::ShadowConstants constants{};
