@@ -98,6 +98,8 @@ public:
     // shared.h), or none without it.
     struct WorldCacheCounts {
         uint32_t live = 0, filled = 0, refreshed = 0, evicted = 0, full = 0, entries = 0;
+        // world_half_res: the pixels world.lookup_edges looked up alone (WORLD_STAT_EDGES).
+        uint32_t edges = 0;
     };
     std::optional<WorldCacheCounts> worldCacheCounts();
     // Where the world cache's voxel grid lay in the last frame, in the GPU's coordinates

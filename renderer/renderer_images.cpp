@@ -213,6 +213,7 @@ std::optional<Renderer::WorldCacheCounts> Renderer::worldCacheCounts() {
     c.refreshed = at(WORLD_STAT_REFRESHED);
     c.evicted = at(WORLD_STAT_EVICTED);
     c.full = at(WORLD_STAT_FULL);
+    c.edges = at(WORLD_STAT_EDGES);
     const VkExtent2D table = graph_->image(imageNamed("world.keys")).extent;
     c.entries = table.width * table.height;
     return c;

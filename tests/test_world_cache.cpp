@@ -168,6 +168,70 @@ TEST_F(WorldCacheTest, CollidingKeysKeepTheirOwnValues) {
     EXPECT_GT(lit, crowded.size() / 4);
 }
 
+// With world_half_res the lookup runs at the top-left pixel of every 2x2 block, and each pixel
+// interpolates the samples on its surface around it; a pixel with none is looked up alone by the
+// full-resolution rule, so it holds the full-resolution lookup's value bit for bit (the cells are
+// the same: every pixel still finds or makes its own), and the others lie close to it.
+TEST_F(WorldCacheTest, HalfResolutionLookupKeepsTheFullOnesValues) {
+    scene.settings.cache = false;
+    constexpr uint32_t size = 96;
+    auto bounce = [&](bool half, Renderer::WorldCacheCounts& counts,
+                      std::vector<uint32_t>* listed) {
+        Scene s = scene;
+        s.settings.world_half_res = half;
+        Renderer renderer(test::context(), s, {size, size, "final", {"world.edge_list"}});
+        renderer.renderFrame(s.camera);
+        counts = *renderer.worldCacheCounts();
+        if (listed) {
+            const std::vector<float> list = renderer.readImage("world.edge_list");
+            for (uint32_t i = 0; i < counts.edges; ++i)
+                listed->push_back(std::bit_cast<uint32_t>(list[4 * i]));
+        }
+        return renderer.readImage("world.indirect");
+    };
+    Renderer::WorldCacheCounts fullCounts, halfCounts;
+    std::vector<uint32_t> listed;
+    const std::vector<float> full = bounce(false, fullCounts, nullptr);
+    const std::vector<float> half = bounce(true, halfCounts, &listed);
+    EXPECT_EQ(halfCounts.live, fullCounts.live) << "the same cells";
+    EXPECT_EQ(fullCounts.edges, 0u);
+    ASSERT_GT(listed.size(), 0u) << "no pixel looked up alone: the edges' rule was not tested";
+    EXPECT_LT(listed.size(), size * size / 8);
+    std::vector<bool> alone(size * size, false);
+    for (uint32_t pixel : listed) {
+        ASSERT_LT(pixel, size * size);
+        alone[pixel] = true;
+        for (int c = 0; c < 4; ++c)
+            ASSERT_EQ(half[4 * pixel + c], full[4 * pixel + c]) << "pixel " << pixel;
+    }
+    // The interpolated pixels: their error against the full-resolution lookup, relative to its
+    // mean value, and none dark where the full lookup is lit. A pixel that holds a sample (the
+    // top-left one of its block) takes that sample's value all but alone (its neighbours weigh
+    // 1e-4 each, half_resolution.glsl): the same as the full lookup's to a half float's rounding.
+    double squared = 0.0, value = 0.0;
+    size_t interpolated = 0, sampled = 0;
+    for (size_t i = 0; i < size_t(size) * size; ++i) {
+        const float f = full[4 * i] + full[4 * i + 1] + full[4 * i + 2];
+        const float h = half[4 * i] + half[4 * i + 1] + half[4 * i + 2];
+        if (alone[i] || f == 0.0f) continue;
+        EXPECT_GT(h, 0.0f) << "pixel " << i << " dark";
+        if ((i % size) % 2 == 0 && (i / size) % 2 == 0) {
+            EXPECT_NEAR(h, f, 2e-3f * f) << "pixel " << i << " holds a sample";
+            ++sampled;
+        }
+        squared += double(h - f) * double(h - f);
+        value += double(f);
+        ++interpolated;
+    }
+    ASSERT_GT(interpolated, size_t(size) * size / 2);
+    EXPECT_GT(sampled, interpolated / 5);
+    const double mean = value / double(interpolated);
+    const double relativeRms = std::sqrt(squared / double(interpolated)) / mean;
+    std::printf("%zu pixels looked up alone, %zu interpolated: RMS difference %.4f of the mean\n",
+                listed.size(), interpolated, relativeRms);
+    EXPECT_LT(relativeRms, 0.1);
+}
+
 // The voxel grid as drawn blocks the segments the scene's triangles block: one through the tall
 // block, from the floor in front of it to the back wall behind it, and one across the open box,
 // from the floor to the ceiling beside the blocks. Each segment's ends lie on surfaces, as the

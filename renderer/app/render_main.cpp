@@ -169,11 +169,14 @@ int run(int argc, char** argv) {
         if (const auto world = renderer.worldCacheCounts()) {
             const WorldGridPlacement& grid = renderer.worldGrid();
             std::printf("world cache (last frame): %u cells live of %u entries, %u filled, %u "
-                        "refreshed, %u evicted, %u pixels without a free entry; voxel grid "
-                        "%dx%dx%d of side %.4g\n",
+                        "refreshed, %u evicted, %u pixels without a free entry",
                         world->live, world->entries, world->filled, world->refreshed,
-                        world->evicted, world->full, grid.size.x, grid.size.y, grid.size.z,
-                        double(grid.voxel));
+                        world->evicted, world->full);
+            if (scene.settings.world_half_res)
+                std::printf(", %u pixels looked up alone (no half-res sample on their surface)",
+                            world->edges);
+            std::printf("; voxel grid %dx%dx%d of side %.4g\n", grid.size.x, grid.size.y,
+                        grid.size.z, double(grid.voxel));
         }
     if (!args.profileJson.empty()) {
         const ProfileSummary summary = log.summary();

@@ -1,15 +1,20 @@
-// world.clear, world.insert, world.schedule, world.gather, world.lookup (indirect_method 3): the
-// bounce held in world space. A hash table of cells (world_cache.glsl), each the irradiance at
-// one surface point gathered from the RSM's VPLs with their visibility through the voxel grid
-// (world_voxels_pass.cpp), which does not depend on the view: a moving camera looks the cells up
-// and fills only the new ones. The table persists from frame to frame; without the cache it is
-// cleared every frame and every cell filled at once.
+// world.clear, world.insert, world.schedule, world.gather, world.lookup, world.upsample,
+// world.lookup_edges (indirect_method 3): the bounce held in world space. A hash table of cells
+// (world_cache.glsl), each the irradiance at one surface point gathered from the RSM's VPLs with
+// their visibility through the voxel grid (world_voxels_pass.cpp), which does not depend on the
+// view: a moving camera looks the cells up and fills only the new ones. The table persists from
+// frame to frame; without the cache it is cleared every frame and every cell filled at once. With
+// world_half_res, the lookup runs at the top-left pixel of every 2x2 block, world.upsample brings
+// the bounce to full resolution, and world.lookup_edges looks it up at the pixels that have no
+// sample on their surface.
 //   reads:  gbuffer.view_depth, .normal, indirect.vpl_list (the flux's pool), the VPL map
 //           (indirect.vpl_position, .vpl_normal, .vpl_flux), world.voxels, .voxel_distance
 //   writes: world.keys, .irradiance, .points, .used, .directions, .owner (the table), world.stats
 //   (its
 //           counters), world.gather_list (the cells that gather this frame), world.indirect (the
-//           bounce, irradiance / pi, RGBA16F: the composite's "indirect")
+//           bounce, irradiance / pi, RGBA16F: the composite's "indirect"), world.indirect_half
+//           and world.edge_list (world_half_res: the bounce at every other pixel, and the
+//           pixels looked up alone)
 #include "passes/passes.h"
 #include "passes/views.h"
 
@@ -67,6 +72,12 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
         build.graph.createImage("world.stats", VK_FORMAT_R32_UINT, {WORLD_STATS, 2}, usage, true);
     const graph::ImageRef indirect =
         build.graph.createImage("world.indirect", VK_FORMAT_R16G16B16A16_SFLOAT, build.size, usage);
+    // Where pixels look up: every pixel, or the top-left one of every 2x2 block.
+    const bool halfRes = settings.world_half_res;
+    const VkExtent2D screen = build.size;
+    const VkExtent2D lookupSize =
+        halfRes ? VkExtent2D{(screen.width + 1) / 2, (screen.height + 1) / 2} : screen;
+    const vk::Specialization scale{{{"SCALE", halfRes ? 2 : 1}}};
 
     using graph::Use;
     // Empty keys are zeros, and so are the counters; the cells' values and points too, so that
@@ -84,7 +95,6 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
                      {"worldStats", stats, Use::StorageReadWrite},
                      {"worldDirections", directions, Use::StorageWrite}};
     insert.pushSize = sizeof(shader::WorldConstants);
-    const VkExtent2D screen = build.size;
     addComputePass(build, std::move(insert), [screen, constants](const ComputeRecorder& r) {
         r.dispatch(screen.width, screen.height, constants(r.frame()));
     });
@@ -107,34 +117,40 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
         r.dispatch(table.width, table.height, constants(r.frame()));
     });
 
-    // The gather's workgroups, as the schedule counted them, copied to the buffer its indirect
-    // dispatch reads: a command for each row of counters (frame parity).
+    // The workgroups of the passes dispatched indirectly, as the passes before them counted them
+    // in world.stats, copied to the buffer the indirect dispatch reads: a command for each of
+    // them (0 world.gather, 1 world.lookup_edges) and each row of counters (frame parity).
     const vk::Buffer& dispatchSize =
-        build.deviceBuffer(2 * sizeof(VkDispatchIndirectCommand),
+        build.deviceBuffer(4 * sizeof(VkDispatchIndirectCommand),
                            VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     const VkBuffer sizes = dispatchSize.buffer;
-    auto commandOffset = [](const FrameState& frame) {
-        return VkDeviceSize(frame.patternFrame & 1u) * sizeof(VkDispatchIndirectCommand);
+    auto commandOffset = [](const FrameState& frame, uint32_t command) {
+        return VkDeviceSize(2 * command + (frame.patternFrame & 1u)) *
+               sizeof(VkDispatchIndirectCommand);
     };
-    build.graph.addPass(
-        "world.dispatch_size", graph::PassKind::Transfer, {{stats, Use::TransferSrc}},
-        [stats, sizes, commandOffset](const graph::PassContext& pc) {
-            // After last frame's indirect read of the buffer.
-            vk::bufferBarrier(pc.cmd, sizes, VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
-                              VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
-                              VK_ACCESS_2_TRANSFER_WRITE_BIT);
-            VkBufferImageCopy region{};
-            region.bufferOffset = commandOffset(pc.frame);
-            region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-            region.imageOffset = {WORLD_STAT_GROUPS, int32_t(pc.frame.patternFrame & 1u), 0};
-            region.imageExtent = {3, 1, 1};
-            vkCmdCopyImageToBuffer(pc.cmd, pc.image(stats).image,
-                                   VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, sizes, 1, &region);
-            // Before the gather's indirect read of it.
-            vk::bufferBarrier(pc.cmd, sizes, VK_PIPELINE_STAGE_2_COPY_BIT,
-                              VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
-                              VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
-        });
+    auto addDispatchSizePass = [&build, stats, sizes,
+                                commandOffset](const char* name, uint32_t command, int32_t column) {
+        build.graph.addPass(
+            name, graph::PassKind::Transfer, {{stats, Use::TransferSrc}},
+            [stats, sizes, commandOffset, command, column](const graph::PassContext& pc) {
+                // After last frame's indirect reads of the buffer.
+                vk::bufferBarrier(pc.cmd, sizes, VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
+                                  VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT,
+                                  VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+                VkBufferImageCopy region{};
+                region.bufferOffset = commandOffset(pc.frame, command);
+                region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+                region.imageOffset = {column, int32_t(pc.frame.patternFrame & 1u), 0};
+                region.imageExtent = {3, 1, 1};
+                vkCmdCopyImageToBuffer(pc.cmd, pc.image(stats).image,
+                                       VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, sizes, 1, &region);
+                // Before the indirect read of it.
+                vk::bufferBarrier(
+                    pc.cmd, sizes, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                    VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT, VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
+            });
+    };
+    addDispatchSizePass("world.dispatch_size", 0, WORLD_STAT_GROUPS);
 
     ComputePassDesc gather{"world.gather", "world_gather.comp"};
     gather.images = {{"voxels", grid.voxels, Use::Sampled},
@@ -153,22 +169,55 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
     gather.spec = {{{"POOL", pool}}};
     addComputePass(build, std::move(gather),
                    [sizes, constants, commandOffset](const ComputeRecorder& r) {
-                       r.dispatchIndirect(sizes, commandOffset(r.frame()), constants(r.frame()));
+                       r.dispatchIndirect(sizes, commandOffset(r.frame(), 0), constants(r.frame()));
                    });
 
-    ComputePassDesc lookup{"world.lookup", "world_lookup.comp"};
-    lookup.images = {{"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
-                     {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
-                     {"worldKeys", keys, Use::Sampled},
-                     {"worldIrradiance", irradiance, Use::Sampled},
-                     {"worldUsed", used, Use::Sampled},
-                     {"indirectImage", indirect, Use::StorageWrite},
-                     {"worldPoints", points, Use::Sampled},
-                     {"worldDirections", directions, Use::Sampled}};
+    const graph::ImageRef looked =
+        halfRes ? build.graph.createImage("world.indirect_half", VK_FORMAT_R16G16B16A16_SFLOAT,
+                                          lookupSize, usage)
+                : indirect;
+    const std::vector<ShaderImage> tableReads = {
+        {"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
+        {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
+        {"worldKeys", keys, Use::Sampled},
+        {"worldIrradiance", irradiance, Use::Sampled},
+        {"worldUsed", used, Use::Sampled},
+        {"worldPoints", points, Use::Sampled},
+        {"worldDirections", directions, Use::Sampled}};
+    ComputePassDesc lookup{"world.lookup", "world_lookup.comp", tableReads};
+    lookup.images.push_back({"indirectImage", looked, Use::StorageWrite});
     lookup.pushSize = sizeof(shader::WorldConstants);
-    addComputePass(build, std::move(lookup), [screen, constants](const ComputeRecorder& r) {
-        r.dispatch(screen.width, screen.height, constants(r.frame()));
+    lookup.spec = scale;
+    addComputePass(build, std::move(lookup), [lookupSize, constants](const ComputeRecorder& r) {
+        r.dispatch(lookupSize.width, lookupSize.height, constants(r.frame()));
     });
+    if (halfRes) {
+        // The pixels world.upsample leaves to world.lookup_edges, their indices in the image.
+        const graph::ImageRef edges =
+            build.graph.createImage("world.edge_list", VK_FORMAT_R32_UINT, screen, usage);
+        ComputePassDesc upsample{"world.upsample", "world_upsample.comp"};
+        upsample.images = {{"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
+                           {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
+                           {"halfIndirect", looked, Use::Sampled},
+                           {"indirectImage", indirect, Use::StorageWrite},
+                           {"worldStats", stats, Use::StorageReadWrite},
+                           {"edgeList", edges, Use::StorageWrite}};
+        upsample.pushSize = sizeof(shader::WorldConstants);
+        addComputePass(build, std::move(upsample), [screen, constants](const ComputeRecorder& r) {
+            r.dispatch(screen.width, screen.height, constants(r.frame()));
+        });
+        addDispatchSizePass("world.edge_dispatch_size", 1, WORLD_STAT_EDGE_GROUPS);
+        ComputePassDesc edgeLookup{"world.lookup_edges", "world_lookup_edges.comp", tableReads};
+        edgeLookup.images.push_back({"worldStats", stats, Use::Sampled});
+        edgeLookup.images.push_back({"edgeList", edges, Use::Sampled});
+        edgeLookup.images.push_back({"indirectImage", indirect, Use::StorageReadWrite});
+        edgeLookup.pushSize = sizeof(shader::WorldConstants);
+        addComputePass(build, std::move(edgeLookup),
+                       [sizes, constants, commandOffset](const ComputeRecorder& r) {
+                           r.dispatchIndirect(sizes, commandOffset(r.frame(), 1),
+                                              constants(r.frame()));
+                       });
+    }
     return indirect;
 }
 

@@ -450,7 +450,11 @@ SSGI_CHECK_SIZE(WorldConstants, 64);
 #define WORLD_STAT_LISTED 6    // cells listed for world.gather (new and refreshed)
 // world.gather's workgroups, x, y and z (a VkDispatchIndirectCommand, copied to a buffer).
 #define WORLD_STAT_GROUPS 7
-#define WORLD_STATS 10
+// world_half_res: pixels world.upsample listed for world.lookup_edges (those with no half-res
+// sample on their surface, or every pixel in a debug view), and that pass's workgroups, x, y, z.
+#define WORLD_STAT_EDGES 10
+#define WORLD_STAT_EDGE_GROUPS 11
+#define WORLD_STATS 14
 
 // How a lighting term enters the composite's sum (composite.comp). The pass that makes a term
 // registers it by its view's name (FrameBuild::addCompositeTerm); the view table

@@ -33,6 +33,7 @@ layout(push_constant) uniform IndirectBlock { IndirectConstants constants; };
 #include "screen_space.glsl"
 #include "temporal.glsl"
 #include "indirect_gather.glsl"
+#include "half_resolution.glsl"
 
 void main() {
     loadPixelToWorld(); // pixel_to_world.glsl
@@ -49,31 +50,13 @@ void main() {
         return;
     }
     vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
-    // A neighbour is compatible within a few pixels' world footprint, on p's plane.
-    float footprint = 1.0 / pixelsPerUnit(viewDepth(p));
-    ivec2 halfSize = ivec2(constants.width, constants.height); // half-res samples skipped this frame are not used
-    ivec2 base = (pixel - 1) / 2; // half-res samples sit at even full-res pixels
-    vec2 f = (vec2(pixel) - vec2(base * 2)) * 0.5;
-    vec3 sum = vec3(0.0);
-    float weightSum = 0.0;
-    for (int j = 0; j < (HALF_RES != 0 ? 4 : 0); ++j) {
-        ivec2 offset = ivec2(j & 1, j >> 1);
-        ivec2 h = clamp(base + offset, ivec2(0), halfSize - 1);
-        vec4 q = gbufferPosition(h * 2);
-        if (q.w == 0.0) continue;
-        vec3 nq = texelFetch(gbufferNormal, h * 2, 0).xyz;
-        vec3 delta = q.xyz - p;
-        if (dot(n, nq) < 0.9 || length(delta) > 6.0 * footprint ||
-            abs(dot(n, delta)) > 1.5 * footprint)
-            continue;
-        vec4 halfSample = texelFetch(halfIndirect, h, 0);
-        if (halfSample.a < 0.5) continue;
-        float w = (offset.x == 1 ? f.x : 1.0 - f.x) * (offset.y == 1 ? f.y : 1.0 - f.y) + 1e-4;
-        sum += w * halfSample.rgb;
-        weightSum += w;
-    }
-    if (weightSum > 0.0) {
-        imageStore(indirectImage, pixel, vec4(sum / weightSum, 1.0));
+    // Half-res samples skipped this frame are not used (half_resolution.glsl).
+    ivec2 halfSize = ivec2(constants.width, constants.height);
+    vec4 samples = HALF_RES != 0
+                       ? compatibleHalfSamples(halfIndirect, halfSize, pixel, p, n, 1.0, 0.9)
+                       : vec4(0.0);
+    if (samples.a > 0.0) {
+        imageStore(indirectImage, pixel, vec4(samples.rgb / samples.a, 1.0));
     } else {
         vec4 unused; // the directional sums serve the interleaved method alone
         vec3 e = gatherIndirect(p, n, pixelRotation(pixel) + constants.rotation,
