@@ -33,8 +33,11 @@ def main():
         path = json.load(f).get("camera_path", [])
     duration = path[-1]["time"] if path else 0.0
     width, height = (int(v) for v in args.size.split("x"))
-    renderer = ssgi.Renderer(scene, size=(width, height), keep=EFFECTS)
-    computed = {e: [] for e in EFFECTS}
+    # The effects this frame caches: those with a history (SSDO only where it replaces the AO).
+    names = ssgi.Renderer(scene, size=(8, 8)).images()
+    effects = [e for e in EFFECTS if e + ".history" in names]
+    renderer = ssgi.Renderer(scene, size=(width, height), keep=effects)
+    computed = {e: [] for e in effects}
     passes = {}
     for f in range(args.frames):
         renderer.set_time(duration * f / max(args.frames - 1, 1))
@@ -42,11 +45,8 @@ def main():
         if f < 4:
             continue
         covered = renderer.read("gbuffer.position")[..., 3] != 0
-        for e in EFFECTS:
-            try:
-                raw = renderer.read(e)[..., 3]
-            except Exception:  # not in this frame (not cached, or not on)
-                continue
+        for e in effects:
+            raw = renderer.read(e)[..., 3]
             computed[e].append(float(((raw > 0.5) & covered).sum()) / max(int(covered.sum()), 1))
         for name, ms in renderer.profile()["passes"].items():
             passes.setdefault(name, []).append(ms)
