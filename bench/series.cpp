@@ -36,10 +36,12 @@ const Method& cheapFrames() {
 }
 
 // The world cache's bounce with half the samples a frame of the effects the cache accumulates
-// (cache_samples 0.5: AO 4x2 of 8x4, the shadow's 6 horizon directions of 12).
-const Method& worldCacheHalfSamples() {
-    static const Method method = {"cache: world cache, half the samples a frame",
-                                  {{"cache", 1}, {"indirect_method", 3}, {"cache_samples", 0.5}}};
+// (cache_samples 0.5: AO 4x2 of 8x4, the shadow's 6 horizon directions of 12) and its lookup at
+// half resolution (world_half_res).
+const Method& worldCacheHalved() {
+    static const Method method = {
+        "cache: world cache, half the samples, half-res lookup",
+        {{"cache", 1}, {"indirect_method", 3}, {"cache_samples", 0.5}, {"world_half_res", 1}}};
     return method;
 }
 
@@ -162,7 +164,7 @@ Json walkthrough(vk::Context& ctx, const Scene& scene, const Options& options, u
                                    {"cache: thesis rule", {{"cache", 1}}},
                                    cheapFrames(),
                                    {"cache: world cache", {{"cache", 1}, {"indirect_method", 3}}},
-                                   worldCacheHalfSamples()};
+                                   worldCacheHalved()};
     if (!options.methods.empty()) {
         methods.clear();
         for (const auto& [label, settings] : options.methods)
