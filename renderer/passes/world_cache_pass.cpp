@@ -9,12 +9,11 @@
 // sample on their surface.
 //   reads:  gbuffer.view_depth, .normal, indirect.vpl_list (the flux's pool), the VPL map
 //           (indirect.vpl_position, .vpl_normal, .vpl_flux), world.voxels, .voxel_distance
-//   writes: world.keys, .irradiance, .points, .used, .directions, .owner (the table), world.stats
-//   (its
-//           counters), world.gather_list (the cells that gather this frame), world.indirect (the
-//           bounce, irradiance / pi, RGBA16F: the composite's "indirect"), world.indirect_half
-//           and world.edge_list (world_half_res: the bounce at every other pixel, and the
-//           pixels looked up alone)
+//   writes: world.keys, .irradiance, .points, .used, .directions, .owner (the table),
+//           world.stats (its counters), world.gather_list (the cells that gather this frame),
+//           world.indirect (the bounce, irradiance / pi, RGBA16F: the composite's "indirect"),
+//           world.indirect_half and world.edge_list (world_half_res: the bounce at every other
+//           pixel, and the pixels looked up alone)
 #include "passes/passes.h"
 #include "passes/views.h"
 
