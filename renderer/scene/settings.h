@@ -119,8 +119,9 @@ namespace ssgi {
       "method 3: a pixel whose own cell is absent takes the cell one level coarser or finer at "   \
       "its point, if an earlier frame gathered it, rather than making its own")                    \
     X(world_half_res, bool, false, 0, 1, "World cache",                                            \
-      "method 3: cells found, made and looked up at the top-left pixel of every 2x2 block, the "   \
-      "bounce upsampled from those on a pixel's surface (a pixel with none looks up its own)")     \
+      "method 3: cells looked up at the top-left pixel of every 2x2 block (every pixel still "     \
+      "finds or makes its own), the bounce upsampled from those on a pixel's surface (a pixel "    \
+      "with none is looked up alone)")                                                             \
     X(world_vpls, int, 48, 2, 1024, "World cache",                                                 \
       "method 3: VPLs a cell gathers, with their visibility, in a frame's refresh (half by flux, " \
       "half next to it)")                                                                          \
