@@ -175,7 +175,9 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
         halfRes ? build.graph.createImage("world.indirect_half", VK_FORMAT_R16G16B16A16_SFLOAT,
                                           lookupSize, usage)
                 : indirect;
-    const std::vector<ShaderImage> tableReads = {
+    // What world_lookup.glsl reads: the G-buffer and the table, bound first by both passes that
+    // look up.
+    const std::vector<ShaderImage> lookupReads = {
         {"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
         {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
         {"worldKeys", keys, Use::Sampled},
@@ -183,7 +185,7 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
         {"worldUsed", used, Use::Sampled},
         {"worldPoints", points, Use::Sampled},
         {"worldDirections", directions, Use::Sampled}};
-    ComputePassDesc lookup{"world.lookup", "world_lookup.comp", tableReads};
+    ComputePassDesc lookup{"world.lookup", "world_lookup.comp", lookupReads};
     lookup.images.push_back({"indirectImage", looked, Use::StorageWrite});
     lookup.pushSize = sizeof(shader::WorldConstants);
     lookup.spec = scale;
@@ -206,7 +208,7 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
             r.dispatch(screen.width, screen.height, constants(r.frame()));
         });
         addDispatchSizePass("world.edge_dispatch_size", 1, WORLD_STAT_EDGE_GROUPS);
-        ComputePassDesc edgeLookup{"world.lookup_edges", "world_lookup_edges.comp", tableReads};
+        ComputePassDesc edgeLookup{"world.lookup_edges", "world_lookup_edges.comp", lookupReads};
         edgeLookup.images.push_back({"worldStats", stats, Use::Sampled});
         edgeLookup.images.push_back({"edgeList", edges, Use::Sampled});
         edgeLookup.images.push_back({"indirectImage", indirect, Use::StorageReadWrite});
