@@ -26,6 +26,7 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
                                     const FluxVpls& vpls, const WorldGrid& grid) {
     const Settings& settings = build.settings;
     const int bits = int(settings.world_table_bits);
+    // Powers of two both ways: world_cache.glsl indexes the table with masks and shifts.
     const VkExtent2D table{1u << (bits - bits / 2), 1u << (bits / 2)};
     shader::WorldConstants base{};
     const uint32_t vplMapSide =

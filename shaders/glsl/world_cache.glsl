@@ -71,8 +71,8 @@ WorldKey worldKey(ivec3 cell, int level, int direction) {
     uint tag = uint(level * 6 + direction);
     WorldKey k;
     k.home = worldHash(uint(cell.x) + worldHash(uint(cell.y) + worldHash(uint(cell.z) +
-                                                                          worldHash(tag)))) %
-             uint(constants.table.y);
+                                                                          worldHash(tag)))) &
+             uint(constants.table.y - 1);
     // Another hash of the same four numbers, so that keys that share a home differ here; never
     // WORLD_EMPTY or WORLD_EVICTED.
     k.checksum = max(worldHash(uint(cell.x) * 73856093u ^ uint(cell.y) * 19349663u ^
@@ -80,9 +80,14 @@ WorldKey worldKey(ivec3 cell, int level, int direction) {
                      2u);
     return k;
 }
+// Entry i's texel in the table's images. The table's width and its entries are powers of two
+// (world_cache_pass.cpp), so that this and the hashes' modulo are masks and shifts: a division
+// by a number not known when the shader is compiled is many times slower on a CPU device.
+ivec2 worldTexel(uint i) {
+    return ivec2(i & uint(constants.table.x - 1), i >> uint(findLSB(constants.table.x)));
+}
 ivec2 worldEntry(uint home, int probe) {
-    uint i = (home + uint(probe)) % uint(constants.table.y);
-    return ivec2(i % uint(constants.table.x), i / uint(constants.table.x));
+    return worldTexel((home + uint(probe)) & uint(constants.table.y - 1));
 }
 // A normal as one float: its octahedral map in 12 bits per axis, a whole number below 2^24 that
 // a float holds exactly (a float of arbitrary bits may be a NaN).

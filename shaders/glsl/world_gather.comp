@@ -137,11 +137,11 @@ void main() {
     uint now = uint(frame.patternFrame);
     if (slot >= texelFetch(worldStats, ivec2(WORLD_STAT_LISTED, int(now) & 1), 0).r) return;
     uint listed = texelFetch(gatherList,
-                             ivec2(slot % uint(constants.table.x), slot / uint(constants.table.x)),
+                             worldTexel(slot),
                              0).r;
     uint index = listed & 0x3fffffu;
     float gathered = float(listed >> 22u);
-    ivec2 entry = ivec2(index % uint(constants.table.x), index / uint(constants.table.x));
+    ivec2 entry = worldTexel(index);
     vec4 cell = imageLoad(worldIrradiance, entry);
     vec4 point = texelFetch(worldPoints, entry, 0);
     vec3 n = unpackCellNormal(point.w);
