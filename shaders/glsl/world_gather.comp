@@ -136,9 +136,7 @@ void main() {
     uint slot = gl_GlobalInvocationID.x;
     uint now = uint(frame.patternFrame);
     if (slot >= texelFetch(worldStats, ivec2(WORLD_STAT_LISTED, int(now) & 1), 0).r) return;
-    uint listed = texelFetch(gatherList,
-                             worldTexel(slot),
-                             0).r;
+    uint listed = texelFetch(gatherList, worldTexel(slot), 0).r;
     uint index = listed & 0x3fffffu;
     float gathered = float(listed >> 22u);
     ivec2 entry = worldTexel(index);

@@ -96,6 +96,5 @@ void main() {
     // The gather's workgroups (64 invocations each), dispatched as many as the list needs.
     imageAtomicMax(worldStats, ivec2(WORLD_STAT_GROUPS, row), slot / 64u + 1u);
     uint index = uint(entry.x + entry.y * constants.table.x);
-    imageStore(gatherList, worldTexel(slot),
-               uvec4(index | (uint(gathered) << 22u)));
+    imageStore(gatherList, worldTexel(slot), uvec4(index | (uint(gathered) << 22u)));
 }
