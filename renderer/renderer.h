@@ -98,6 +98,7 @@ public:
     // shared.h), or none without it.
     struct WorldCacheCounts {
         uint32_t live = 0, filled = 0, refreshed = 0, evicted = 0, full = 0, entries = 0;
+        uint32_t cut = 0; // gather samples a loop limit left out (WORLD_STAT_CUT)
         // world_half_res: the pixels world.lookup_edges looked up alone (WORLD_STAT_EDGES).
         uint32_t edges = 0;
     };

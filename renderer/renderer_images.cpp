@@ -214,6 +214,7 @@ std::optional<Renderer::WorldCacheCounts> Renderer::worldCacheCounts() {
     c.evicted = at(WORLD_STAT_EVICTED);
     c.full = at(WORLD_STAT_FULL);
     c.edges = at(WORLD_STAT_EDGES);
+    c.cut = at(WORLD_STAT_CUT);
     const VkExtent2D table = graph_->image(imageNamed("world.keys")).extent;
     c.entries = table.width * table.height;
     return c;

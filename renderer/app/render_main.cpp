@@ -175,6 +175,8 @@ int run(int argc, char** argv) {
             if (scene.settings.world_half_res)
                 std::printf(", %u pixels looked up alone (no half-res sample on their surface)",
                             world->edges);
+            if (world->cut > 0)
+                std::printf(", %u gather samples left out (the device's loop limit)", world->cut);
             std::printf("; voxel grid %dx%dx%d of side %.4g\n", grid.size.x, grid.size.y,
                         grid.size.z, double(grid.voxel));
         }

@@ -448,13 +448,19 @@ SSGI_CHECK_SIZE(WorldConstants, 64);
 #define WORLD_STAT_FULL 4      // pixels whose cell found no free entry within its probes
 #define WORLD_STAT_BUDGET 5    // refreshes handed out (world_cells_per_frame caps them)
 #define WORLD_STAT_LISTED 6    // cells listed for world.gather (new and refreshed)
-// world.gather's workgroups, x, y and z (a VkDispatchIndirectCommand, copied to a buffer).
+// world.gather's workgroups, x, y and z (a VkDispatchIndirectCommand, copied to a buffer): a
+// workgroup per 64 listed cells, at most WORLD_GATHER_GROUPS_X along x (the least limit Vulkan
+// allows is 65,535), the rows along y.
 #define WORLD_STAT_GROUPS 7
+#define WORLD_GATHER_GROUPS_X 32768u
 // world_half_res: pixels world.upsample listed for world.lookup_edges (those with no half-res
 // sample on their surface, or every pixel in a debug view), and that pass's workgroups, x, y, z.
 #define WORLD_STAT_EDGES 10
 #define WORLD_STAT_EDGE_GROUPS 11
-#define WORLD_STATS 14
+// world.gather's samples left out where a loop limit stopped a lane's walks (lavapipe stops an
+// invocation's loops after 65,535 iterations in all; world_gather.comp)
+#define WORLD_STAT_CUT 14
+#define WORLD_STATS 15
 
 // How a lighting term enters the composite's sum (composite.comp). The pass that makes a term
 // registers it by its view's name (FrameBuild::addCompositeTerm); the view table

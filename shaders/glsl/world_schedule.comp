@@ -40,10 +40,8 @@ layout(push_constant) uniform WorldBlock { WorldConstants constants; };
 void main() {
     ivec2 entry = ivec2(gl_GlobalInvocationID.xy);
     uint now = uint(frame.patternFrame);
-    if (entry == ivec2(0)) { // the gather's y and z workgroups
-        imageStore(worldStats, ivec2(WORLD_STAT_GROUPS + 1, int(now) & 1), uvec4(1u));
+    if (entry == ivec2(0)) // the gather's z workgroups
         imageStore(worldStats, ivec2(WORLD_STAT_GROUPS + 2, int(now) & 1), uvec4(1u));
-    }
     if (any(greaterThanEqual(entry, imageSize(worldKeys)))) return;
     uint key = imageLoad(worldKeys, entry).r;
     if (key == WORLD_EMPTY || key == WORLD_EVICTED) return;
@@ -93,8 +91,11 @@ void main() {
         return;
     }
     uint slot = imageAtomicAdd(worldStats, ivec2(WORLD_STAT_LISTED, row), 1u);
-    // The gather's workgroups (64 invocations each), dispatched as many as the list needs.
-    imageAtomicMax(worldStats, ivec2(WORLD_STAT_GROUPS, row), slot / 64u + 1u);
+    // The gather's workgroups of 64 cells, as many as the list needs, in rows of
+    // WORLD_GATHER_GROUPS_X.
+    uint group = slot / 64u;
+    imageAtomicMax(worldStats, ivec2(WORLD_STAT_GROUPS, row), min(group + 1u, WORLD_GATHER_GROUPS_X));
+    imageAtomicMax(worldStats, ivec2(WORLD_STAT_GROUPS + 1, row), group / WORLD_GATHER_GROUPS_X + 1u);
     uint index = uint(entry.x + entry.y * constants.table.x);
     imageStore(gatherList, worldTexel(slot), uvec4(index | (uint(gathered) << 22u)));
 }

@@ -52,15 +52,20 @@ ivec3 voxelAfter(vec3 A, vec3 dir, float s) {
     return clamp(ivec3(floor(A + dir * (s + 1e-3))), ivec3(0), frame.worldGridSize.xyz - 1);
 }
 
-// Whether the segment from a to b (world space) crosses no occupied voxel. Both ends lie on
-// surfaces, in voxels the surfaces occupy: the walk leaves the voxels it starts in while they
-// are occupied (its own surface), and takes the occupied voxels within two voxels of b for b's
-// own surface.
-bool voxelSegmentOpen(vec3 a, vec3 b) {
+// What voxelSegment finds of a segment.
+const int SEGMENT_BLOCKED = 0;
+const int SEGMENT_OPEN = 1;
+const int SEGMENT_UNKNOWN = 2; // the walk stopped before its end (a loop limit): nothing known
+
+// Whether the segment from a to b (world space) crosses an occupied voxel (SEGMENT_BLOCKED) or
+// none (SEGMENT_OPEN). Both ends lie on surfaces, in voxels the surfaces occupy: the walk leaves
+// the voxels it starts in while they are occupied (its own surface), and takes the occupied
+// voxels within two voxels of b for b's own surface.
+int voxelSegment(vec3 a, vec3 b) {
     vec3 A = (a - frame.worldGridOrigin.xyz) / frame.worldGridOrigin.w;
     vec3 B = (b - frame.worldGridOrigin.xyz) / frame.worldGridOrigin.w;
     float len = length(B - A);
-    if (len < 1e-6) return true;
+    if (len < 1e-6) return SEGMENT_OPEN;
     vec3 dir = (B - A) / len;
     // No component exactly 0: a ray along a grid plane never leaves it through that axis.
     dir = mix(dir, vec3(1e-7), lessThan(abs(dir), vec3(1e-7)));
@@ -90,7 +95,7 @@ bool voxelSegmentOpen(vec3 a, vec3 b) {
         for (; s < end && i < 4096; ++i) {
             float exit = boxExit(A, inverse, vec3(v), 1.0);
             if ((words[voxelWord(v)] & voxelBit(v)) != 0u) {
-                if (!leaving && len - exit > 2.0) return false;
+                if (!leaving && len - exit > 2.0) return SEGMENT_BLOCKED;
             } else {
                 leaving = false;
             }
@@ -99,7 +104,7 @@ bool voxelSegmentOpen(vec3 a, vec3 b) {
             if (v / WORLD_BLOCK != block) break;
         }
     }
-    return true;
+    return s >= end ? SEGMENT_OPEN : SEGMENT_UNKNOWN;
 }
 
 #endif // WORLD_VOXELS_LAYOUT_ONLY
