@@ -1,0 +1,98 @@
+// The world cache's bounce (indirect_method 3) converges as its samples grow: more VPLs a cell
+// (world_vpls) or more frames of them (world_frames) bring one uncached frame's bounce nearer
+// the path tracer's, never further, over each setting's whole range. lavapipe stops an
+// invocation's loops after 65,535 iterations in all, and a gather that lost the rest of its
+// samples there grew darker with every sample added (world_gather.comp).
+#include "metrics/metrics.h"
+#include "reference/cache.h"
+#include "renderer.h"
+#include "support.h"
+
+#include <cstdio>
+#include <vector>
+
+using namespace ssgi;
+
+namespace {
+
+constexpr uint32_t kSize = 32;
+
+// The bounce as outgoing radiance (irradiance / pi times the albedo), as the reference's
+// indirect mode gives it, and the pixels that hold geometry.
+struct Bounce {
+    std::vector<float> radiance;
+    metrics::Mask geometry;
+};
+
+Bounce uncachedBounce(Scene scene, const SettingOverrides& settings) {
+    scene.settings.indirect_method = 3;
+    scene.settings.cache = false;
+    scene.settings = withOverrides(scene.settings, settings, "test");
+    Renderer renderer(test::context(), scene, {kSize, kSize, "final"});
+    renderer.renderFrame(scene.camera);
+    Bounce b;
+    b.radiance = renderer.readImage("world.indirect");
+    const std::vector<float> albedo = renderer.readImage("gbuffer.albedo");
+    const std::vector<float> position = renderer.readImage("gbuffer.position");
+    for (size_t i = 0; i < b.radiance.size(); ++i)
+        if (i % 4 != 3) b.radiance[i] *= albedo[i];
+    for (size_t i = 0; i < size_t(kSize) * kSize; ++i)
+        b.geometry.push_back(position[4 * i + 3] != 0.0f);
+    return b;
+}
+
+double relMse(const Bounce& b, const std::vector<float>& truth) {
+    metrics::Image a{kSize, kSize, b.radiance}, t{kSize, kSize, truth};
+    return metrics::errorFigures(a, t, b.geometry, metrics::ssimMap(a, t)).relMse;
+}
+
+double mean(const Bounce& b) {
+    double sum = 0.0;
+    for (size_t i = 0; i < b.radiance.size(); ++i)
+        if (i % 4 != 3) sum += b.radiance[i];
+    return sum / double(b.radiance.size() / 4 * 3);
+}
+
+// Along `values` of one setting, the relMSE against the path tracer's bounce never rises by more
+// than 10% of the smallest so far (the estimate's own noise between sample counts), and the
+// bounce's mean stays within 5% of the first one's: a gather that loses samples darkens.
+void expectConverges(const char* sceneFile, const char* setting, const std::vector<int>& values) {
+    const Scene scene = loadScene(test::sourcePath(sceneFile));
+    reference::ReferenceOptions options;
+    options.width = options.height = kSize;
+    options.spp = 1024;
+    options.mode = reference::Mode::Indirect;
+    const std::vector<float> truth = reference::cachedReference(scene, options).rgba;
+    double best = 0.0, firstMean = 0.0;
+    for (size_t k = 0; k < values.size(); ++k) {
+        const Bounce b = uncachedBounce(scene, {{setting, double(values[k])}});
+        const double error = relMse(b, truth), m = mean(b);
+        std::printf("%s %s=%d: relMSE %.5f, mean %.5f\n", sceneFile, setting, values[k], error, m);
+        if (k == 0) {
+            best = error;
+            firstMean = m;
+            continue;
+        }
+        EXPECT_LE(error, best * 1.1) << setting << "=" << values[k];
+        EXPECT_NEAR(m, firstMean, 0.05 * firstMean) << setting << "=" << values[k];
+        best = std::min(best, error);
+    }
+}
+
+TEST(WorldCacheConvergence, MoreVplsBringTheCornellBoxNearer) {
+    expectConverges("scenes/cornell-box.json", "world_vpls", {48, 192, 1024});
+}
+
+TEST(WorldCacheConvergence, MoreFramesBringTheCornellBoxNearer) {
+    expectConverges("scenes/cornell-box.json", "world_frames", {16, 64, 512});
+}
+
+TEST(WorldCacheConvergence, MoreVplsBringSponzaNearer) {
+    expectConverges("scenes/sponza.json", "world_vpls", {48, 192, 1024});
+}
+
+TEST(WorldCacheConvergence, MoreFramesBringSponzaNearer) {
+    expectConverges("scenes/sponza.json", "world_frames", {16, 64, 512});
+}
+
+} // namespace
