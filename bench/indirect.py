@@ -47,8 +47,8 @@ def main():
               first["commit"], first["date"][:10], first["device"]["name"],
               first["device"]["driver"], args.note) + "\n",
           "Methods: **off** (no bounce), **thesis** (`indirect_method=0`: 512 VPLs per "
-          "half-resolution pixel, upsampled), **interleaved** (`indirect_method=1`, the "
-          "default: 4×4 subsets of 384 VPLs at full resolution, geometry-aware "
+          "half-resolution pixel, upsampled), **interleaved** (`indirect_method=1`: "
+          "4×4 subsets of 384 VPLs at full resolution, geometry-aware "
           "filter), **importance** (`indirect_method=2`: the same subsets and filter over the "
           "RSM clustered 4×4 texels to a VPL, 64 more VPLs a block drawn in proportion to their "
           "flux, the visibility test on 6 VPLs a pixel drawn by their light), **world cache** "
