@@ -54,7 +54,7 @@ def main():
           "flux, the visibility test on 6 VPLs a pixel drawn by their light), **world cache** "
           "(`indirect_method=3`: cells in world space gather the flux's VPLs with visibility "
           "through a voxel grid, pixels look them up; uncached, every cell gathers "
-          "world_vpls × world_frames VPLs at once; [effects.md](effects.md)). Cost: the frame's median over %d timed frames after %d "
+          "world_vpls × world_frames VPLs at once; [world-cache.md](world-cache.md)). Cost: the frame's median over %d timed frames after %d "
           "warm-up at %dx%d, cache off, the methods' frames interleaved; *cost* is (frame − "
           "frame without the bounce) / frame without it. On lavapipe every time is CPU time: "
           "compare within a run. Error: relMSE against `reference` (full mode; the bounce alone "
