@@ -99,7 +99,7 @@ def walkthroughs_default():
     d = load("walkthroughs")
     rows = [[SCENES.get(s, s), "%.2f×" % speed, "%.4f" % err, "%.4f" % off]
             for s, (speed, err, off) in ((s, v) for s, v in walk_default_rows(d).items())]
-    return (table(["camera path (%s, %d frames)" % (d["size"], d["path_frames"]),
+    return (table(["camera path (%s, %d frames)" % (d["size"].replace("x", "×"), d["path_frames"]),
                    "cached frame's speed-up, default settings", "its relMSE",
                    "the uncached frame's relMSE"], rows)
             + "\n" + measured(d) + "\n")
@@ -115,7 +115,7 @@ def stability_summary():
             ["changed region's error once settled, worst case",
              "%.2f× a fresh start's" % d["settled_worst"]],
             ["flicker on a still camera; NaN or Inf", "%d; %d" % (d["flicker"], d["nan"])]]
-    return (table(["at %s, both cache rules" % d["size"], ""], rows) + "\n" + measured(d)
+    return (table(["at %s, both cache rules" % d["size"].replace("x", "×"), ""], rows) + "\n" + measured(d)
             + "\n")
 
 
@@ -157,12 +157,14 @@ def where_it_stands():
          per_scene("converged"),
          "[accuracy](docs/accuracy.md#every-scene-against-converged-references)",
          "`bench/one_frame_error.py --converged 64`"],
-        ["the cache's speed-up along the camera paths (%s), default settings" % walk["size"],
+        ["the cache's speed-up along the camera paths (%s), default settings"
+         % walk["size"].replace("x", "×"),
          ", ".join("%s %.2f×" % (SCENES[s], walks[s][0]) for s in walks)
          + " (relMSE %s of the uncached frame's)" % span([walks[s][1] / walks[s][2]
                                                            for s in walks]),
          "[walkthroughs](docs/bench-walkthroughs.md)", "`bench/run.sh --walkthroughs`"],
-        ["the cache's speed-up on a still camera once settled (%s)" % settled["size"],
+        ["the cache's speed-up on a still camera once settled (%s)"
+         % settled["size"].replace("x", "×"),
          ", ".join("%s %.1f×" % (SCENES[s], v["speedup"])
                    for s, v in settled["scenes"].items())
          + "; the settled frame %s the cost of `direct` + `composite`"
@@ -172,7 +174,7 @@ def where_it_stands():
          ", ".join("%s %.1f MiB" % (SCENES[s], v["1920x1080"])
                    for s, v in memory["scenes"].items()),
          "[the frame](docs/frame.md#memory)", "`build/render --memory`"],
-        ["stability: scripted failure cases (%s, both cache rules)" % stab["size"],
+        ["stability: scripted failure cases (%s, both cache rules)" % stab["size"].replace("x", "×"),
          "%d of %d meet every target; recovery in %d frame (%s); error within %.2f× a fresh "
          "start's over 8 frames, %.2f× settled; no flicker, no NaN"
          % (stab["pairs_met"], stab["pairs"], stab["recovery_frames"],
