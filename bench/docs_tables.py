@@ -162,7 +162,7 @@ def where_it_stands():
          ", ".join("%s %.2f×" % (SCENES[s], walks[s][0]) for s in walks)
          + " (relMSE %s of the uncached frame's)" % span([walks[s][1] / walks[s][2]
                                                            for s in walks]),
-         "[walkthroughs](docs/bench-walkthroughs.md)", "`bench/run.sh --walkthroughs`"],
+         "[walkthroughs](docs/bench-walkthroughs.md#in-short)", "`build/benchmark walkthrough`"],
         ["the cache's speed-up on a still camera once settled (%s)"
          % settled["size"].replace("x", "×"),
          ", ".join("%s %.1f×" % (SCENES[s], v["speedup"])
