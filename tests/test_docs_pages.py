@@ -111,8 +111,8 @@ def blocks():
     return out
 
 
-@pytest.mark.parametrize("page,line,text,skip", blocks(),
-                         ids=lambda v: None if not isinstance(v, str) or "\n" in v else v)
+@pytest.mark.parametrize("page,line,text,skip",
+                         [pytest.param(*b, id="%s:%d" % b[:2]) for b in blocks()])
 def test_shell_block_runs(page, line, text, skip, tmp_path):
     if skip:
         pytest.skip(skip)
