@@ -88,6 +88,21 @@ def test_sizes_and_hashes():
         assert len(page.read_text().splitlines()) <= 450, "%s over 450 lines" % rel(page)
 
 
+def test_docs_name_at_most_60_commits():
+    """docs/ names a commit only where a table says what measured it: 60 at most in all
+    (strings that look like hashes but name no commit of this repository do not count)."""
+    found = [h for page in sorted((ROOT / "docs").glob("*.md"))
+             for h in HASH.findall(page.read_text())]
+    check = subprocess.run(["git", "-C", str(ROOT), "cat-file", "--batch-check"],
+                           input="".join(h + "^{commit}\n" for h in found),
+                           capture_output=True, text=True)
+    if check.returncode != 0:
+        pytest.skip("no git repository to tell commits from other hex strings")
+    commits = [line for line in check.stdout.splitlines() if line.endswith(" commit") or
+               " commit " in line]
+    assert len(commits) <= 60, "docs/ names %d commits (at most 60)" % len(commits)
+
+
 def blocks():
     """(page, line, text, skip reason or None) of every sh block of README.md and docs/."""
     out = []
