@@ -78,7 +78,8 @@ def one_frame_error():
         e = d["scenes"][s]
         rows.append(["`%s`" % s, "%.5f (%.5f–%.5f)" % (e["mean"], e["min"], e["max"]),
                      "%.5f / %.3f" % (e["frame0"], e["frame0_ssim"]),
-                     "%.5f / %.3f" % (e["converged"], e["converged_ssim"])])
+                     "%.5f / %.3f" % (e["converged"], e["converged_ssim"]) if "converged" in e
+                     else "—"])
     return (table(["scene", "one frame: mean of %d draws (range)" % d["frames"],
                    "frame 0 / SSIM", "%d cached frames / SSIM" % d["converged_frames"]], rows)
             + "\n" + measured(d) + "\n")
@@ -129,6 +130,12 @@ def span(values, fmt="%.2f", unit="×"):
     return (fmt % lo + unit) if fmt % lo == fmt % hi else (fmt % lo + "–" + fmt % hi + unit)
 
 
+def bounce_note(d, method):
+    """Where data were measured with another default bounce than today's, a note saying which."""
+    then = d.get("indirect_method", method)
+    return "" if then == method else " (measured when `indirect_method=%d` was the default)" % then
+
+
 def where_it_stands():
     """The README's table: one row per headline figure, each with its page and command."""
     method = int(setting_default("indirect_method"))
@@ -142,7 +149,8 @@ def where_it_stands():
                ("cornell-box", "sponza", "bunny", "sibenik", "mori-knob", "scrub-pine",
                 "conference")]
     per_scene = lambda key: ", ".join(
-        "%s %s" % (SCENES[s], significant(one["scenes"][s][key])) for s in shipped)
+        "%s %s" % (SCENES[s], significant(one["scenes"][s][key])) for s in shipped
+        if key in one["scenes"][s])
     walks = walk_default_rows(walk)
     big = gpu["moving"]["scenes"]
     rows = [
@@ -151,24 +159,26 @@ def where_it_stands():
          "[settings](docs/settings.md)", "`build/render --list-settings`"],
         ["one uncached frame against the path-traced truth, relMSE (mean of %d draws, %d×%d)"
          % (one["frames"], one["size"], one["size"]),
-         per_scene("mean"), "[accuracy](docs/accuracy.md#every-scene-against-converged-references)",
+         per_scene("mean") + bounce_note(one, method), "[accuracy](docs/accuracy.md#every-scene-against-converged-references)",
          "`bench/one_frame_error.py`"],
         ["%d cached frames of a still camera against the truth, relMSE" % one["converged_frames"],
-         per_scene("converged"),
+         per_scene("converged") + bounce_note(one, method),
          "[accuracy](docs/accuracy.md#every-scene-against-converged-references)",
          "`bench/one_frame_error.py --converged 64`"],
         ["the cache's speed-up along the camera paths (%s), default settings"
          % walk["size"].replace("x", "×"),
          ", ".join("%s %.2f×" % (SCENES[s], walks[s][0]) for s in walks)
          + " (relMSE %s of the uncached frame's)" % span([walks[s][1] / walks[s][2]
-                                                           for s in walks]),
+                                                           for s in walks])
+         + bounce_note(walk, method),
          "[walkthroughs](docs/bench-walkthroughs.md#in-short)", "`build/benchmark walkthrough`"],
         ["the cache's speed-up on a still camera once settled (%s)"
          % settled["size"].replace("x", "×"),
          ", ".join("%s %.1f×" % (SCENES[s], v["speedup"])
                    for s, v in settled["scenes"].items())
          + "; the settled frame %s the cost of `direct` + `composite`"
-         % span([v["over_direct_composite"] for v in settled["scenes"].values()]),
+         % span([v["over_direct_composite"] for v in settled["scenes"].values()])
+         + bounce_note(settled, method),
          "[benchmarks](docs/bench.md#in-short)", "`bench/run.sh`"],
         ["GPU memory the frame holds at 1920×1080",
          ", ".join("%s %.1f MiB" % (SCENES[s], v["1920x1080"])

@@ -53,6 +53,7 @@ def main():
                                                           figures["ssim"])
             entry = {"converged": round(figures["relmse"], 6),
                      "converged_ssim": round(figures["ssim"], 4)}
+        data["indirect_method"] = int(scene.settings["indirect_method"])
         scene.settings["cache"] = False
         renderer = ssgi.Renderer(scene, size=size)
         figures = [ssgi.compare(renderer.render(), truth) for _ in range(args.frames)]
@@ -86,7 +87,8 @@ def write_json(args, data):
                    "--frames %d --converged %d%s%s --json %s"
                    % (args.frames, args.converged,
                       "" if args.size == 128 else " --size %d" % args.size, settings, args.json),
-        "commit": commit, "device": device, "size": args.size, "frames": args.frames,
+        "commit": commit, "device": device, "indirect_method": data.pop("indirect_method"),
+        "size": args.size, "frames": args.frames,
         "converged_frames": args.converged})
     with open(args.json, "w") as f:
         json.dump(data, f, indent=2)

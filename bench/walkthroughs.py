@@ -74,6 +74,8 @@ def write_data(walks, scenes, path, default_run, results="out/bench/walk"):
             for scene in scenes for label, ms, speed, err in analysis.walk_runs(walks[scene])]
     if default_run not in {r[1] for r in runs}:
         raise SystemExit("error: no run labelled %r (--default-run)" % default_run)
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import docs_tables
     data = {"what": "the camera-path walkthroughs (the thesis's Tables 4.1-4.4): the wall clock "
                     "of a frame along each scene's camera_path, every run interleaved frame by "
                     "frame, and its mean relMSE against path-traced references",
@@ -81,6 +83,7 @@ def write_data(walks, scenes, path, default_run, results="out/bench/walk"):
                        "walkthrough`'s JSON (bench/run.sh --walkthroughs runs both)"
                        % (results, path),
             "commit": first["commit"], "device": first["device"]["name"],
+            "indirect_method": int(docs_tables.setting_default("indirect_method")),
             "date": first["date"][:10],
             "size": "%dx%d" % (first["width"], first["height"]),
             "path_frames": first["walkthrough"]["frames"], "default_run": default_run,
@@ -89,8 +92,6 @@ def write_data(walks, scenes, path, default_run, results="out/bench/walk"):
         json.dump(data, f, indent=2)
         f.write("\n")
     print("summary: %s" % path)
-    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-    import docs_tables
     for page in docs_tables.run(check=False):
         print("rewrote %s" % page)
 
