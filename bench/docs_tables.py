@@ -182,22 +182,24 @@ def where_it_stands():
          "[benchmarks](docs/bench.md#in-short)", "`bench/run.sh`"],
         ["GPU memory the frame holds at 1920×1080",
          ", ".join("%s %.1f MiB" % (SCENES[s], v["1920x1080"])
-                   for s, v in memory["scenes"].items()),
+                   for s, v in memory["scenes"].items()) + bounce_note(memory, method),
          "[the frame](docs/frame.md#memory)", "`build/render --memory`"],
         ["stability: scripted failure cases (%s, both cache rules)" % stab["size"].replace("x", "×"),
          "%d of %d meet every target; recovery in %d frame (%s); error within %.2f× a fresh "
          "start's over 8 frames, %.2f× settled; no flicker, no NaN"
          % (stab["pairs_met"], stab["pairs"], stab["recovery_frames"],
-            stab["recovery_exception"], stab["first8_worst"], stab["settled_worst"]),
+            stab["recovery_exception"], stab["first8_worst"], stab["settled_worst"])
+         + bounce_note(stab, method),
          "[stability](docs/stability.md#in-short)", "`build/stability --quick`"],
         ["%s: the cache's speed-up along the camera paths" % gpu["device"],
          "%s at 512×512, %s at 1920×1080" % (span([v["512x512"] for v in big.values()]),
-                                            span([v["1920x1080"] for v in big.values()])),
+                                            span([v["1920x1080"] for v in big.values()]))
+         + bounce_note(gpu, method),
          "[profiling](docs/profiling-gpu.md)", "`walkthrough --timings`"],
         ["%s: a settled still frame at 1920×1080" % gpu["device"],
          "%.2f–%.2f ms, %d–%d× faster than an uncached one"
          % (gpu["settled"]["ms_min"], gpu["settled"]["ms_max"], gpu["settled"]["speedup_min"],
-            gpu["settled"]["speedup_max"]),
+            gpu["settled"]["speedup_max"]) + bounce_note(gpu, method),
          "[profiling](docs/profiling-gpu.md)", "`render --warmup 40 --profile`"],
     ]
     return table(["figure", "today", "page", "measured by"], rows)
