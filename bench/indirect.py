@@ -47,14 +47,14 @@ def main():
               first["commit"], first["date"][:10], first["device"]["name"],
               first["device"]["driver"], args.note) + "\n",
           "Methods: **off** (no bounce), **thesis** (`indirect_method=0`: 512 VPLs per "
-          "half-resolution pixel, upsampled), **interleaved** (`indirect_method=1`, the "
-          "default: 4×4 subsets of 384 VPLs at full resolution, geometry-aware "
+          "half-resolution pixel, upsampled), **interleaved** (`indirect_method=1`: "
+          "4×4 subsets of 384 VPLs at full resolution, geometry-aware "
           "filter), **importance** (`indirect_method=2`: the same subsets and filter over the "
           "RSM clustered 4×4 texels to a VPL, 64 more VPLs a block drawn in proportion to their "
           "flux, the visibility test on 6 VPLs a pixel drawn by their light), **world cache** "
           "(`indirect_method=3`: cells in world space gather the flux's VPLs with visibility "
           "through a voxel grid, pixels look them up; uncached, every cell gathers "
-          "world_vpls × world_frames VPLs at once; [effects.md](effects.md)). Cost: the frame's median over %d timed frames after %d "
+          "world_vpls × world_frames VPLs at once; [world-cache.md](world-cache.md)). Cost: the frame's median over %d timed frames after %d "
           "warm-up at %dx%d, cache off, the methods' frames interleaved; *cost* is (frame − "
           "frame without the bounce) / frame without it. On lavapipe every time is CPU time: "
           "compare within a run. Error: relMSE against `reference` (full mode; the bounce alone "

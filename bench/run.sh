@@ -138,7 +138,8 @@ if [ "$mode" = cache-fixes ]; then
   exit 0
 fi
 if [ "$mode" = walkthroughs ]; then
-  "$py" bench/walkthroughs.py --results "$out" --images "$images" --doc "$doc"
+  "$py" bench/walkthroughs.py --results "$out" --images "$images" --doc "$doc" \
+    --data docs/data/walkthroughs.json
   echo "done in $((seconds / 60)) min $((seconds % 60)) s: results in $out/, charts in $images/"
   exit 0
 fi
