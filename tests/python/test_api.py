@@ -1,4 +1,5 @@
 """The module against the programs: the same images and figures, bit for bit."""
+import copy
 import re
 import threading
 
@@ -93,14 +94,15 @@ def test_settings_are_the_settings_table():
     assert given.settings["ao_steps"] == 2
 
 
-def test_a_renderer_keeps_the_scene_as_it_was():
+def test_a_renderer_follows_its_scene_and_a_copy_keeps_it_as_it_was():
     scene = ssgi.Scene(CORNELL)
-    before = ssgi.Renderer(scene, (32, 32))
+    kept = ssgi.Renderer(copy.copy(scene), (32, 32))  # a scene of its own
+    following = ssgi.Renderer(scene, (32, 32))
     scene.settings["exposure"] = 2.0
-    after = ssgi.Renderer(scene, (32, 32))
-    before.render()
-    after.render()
-    assert after.read("ldr")[..., :3].mean() > before.read("ldr")[..., :3].mean() + 0.05
+    kept.render()
+    following.render()
+    assert following.read("ldr")[..., :3].mean() > kept.read("ldr")[..., :3].mean() + 0.05
+    assert kept.settings["exposure"] == 1.0 and following.settings["exposure"] == 2.0
 
 
 def test_every_view_renders():
