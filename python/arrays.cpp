@@ -203,6 +203,15 @@ uint32_t countArg(const std::string& name, const py::handle& value, uint32_t lo,
 }
 
 void sizeArg(const py::handle& size, uint32_t& width, uint32_t& height, uint32_t lo, uint32_t hi) {
+    // An image (an array of two or more dimensions) gives its own size: NumPy's shape is
+    // (height, width), the reverse of size's (width, height), so it is taken from the array, not
+    // from a tuple that says nothing of its order.
+    if (py::isinstance<py::array>(size) && py::reinterpret_borrow<py::array>(size).ndim() >= 2) {
+        const py::tuple shape = size.attr("shape");
+        width = countArg("size", shape[1], lo, hi);
+        height = countArg("size", shape[0], lo, hi);
+        return;
+    }
     py::tuple pair;
     if (!py::isinstance<py::str>(size) && !py::isinstance<py::bytes>(size)) {
         try {

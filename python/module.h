@@ -36,7 +36,7 @@ struct ObjectArg {
 struct IntArg : ObjectArg {};         // int: a Python or NumPy integer, or a 0-d array of one
 struct FloatArg : ObjectArg {};       // float: any real number, exactly a double
 struct PathArg : ObjectArg {};        // str or os.PathLike
-struct SizeArg : ObjectArg {};        // (width, height)
+struct SizeArg : ObjectArg {};        // (width, height), or an image whose size it is
 struct Vec3Arg : ObjectArg {};        // (x, y, z)
 struct ImageArg : ObjectArg {};       // an array of shape (h, w), (h, w, 1), (h, w, 3) or (h, w, 4)
 struct ImageOrPathArg : ObjectArg {}; // an image, or the path of an image file
@@ -159,7 +159,7 @@ template <class T> struct object_arg_caster {
 SSGI_OBJECT_ARG(IntArg, SSGI_INT)
 SSGI_OBJECT_ARG(FloatArg, SSGI_FLOAT)
 SSGI_OBJECT_ARG(PathArg, "Union[str, os.PathLike]")
-SSGI_OBJECT_ARG(SizeArg, "Tuple[" SSGI_INT ", " SSGI_INT "]")
+SSGI_OBJECT_ARG(SizeArg, "Union[Tuple[" SSGI_INT ", " SSGI_INT "], numpy.ndarray]")
 SSGI_OBJECT_ARG(Vec3Arg, "Union[Sequence[" SSGI_FLOAT "], numpy.ndarray]")
 SSGI_OBJECT_ARG(ImageArg, "numpy.ndarray")
 SSGI_OBJECT_ARG(ImageOrPathArg, "Union[numpy.ndarray, str, os.PathLike]")

@@ -87,7 +87,7 @@ class Renderer:
     def __init__(
         self,
         scene: Scene,
-        size: Tuple[Union[int, numpy.integer], Union[int, numpy.integer]] = (512, 512),
+        size: Union[Tuple[Union[int, numpy.integer], Union[int, numpy.integer]], numpy.ndarray] = (512, 512),
         device: Optional[str] = None,
         view: str = 'final',
         keep: Sequence[str] = [],
@@ -337,7 +337,7 @@ def read_image(
 
 def reference(
     scene: Scene,
-    size: Tuple[Union[int, numpy.integer], Union[int, numpy.integer]] = (256, 256),
+    size: Union[Tuple[Union[int, numpy.integer], Union[int, numpy.integer]], numpy.ndarray] = (256, 256),
     *,
     mode: str = 'full',
     spp: Union[int, numpy.integer] = 65536,

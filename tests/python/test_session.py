@@ -209,6 +209,14 @@ def test_set_camera_keeps_the_target_when_only_the_position_is_given():
     assert np.allclose(camera["forward"], towards / np.linalg.norm(towards), atol=1e-5)
 
 
+def test_an_image_gives_its_size_without_transposing_it():
+    image = np.zeros((16, 24, 3), np.float32)  # 16 rows of 24 pixels
+    renderer = ssgi.Renderer(ssgi.Scene(CORNELL), size=image)
+    assert renderer.size == (24, 16) and renderer.render().shape == image.shape
+    truth = ssgi.reference(ssgi.Scene(CORNELL), image, mode="ao", spp=1, cache=False)
+    assert truth.shape == image.shape
+
+
 def test_settings_are_a_mutable_mapping():
     scene = ssgi.Scene(CORNELL, {"indirect_vpls": 16})
     settings = scene.settings
