@@ -30,7 +30,8 @@ def _setting(text: str) -> Tuple[str, Any]:
 
 
 def _scene(text: str, settings: List[Tuple[str, Any]]) -> ssgi.Scene:
-    shipped = not os.path.exists(text) and text in ssgi.scene_names()
+    # A name without an extension that is no file names a shipped scene (else: the names).
+    shipped = not os.path.exists(text) and not os.path.splitext(text)[1]
     path: Union[str, os.PathLike] = ssgi.scene_file(text) if shipped else text
     return ssgi.Scene(path, settings=dict(settings))
 

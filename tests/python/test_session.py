@@ -291,6 +291,8 @@ def test_python_m_ssgi_runs_the_programs(tmp_path):
     assert made.returncode == 0, made.stderr
     compared = run("compare", "r.exr", "t.exr")
     assert compared.returncode == 0 and "relmse:" in compared.stdout, compared.stderr
+    unknown = run("render", "nope", "-o", "x.exr")
+    assert unknown.returncode == 2 and "no shipped scene named 'nope'" in unknown.stderr
     bad = run("render", "cornell-box", "--set", "indirect_vpls=217.6", "-o", "x.exr")
     assert bad.returncode == 2 and bad.stderr.startswith("error: settings: ")
 
