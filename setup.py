@@ -1,7 +1,7 @@
 """Builds the package `ssgi` for the Python that runs it: CMake configures the project for this
 interpreter (-DPython3_EXECUTABLE) in build-pip/ (SSGI_PIP_BUILD_DIR), builds the target
 ssgi_python, and the package it makes (python/ssgi/ with the compiled _ssgi) is what the wheel
-holds. Run through pip: `pip install --no-build-isolation .` (pyproject.toml)."""
+holds, with the shipped scenes (scenes/, for ssgi.scene_file()). Run through pip: `pip install --no-build-isolation .` (pyproject.toml)."""
 import os
 import pathlib
 import re
@@ -40,6 +40,8 @@ class CMakeBuild(build_ext):
         for file in package.iterdir():
             if file.is_file():
                 shutil.copy2(file, target / file.name)
+        # The shipped scenes and their models go with the package (ssgi.scene_file()).
+        shutil.copytree(ROOT / "scenes", target / "scenes", dirs_exist_ok=True)
 
 
 setup(

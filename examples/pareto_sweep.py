@@ -2,24 +2,25 @@
 configuration renders with the cache off; its time is the median host clock of 3 frames after a
 warm-up frame, its error the relMSE of its last frame against the path-traced reference.
 usage: python3 examples/pareto_sweep.py [SIZE [SPP [CHART.png]]]  (256 4096 pareto.png)"""
-import pathlib
 import statistics
 import sys
+from typing import Dict
 
 import matplotlib
 import matplotlib.pyplot as plt
 import ssgi
 
 matplotlib.use("Agg")
-size, spp, chart = (sys.argv[1:] + ["256", "4096", "pareto.png"][len(sys.argv) - 1:])[:3]
-size, spp = int(size), int(spp)
-scene = pathlib.Path(__file__).resolve().parent.parent / "scenes" / "cornell-box.json"
+args = (sys.argv[1:] + ["256", "4096", "pareto.png"][len(sys.argv) - 1:])[:3]
+size, spp, chart = int(args[0]), int(args[1]), args[2]
+scene = ssgi.scene_file("cornell-box")  # the shipped scene, from any folder
 # What changes the box's image: the bounce and the shadow (it has no sky: AO changes nothing).
 configs = {"defaults": {}, "16 VPLs": {"indirect_vpls": 16}, "64 VPLs": {"indirect_vpls": 64},
            "1024 VPLs": {"indirect_vpls": 1024}, "VPLs unoccluded": {"indirect_visibility": 0},
            "VPLs by flux": {"indirect_method": 2}, "hard shadows": {"shadow_taps": 1},
            "512 VPLs, thesis": {"indirect_method": 0, "indirect_vpls": 512},
-           "PCF 9": {"shadow_variant": 0, "shadow_taps": 9}, "direct only": {"indirect": 0}}
+           "PCF 9": {"shadow_variant": 0, "shadow_taps": 9},
+           "direct only": {"indirect": 0}}  # type: Dict[str, Dict[str, float]]
 truth = ssgi.reference(ssgi.Scene(scene), size=(size, size), spp=spp, noise=0.02)
 points = []  # (ms, relMSE, label)
 for label, settings in configs.items():

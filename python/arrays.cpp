@@ -56,14 +56,14 @@ bool holdsIntegers(const py::handle& object) {
 
 metrics::Image imageFrom(const py::handle& object, const std::string& what) {
     if (object.is_none() || isPath(object) || py::isinstance<py::bytes>(object))
-        throw py::type_error(what + ": expected an array of numbers, got " + typeName(object));
+        throw ArgumentTypeError(what + ": expected an array of numbers, got " + typeName(object));
     // The shape and the type are checked before any conversion: an array too large to copy
     // is refused for its size, not for the memory a copy would take.
     py::array a;
     try {
         a = numpy().attr("asarray")(object);
     } catch (const py::error_already_set&) {
-        throw py::type_error(what + ": expected an array of numbers, got " + typeName(object));
+        throw ArgumentTypeError(what + ": expected an array of numbers, got " + typeName(object));
     }
     const std::string shape = py::str(py::tuple(a.attr("shape")));
     const bool grey = a.ndim() == 2 || (a.ndim() == 3 && a.shape(2) == 1);
@@ -119,11 +119,11 @@ bool isPath(const py::handle& object) {
 
 std::string pathFrom(const py::handle& path, const std::string& what) {
     if (!isPath(path))
-        throw py::type_error(what + ": expected a path (str or os.PathLike), got " +
-                             typeName(path));
+        throw ArgumentTypeError(what + ": expected a path (str or os.PathLike), got " +
+                                typeName(path));
     const py::object text = py::module_::import("os").attr("fspath")(path);
     if (!py::isinstance<py::str>(text))
-        throw py::type_error(what + ": expected a path as str, got " + typeName(text));
+        throw ArgumentTypeError(what + ": expected a path as str, got " + typeName(text));
     const std::string file = text.cast<std::string>();
     // The system would read the path only up to the NUL: another file than the one named.
     if (file.find('\0') != std::string::npos)
@@ -176,9 +176,9 @@ std::string textOf(const std::string& name, const py::handle& given, bool whole)
     const py::object value = plainNumber(given, name);
     if (py::isinstance<py::bool_>(value) ||
         !(py::isinstance<py::int_>(value) || (!whole && py::isinstance<py::float_>(value))))
-        throw py::type_error(name + ": expected " + (whole ? "a whole number (int)" : "a number") +
-                             ", got " + std::string(py::repr(given)) + " (" + typeName(given) +
-                             ")");
+        throw ArgumentTypeError(name + ": expected " +
+                                (whole ? "a whole number (int)" : "a number") + ", got " +
+                                std::string(py::repr(given)) + " (" + typeName(given) + ")");
     if (py::isinstance<py::int_>(value)) return std::string(py::str(value));
     char text[40];
     std::snprintf(text, sizeof text, "%.17g", value.cast<double>());
@@ -203,6 +203,15 @@ uint32_t countArg(const std::string& name, const py::handle& value, uint32_t lo,
 }
 
 void sizeArg(const py::handle& size, uint32_t& width, uint32_t& height, uint32_t lo, uint32_t hi) {
+    // An image (an array of two or more dimensions) gives its own size: NumPy's shape is
+    // (height, width), the reverse of size's (width, height), so it is taken from the array, not
+    // from a tuple that says nothing of its order.
+    if (py::isinstance<py::array>(size) && py::reinterpret_borrow<py::array>(size).ndim() >= 2) {
+        const py::tuple shape = size.attr("shape");
+        width = countArg("size", shape[1], lo, hi);
+        height = countArg("size", shape[0], lo, hi);
+        return;
+    }
     py::tuple pair;
     if (!py::isinstance<py::str>(size) && !py::isinstance<py::bytes>(size)) {
         try {
@@ -211,7 +220,8 @@ void sizeArg(const py::handle& size, uint32_t& width, uint32_t& height, uint32_t
         }
     }
     if (!pair || pair.size() != 2)
-        throw py::type_error("size: expected (width, height), got " + std::string(py::repr(size)));
+        throw ArgumentTypeError("size: expected (width, height), got " +
+                                std::string(py::repr(size)));
     width = countArg("size", pair[0], lo, hi);
     height = countArg("size", pair[1], lo, hi);
 }
@@ -219,8 +229,8 @@ void sizeArg(const py::handle& size, uint32_t& width, uint32_t& height, uint32_t
 bool boolArg(const std::string& name, const py::handle& given) {
     const py::object value = plainNumber(given, name);
     if (!py::isinstance<py::bool_>(value))
-        throw py::type_error(name + ": expected True or False, got " +
-                             std::string(py::repr(given)) + " (" + typeName(given) + ")");
+        throw ArgumentTypeError(name + ": expected True or False, got " +
+                                std::string(py::repr(given)) + " (" + typeName(given) + ")");
     return value.cast<bool>();
 }
 

@@ -15,6 +15,7 @@
 #include <pybind11/stl.h>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <mutex>
 #include <optional>
@@ -65,7 +66,13 @@ py::dict compare(const ImageOrPathArg& a, const ImageOrPathArg& b, const FloatAr
     ImageAttributes referenceHeader; // a reference's EXR records its own noise
     const metrics::Image reference =
         imageArg(b.value, "b", linear, bLinear, bName, &referenceHeader);
-    const metrics::RecordedNoise referenceNoise = metrics::recordedNoise(referenceHeader);
+    metrics::RecordedNoise referenceNoise = metrics::recordedNoise(referenceHeader);
+    // A reference() image carries what a reference's EXR records of itself.
+    if (!isPath(b.value) && py::hasattr(b.value, "samples") && !b.value.attr("samples").is_none()) {
+        referenceNoise.samples = countArg("b.samples", b.value.attr("samples"), 1, UINT32_MAX);
+        const py::object noise = b.value.attr("noise");
+        referenceNoise.noise = noise.is_none() ? std::nan("") : noise.cast<double>();
+    }
     metrics::requireSize(reference, bName, test, aName);
     metrics::requireComparable(aName, aLinear, bName, bLinear, reference);
     metrics::ComparisonOptions options;
@@ -114,12 +121,13 @@ py::dict compare(const ImageOrPathArg& a, const ImageOrPathArg& b, const FloatAr
     return d;
 }
 
-py::array reference(const std::shared_ptr<SceneObject>& sceneObject, const std::string& mode,
-                    const SizeArg& size, const IntArg& spp, const std::optional<FloatArg>& noise,
-                    const IntArg& seed, const std::optional<FloatArg>& time, const BoolArg& jitter,
-                    const std::optional<FloatArg>& lightRadius, const IntArg& threads,
-                    const BoolArg& cache, const std::optional<PathArg>& cacheDir,
-                    const ProgressArg& progress) {
+ImageResult reference(const std::shared_ptr<SceneObject>& sceneObject, const SizeArg& size,
+                      const std::string& mode, const IntArg& spp,
+                      const std::optional<FloatArg>& noise, const IntArg& seed,
+                      const std::optional<FloatArg>& time, const BoolArg& jitter,
+                      const std::optional<FloatArg>& lightRadius, const IntArg& threads,
+                      const BoolArg& cache, const std::optional<PathArg>& cacheDir,
+                      const ProgressArg& progress) {
     SceneObject& scene = sceneArg(sceneObject);
     reference::ReferenceRequest request;
     reference::ReferenceOptions& o = request.options;
@@ -182,21 +190,30 @@ py::array reference(const std::shared_ptr<SceneObject>& sceneObject, const std::
     if (image.nonFiniteSamples > 0)
         throw std::runtime_error(std::to_string(image.nonFiniteSamples) +
                                  " samples were NaN or infinite and were dropped");
-    return rgbArray(std::move(image.rgba), image.width, image.height);
+    py::object array = rgbArray(std::move(image.rgba), image.width, image.height);
+    return imageObject(array, std::isnan(image.noise) ? std::nullopt : std::optional(image.noise),
+                       image.samples);
 }
 
-void writeImageFile(const PathArg& path, const ImageArg& array) {
+void writeImageFile(const PathArg& path, const ImageArg& array, const BoolArg& linearArg,
+                    const FloatArg& exposure) {
     const std::string file = pathFrom(path.value, "path");
-    const metrics::Image image = imageFrom(array.value, "image");
-    // A PNG holds display values in [0, 1]: what lies outside is clipped, and said.
-    if (std::filesystem::path(file).extension() == ".png") {
+    metrics::Image image = imageFrom(array.value, "image");
+    const bool linear = boolArg("linear", linearArg.value);
+    const float e = float(numberArg("exposure", exposure.value, 1e-6, 1e6));
+    // A PNG holds display values in [0, 1]: a float image (linear radiance) is display-encoded
+    // as render's PNG is (tonemap(): exposure, the ACES fit, sRGB), unless linear=True writes
+    // its values as they are; integers (uint8, uint16) are display values already.
+    const bool png = std::filesystem::path(file).extension() == ".png";
+    if (png && !linear && !holdsIntegers(array.value)) displayEncode(image, e);
+    if (png) {
         size_t outside = 0;
         for (float v : image.rgba)
             outside += v < 0.0f || v > 1.0f;
         if (outside > 0)
             warn(file + ": " + std::to_string(outside) +
                  " values outside [0, 1] are clipped to it in the PNG (it stores display values; "
-                 "ssgi.tonemap() makes them of a linear image)");
+                 "linear=False display-encodes a linear image)");
     }
     raiseWarnings();
     py::gil_scoped_release release;
@@ -204,6 +221,20 @@ void writeImageFile(const PathArg& path, const ImageArg& array) {
 }
 
 } // namespace
+
+void displayEncode(metrics::Image& image, float exposure) {
+    // The ACES fit is a curve over radiance, which is not negative: below 0 it rises again to
+    // white. A negative value displays as no light; NaN stays NaN (std::max keeps its first).
+    for (size_t i = 0; i < image.rgba.size(); ++i)
+        if (i % 4 != 3)
+            image.rgba[i] = metrics::displayValue(std::max(image.rgba[i], 0.0f), exposure);
+}
+
+ImageResult imageObject(const py::object& array, std::optional<double> noise,
+                        std::optional<uint32_t> samples) {
+    return {py::module_::import("ssgi._image")
+                .attr("Image")(array, py::arg("noise") = noise, py::arg("samples") = samples)};
+}
 
 void raiseWarnings() {
     std::vector<std::string> texts;
@@ -234,21 +265,23 @@ void defineImages(py::module_& m) {
         "An .exr (linear) or .png (display values in [0, 1]) as float32, height x width x 3 (x 4 "
         "with alpha=True).");
     m.def("write_image", &writeImageFile, py::arg("path"), py::arg("image"),
+          py::arg("linear") = false, py::arg("exposure") = 1.0,
           "Writes an array as render writes its files: .exr linear (half floats where they hold "
-          "every value), .png 8-bit of display values in [0, 1] (outside clipped, with an "
-          "ssgi.SsgiWarning); whole or not at all. The array is (h, w) grey or (h, w, 1, 3 or "
-          "4) of floats, uint8 (scaled by 1/255) or uint16 (by 1/65535).");
+          "every value); .png 8-bit, a float image display-encoded as render's PNG is "
+          "(tonemap(image, exposure)) unless `linear` writes its values as they are (clipped "
+          "to [0, 1], with an ssgi.SsgiWarning); whole or not at all. The array is (h, w) grey "
+          "or (h, w, 1, 3 or 4) of floats, uint8 (scaled by 1/255: display values) or uint16 "
+          "(by 1/65535).");
     m.def(
         "tonemap",
         [](const ImageArg& array, const FloatArg& exposure) {
             metrics::Image image = imageFrom(array.value, "image");
-            const float e = float(numberArg("exposure", exposure.value, 1e-6, 1e6));
-            for (size_t i = 0; i < image.rgba.size(); ++i)
-                if (i % 4 != 3) image.rgba[i] = metrics::displayValue(image.rgba[i], e);
+            displayEncode(image, float(numberArg("exposure", exposure.value, 1e-6, 1e6)));
             return rgbArray(std::move(image.rgba), image.width, image.height);
         },
         py::arg("image"), py::arg("exposure") = 1.0,
-        "The composite pass's display transform: times exposure, the ACES fit, sRGB encoding.");
+        "The composite pass's display transform: times exposure, the ACES fit, sRGB encoding; "
+        "negative values (no radiance) display as black, NaN stays NaN.");
     m.def(
         "compare", &compare, py::arg("a"), py::arg("b"), py::arg("exposure") = 1.0,
         py::arg("ppd") = metrics::flip::kDefaultPpd, py::arg("max_diff") = py::none(),
@@ -258,14 +291,17 @@ void defineImages(py::module_& m) {
         "(what a reference's EXR records of itself, else None), diff_fraction (with max_diff) "
         "and the per-pixel maps. `linear`: whether arrays hold linear radiance (None: float arrays "
         "do, uint8/uint16 ones hold display values).");
-    m.def("reference", &reference, py::arg("scene"), py::kw_only(), py::arg("mode") = "full",
-          py::arg("size") = py::make_tuple(256, 256), py::arg("spp") = reference::kDefaultSampleCap,
+    m.def("reference", &reference, py::arg("scene"), py::arg("size") = py::make_tuple(256, 256),
+          py::kw_only(), py::arg("mode") = "full", py::arg("spp") = reference::kDefaultSampleCap,
           py::arg("noise") = reference::kDefaultNoiseTarget, py::arg("seed") = 1,
           py::arg("time") = py::none(), py::arg("jitter") = false,
           py::arg("light_radius") = py::none(), py::arg("threads") = 0, py::arg("cache") = true,
           py::arg("cache_dir") = py::none(), py::arg("progress") = py::none(),
-          "The path-traced reference as the reference program renders it (and from the same "
-          "cache), float32, height x width x 3, by default as the program's: until its estimated "
+          "The path-traced reference of `scene` at `size` (width, height) as the reference "
+          "program renders it (and from the same cache): an ssgi.Image of float32, height x "
+          "width x 3, carrying its `samples` per pixel and estimated `noise` (which compare() "
+          "reads from it as from the program's EXR), by default as the program's: until its "
+          "estimated "
           "noise is 1% (`noise`; 0 or None: no target), at most `spp` samples per pixel. "
           "`progress`: True shows reference's bar on "
           "stderr (None: when stderr is a terminal); a callable is called at most every 50 ms "
@@ -282,13 +318,7 @@ PYBIND11_MODULE(_ssgi, m) {
     const py::object name = m.attr("__name__");
     m.attr("__name__") = "ssgi";
     m.doc() = "The ssgi renderer, its path-traced reference and its error metrics (docs/python.md)";
-    // Bad input is a ValueError (ssgi.InputError); a failure of the device a RuntimeError.
-    py::register_exception<ssgi::InputError>(m, "InputError", PyExc_ValueError).attr("__doc__") =
-        "Bad input (a ValueError): a scene file, a setting, a size, a view, an "
-        "image, a path; the message is the programs' error line.";
-    py::register_exception<ssgi::vk::VulkanError>(m, "VulkanError", PyExc_RuntimeError)
-        .attr("__doc__") = "A failure of the Vulkan device (a RuntimeError), or a device that is "
-                           "not there.";
+    ssgi::python::defineErrors(m);
     ssgi::python::warningCategory =
         PyErr_NewExceptionWithDoc("ssgi.SsgiWarning",
                                   "What the renderer, the scene loader, the reference cache or "
@@ -297,6 +327,7 @@ PYBIND11_MODULE(_ssgi, m) {
     m.add_object("SsgiWarning", py::handle(ssgi::python::warningCategory));
     ssgi::python::defineScene(m);
     ssgi::python::defineRenderer(m);
+    ssgi::python::defineDevices(m);
     ssgi::python::defineImages(m);
     m.attr("__name__") = name;
     ssgi::setWarningSink(&ssgi::python::keepWarning);

@@ -11,7 +11,7 @@ packages=(
   libgtest-dev libembree-dev
   libimgui-dev xvfb xauth
   pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib
-  python3-venv python3-setuptools python3-wheel
+  python3-venv python3-setuptools python3-wheel python3-mypy
 )
 missing=()
 for p in "${packages[@]}"; do

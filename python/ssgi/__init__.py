@@ -1,7 +1,9 @@
 """The ssgi renderer, its path-traced reference and its error metrics, from Python with NumPy
 arrays (docs/python.md): Scene, Renderer, reference(), compare(), tonemap(), read_image() and
-write_image(). Bad input raises InputError (a ValueError) with the programs' messages; what
-the library warns about is an SsgiWarning."""
+write_image(); the shipped scenes by name (scene_names(), scene_file()). Every error the module
+raises is an ssgi.Error, and also the Python built-in for its kind: InputError (a ValueError)
+with the programs' messages, MissingFileError (a FileNotFoundError), ArgumentTypeError (a
+TypeError), VulkanError (a RuntimeError). What the library warns about is an SsgiWarning."""
 import importlib as _importlib
 import sys as _sys
 
@@ -37,10 +39,14 @@ except ModuleNotFoundError as _error:
         f"loads. Run ssgi with the Python it was built for, or build it for this one (pip "
         f"install --no-build-isolation . with it, or cmake -DPython3_EXECUTABLE=...)") from None
 
-from ._ssgi import (InputError, Renderer, Scene, Settings, SsgiWarning, VulkanError, compare,
-                    read_image, reference, settings_table, tonemap, validation_messages,
-                    view_names, write_image)
+from ._image import Image
+from ._scenes import scene_file, scene_names
+from ._ssgi import (ArgumentTypeError, Error, FileError, InputError, MissingFileError,
+                    RenderError, Renderer, Scene, SettingNameError, Settings, SsgiWarning,
+                    VulkanError, compare, read_image, reference, settings_table, tonemap,
+                    validation_messages, view_names, write_image)
 
-__all__ = ["InputError", "Renderer", "Scene", "Settings", "SsgiWarning", "VulkanError",
-           "compare", "read_image", "reference", "settings_table", "tonemap",
-           "validation_messages", "view_names", "write_image"]
+__all__ = ["ArgumentTypeError", "Error", "FileError", "Image", "InputError", "MissingFileError",
+           "RenderError", "Renderer", "Scene", "SettingNameError", "Settings", "SsgiWarning",
+           "VulkanError", "compare", "read_image", "reference", "scene_file", "scene_names",
+           "settings_table", "tonemap", "validation_messages", "view_names", "write_image"]

@@ -46,8 +46,12 @@ double checked(const SettingRow& row, const std::string& where, double value) {
             << ", " << row.max << "]";
     if (!std::isfinite(value) || value < row.min || value > row.max)
         throw InputError(problem.str());
-    if (row.whole() && value != std::floor(value))
-        throw InputError(where + ": setting '" + row.name + "' must be a whole number");
+    if (row.whole() && value != std::floor(value)) { // the refused value shown, as above
+        std::ostringstream fraction;
+        fraction << where << ": setting '" << row.name << "' is " << value
+                 << ", and must be a whole number";
+        throw InputError(fraction.str());
+    }
     return value;
 }
 

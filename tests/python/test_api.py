@@ -1,4 +1,5 @@
 """The module against the programs: the same images and figures, bit for bit."""
+import copy
 import re
 import threading
 
@@ -21,7 +22,7 @@ def test_render_is_the_render_programs_image(tmp_path):
     image = renderer.render(frames=4)
     assert image.dtype == np.float32 and image.shape == (512, 512, 3)
     ssgi.write_image(tmp_path / "p.exr", image)
-    ssgi.write_image(tmp_path / "p.png", renderer.read("ldr"))
+    ssgi.write_image(tmp_path / "p.png", renderer.read("ldr"), linear=True)  # display values
     assert file_bytes(tmp_path / "p.exr") == file_bytes(tmp_path / "r.exr")
     assert file_bytes(tmp_path / "p.png") == file_bytes(tmp_path / "r.png")
     # The EXR holds half floats: the array is what they were rounded from.
@@ -84,7 +85,7 @@ def test_settings_are_the_settings_table():
     assert list(scene.settings) == [row["name"] for row in table] and len(scene.settings) > 40
     for row in table:
         value = scene.settings[row["name"]]
-        assert type(value) is {"bool": bool, "int": int, "double": float}[row["type"]]
+        assert type(value) is {"bool": bool, "int": int, "float": float}[row["type"]]
     scene.settings["ao_steps"] = 2
     scene.settings = {"cache": False, "exposure": 0.5}
     assert (scene.settings["ao_steps"], scene.settings["cache"]) == (2, False)
@@ -93,14 +94,15 @@ def test_settings_are_the_settings_table():
     assert given.settings["ao_steps"] == 2
 
 
-def test_a_renderer_keeps_the_scene_as_it_was():
+def test_a_renderer_follows_its_scene_and_a_copy_keeps_it_as_it_was():
     scene = ssgi.Scene(CORNELL)
-    before = ssgi.Renderer(scene, (32, 32))
+    kept = ssgi.Renderer(copy.copy(scene), (32, 32))  # a scene of its own
+    following = ssgi.Renderer(scene, (32, 32))
     scene.settings["exposure"] = 2.0
-    after = ssgi.Renderer(scene, (32, 32))
-    before.render()
-    after.render()
-    assert after.read("ldr")[..., :3].mean() > before.read("ldr")[..., :3].mean() + 0.05
+    kept.render()
+    following.render()
+    assert following.read("ldr")[..., :3].mean() > kept.read("ldr")[..., :3].mean() + 0.05
+    assert kept.settings["exposure"] == 1.0 and following.settings["exposure"] == 2.0
 
 
 def test_every_view_renders():
@@ -146,7 +148,7 @@ def test_images_round_trip(tmp_path):
     image = np.random.default_rng(1).random((5, 7, 3), dtype=np.float32)
     ssgi.write_image(tmp_path / "a.exr", image * 1e5)  # beyond half: stored as 32-bit floats
     assert np.array_equal(ssgi.read_image(tmp_path / "a.exr"), image * np.float32(1e5))
-    ssgi.write_image(str(tmp_path / "a.png"), image)
+    ssgi.write_image(str(tmp_path / "a.png"), image, linear=True)
     assert np.abs(ssgi.read_image(tmp_path / "a.png") - image).max() <= 0.5 / 255 + 1e-6
     assert ssgi.read_image(tmp_path / "a.png", alpha=True).shape == (5, 7, 4)
 

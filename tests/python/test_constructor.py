@@ -23,10 +23,10 @@ def test_the_view_given_to_the_constructor_is_rendered():
 def test_size_and_settings_hold_until_changed():
     scene = ssgi.Scene(CORNELL, settings={"exposure": 0.5})
     renderer = ssgi.Renderer(scene, size=(40, 20))
-    scene.settings["exposure"] = 2.0  # for the next renderer made from the scene
     dim = renderer.render()
     assert dim.shape == (20, 40, 3) and renderer.size == (40, 20)
-    bright = ssgi.Renderer(scene, size=(40, 20))
-    bright.render()
+    dim_ldr = renderer.read("ldr")[..., :3].mean()
+    scene.settings["exposure"] = 2.0  # a change of its scene: the renderer's next frame has it
     renderer.render()
-    assert renderer.read("ldr")[..., :3].mean() + 0.05 < bright.read("ldr")[..., :3].mean()
+    assert renderer.size == (40, 20) and renderer.view == "final"
+    assert dim_ldr + 0.05 < renderer.read("ldr")[..., :3].mean()

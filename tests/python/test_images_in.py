@@ -26,7 +26,7 @@ def test_uint16_and_every_float_width(tmp_path):
     assert np.allclose(ssgi.read_image(tmp_path / "a.exr"), image / 65535, atol=1e-3)
     values = RNG.random((4, 7, 3))
     for dtype in (np.float16, np.float32, np.float64):
-        ssgi.write_image(tmp_path / "f.png", values.astype(dtype))
+        ssgi.write_image(tmp_path / "f.png", values.astype(dtype), linear=True)
         stored = ssgi.read_image(tmp_path / "f.png")
         assert np.abs(stored - values.astype(dtype)).max() <= 0.5 / 255 + 1e-3, dtype
 
@@ -39,7 +39,7 @@ def test_one_three_and_four_channels(tmp_path):
         assert np.array_equal(stored, np.repeat(grey[..., None], 3, axis=2).astype(
             np.float16).astype(np.float32))
     rgba = RNG.random((5, 6, 4), dtype=np.float32)
-    ssgi.write_image(tmp_path / "c.png", rgba)
+    ssgi.write_image(tmp_path / "c.png", rgba, linear=True)
     stored = ssgi.read_image(tmp_path / "c.png", alpha=True)
     assert np.abs(stored - rgba).max() <= 0.5 / 255 + 1e-6
     # A view with strides (the renderer's RGB of RGBA) is read as it is shown.
@@ -51,16 +51,19 @@ def test_a_png_says_when_it_clips(tmp_path):
     image = np.full((4, 4, 3), 0.5, np.float32)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        ssgi.write_image(tmp_path / "in.png", image)  # nothing outside [0, 1]: no warning
+        ssgi.write_image(tmp_path / "in.png", image, linear=True)  # nothing outside [0, 1]
         ssgi.write_image(tmp_path / "hdr.exr", image * 40)  # an EXR holds any value
     image[0, 0] = (2.0, -1.0, 0.5)
     with pytest.warns(ssgi.SsgiWarning, match=r"2 values outside \[0, 1\] are clipped"):
-        ssgi.write_image(tmp_path / "out.png", image)
+        ssgi.write_image(tmp_path / "out.png", image, linear=True)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        ssgi.write_image(tmp_path / "shown.png", image)  # display-encoded: nothing clips
     assert ssgi.read_image(tmp_path / "out.png")[0, 0].tolist() == [1, 0, np.float32(128 / 255)]
     with warnings.catch_warnings():
         warnings.simplefilter("error", ssgi.SsgiWarning)  # filterable: an error, if asked
         with pytest.raises(ssgi.SsgiWarning):
-            ssgi.write_image(tmp_path / "strict.png", image)
+            ssgi.write_image(tmp_path / "strict.png", image, linear=True)
     assert not (tmp_path / "strict.png").exists()
 
 

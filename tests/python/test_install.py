@@ -23,7 +23,7 @@ def test_cmake_install_puts_the_package_where_python_finds_it(tmp_path):
     version = f"python{sys.version_info.major}.{sys.version_info.minor}"
     installed = tmp_path / "prefix" / "lib" / version / "dist-packages" / "ssgi"
     assert sorted(p.name for p in installed.iterdir()) == sorted(
-        p.name for p in PACKAGE.iterdir() if p.name != "__pycache__")
+        [p.name for p in PACKAGE.iterdir() if p.name != "__pycache__"] + ["scenes"])
     # Under the default prefix that folder is on Debian's python3's path.
     if sys.executable == "/usr/bin/python3":
         assert f"/usr/local/lib/{version}/dist-packages" in sys.path
@@ -34,6 +34,11 @@ def test_cmake_install_puts_the_package_where_python_finds_it(tmp_path):
                    cwd=elsewhere, env=env)
     assert imported.returncode == 0, imported.stderr
     assert imported.stdout.split() == [ssgi.__version__, str(installed / "__init__.py")]
+    # The shipped scenes are installed with it: the docs' examples load them from anywhere.
+    loaded = run(sys.executable, "-c", "import ssgi; print(ssgi.scene_file('cornell-box')); "
+                 "ssgi.Scene(ssgi.scene_file('cornell-box-mesh'))", cwd=elsewhere, env=env)
+    assert loaded.returncode == 0, loaded.stderr
+    assert loaded.stdout.strip() == str(installed / "scenes" / "cornell-box.json")
 
 
 def test_a_python_without_numpy_is_told_at_import(tmp_path):

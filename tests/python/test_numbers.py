@@ -42,7 +42,7 @@ def test_flags_take_numpy_bools_and_settings_given_whole():
 
 def test_numbers_that_are_not_what_they_seem_are_refused_with_their_value():
     scene = ssgi.Scene(CORNELL)
-    with pytest.raises(ValueError, match=r"setting 'ao_steps' must be a whole number"):
+    with pytest.raises(ValueError, match=r"setting 'ao_steps' is 2\.5, and must be a whole number"):
         scene.settings["ao_steps"] = np.float64(2.5)
     with pytest.raises(ValueError, match=r"'indirect_vpls' is 0, outside \[1, 1024\]"):
         scene.settings["indirect_vpls"] = np.int64(0)

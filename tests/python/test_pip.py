@@ -62,7 +62,8 @@ def test_pip_installs_the_package_into_a_virtual_environment(tmp_path):
     script = ("import ssgi, numpy, pathlib, sys\n"
               "assert pathlib.Path(ssgi.__file__).with_suffix('.pyi').exists()\n"
               "assert str(pathlib.Path(ssgi.__file__)).startswith(sys.prefix)\n"
-              "scene = ssgi.Scene(sys.argv[1])\n"
+              "assert str(ssgi.scene_file('cornell-box')).startswith(sys.prefix)\n"
+              "scene = ssgi.Scene(ssgi.scene_file('cornell-box'))  # shipped in the wheel\n"
               "image = ssgi.Renderer(scene, size=(16, 16)).render()\n"
               "numpy.save(sys.argv[2], image)\n")
     rendered = subprocess.run([python, "-c", script, str(ROOT / "scenes" / "cornell-box.json"),
