@@ -3,6 +3,7 @@
 // keep their own values when their keys collide in the table, and its voxel grid blocks the
 // segments the scene's triangles block.
 #include "frame_uniforms.h"
+#include "passes/passes.h"
 #include "renderer.h"
 #include "support.h"
 
@@ -309,6 +310,27 @@ TEST_F(WorldCacheTest, VoxelGridBlocksWhatTheTrianglesBlock) {
     ASSERT_FALSE(test::segmentBlocked(scene, openFloor, ceiling));
     EXPECT_TRUE(gridBlocks(frontFloor, backWall));
     EXPECT_FALSE(gridBlocks(openFloor, ceiling));
+}
+
+} // namespace
+
+namespace {
+
+// The table follows the image: 2^bits entries at or above half its pixels, between 2^14 and
+// 2^18, unless world_table_bits names its size; and the table a renderer makes is that size.
+TEST(WorldCacheTable, IsSizedFromTheImage) {
+    Settings settings;
+    ASSERT_EQ(settings.world_table_bits, 0);
+    EXPECT_EQ(worldTableBits(settings, {96, 72}), 14);
+    EXPECT_EQ(worldTableBits(settings, {256, 256}), 15);
+    EXPECT_EQ(worldTableBits(settings, {512, 512}), 17);
+    EXPECT_EQ(worldTableBits(settings, {1920, 1080}), 18);
+    settings.world_table_bits = 9;
+    EXPECT_EQ(worldTableBits(settings, {1920, 1080}), 9);
+    Scene scene = loadScene(test::sourcePath("scenes/cornell-box.json"));
+    Renderer renderer(test::context(), scene, {256, 256, "final"});
+    renderer.renderFrame(scene.camera);
+    EXPECT_EQ(renderer.worldCacheCounts()->entries, 1u << 15);
 }
 
 } // namespace

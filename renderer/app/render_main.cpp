@@ -162,6 +162,13 @@ int run(int argc, char** argv) {
                 exrPath.c_str(), common.width, common.height, args.frames,
                 args.frames == 1 ? "" : "s", common.scene.c_str());
 
+    // A table too small for the view leaves pixels without a bounce: said whether profiled or
+    // not (the last frame's count).
+    if (const auto world = renderer.worldCacheCounts(); world && world->full > 0)
+        std::fprintf(stderr,
+                     "warning: the world cache's table (%u entries) had no free entry for %u "
+                     "pixels of the last frame, which have no bounce: raise world_table_bits\n",
+                     world->entries, world->full);
     if (args.memory) printMemory(renderer.frameGraph(), common.width, common.height);
     const std::string device = std::string(ctx.properties.deviceName) + " (" + ctx.driverName + ")";
     if (args.profile) std::printf("%s", log.table(device).c_str());

@@ -81,6 +81,9 @@ struct WorldGrid {
 };
 WorldGrid addWorldVoxelPasses(FrameBuild& build);
 
+// The world cache's table holds 2^this cells: world_table_bits, or where it is 0, from the
+// image's size (world_cache_pass.cpp).
+int worldTableBits(const Settings& settings, VkExtent2D size);
 // world.clear + world.insert + world.update + world.lookup, indirect_method 3: the bounce from
 // cells of a hash table in world space, which gather the flux's VPLs (`vpls.list`) with their
 // visibility in `grid`; returns the bounce looked up at every pixel (world_cache_pass.cpp).

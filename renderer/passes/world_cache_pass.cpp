@@ -22,10 +22,19 @@
 
 namespace ssgi {
 
+int worldTableBits(const Settings& settings, VkExtent2D size) {
+    if (settings.world_table_bits != 0) return int(settings.world_table_bits);
+    // Half the image's pixels: a still view's cells are a tenth to a twentieth of them, and a
+    // moving one keeps those it left for world_lifetime frames. At most 2^18 (16 MiB for the
+    // table's images), so that 1920x1080 holds within its memory budget.
+    const double half = 0.5 * double(size.width) * double(size.height);
+    return std::clamp(int(std::ceil(std::log2(std::max(half, 1.0)))), 14, 18);
+}
+
 graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
                                     const FluxVpls& vpls, const WorldGrid& grid) {
     const Settings& settings = build.settings;
-    const int bits = int(settings.world_table_bits);
+    const int bits = worldTableBits(settings, build.size);
     // Powers of two both ways: world_cache.glsl indexes the table with masks and shifts.
     const VkExtent2D table{1u << (bits - bits / 2), 1u << (bits / 2)};
     shader::WorldConstants base{};

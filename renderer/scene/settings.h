@@ -131,8 +131,9 @@ namespace ssgi {
       "method 3, cached: frames of world_vpls a new cell gathers at once (at most world_frames)")  \
     X(world_cells_per_frame, int, 1024, 0, 1 << 24, "World cache",                                 \
       "method 3: cells refreshed a frame beyond the new ones (which are always filled)")           \
-    X(world_table_bits, int, 17, 8, 22, "World cache",                                             \
-      "method 3: the hash table holds 2^bits cells")                                               \
+    X(world_table_bits, int, 0, 0, 22, "World cache",                                              \
+      "method 3: the hash table holds 2^bits cells; 0: sized from the image, the power of two at " \
+      "or above half its pixels, 2^14 to 2^18")                                                    \
     X(world_lifetime, int, 120, 1, 1 << 24, "World cache",                                         \
       "method 3: frames a cell stays while no pixel uses it")                                      \
     X(cache, bool, true, 0, 1, "Temporal cache",                                                   \
