@@ -127,6 +127,7 @@ std::string utcNow() {
 int run(int argc, char** argv) {
     const Args args = parseArgs(argc, argv);
     const Scene scene = cli::loadSceneWithSettings(args.common);
+    checkRunFiles(cli::sceneInputs(scene), {{"--out", args.out}}); // before any work
     vk::Context ctx({args.common.validation, args.common.device});
     const bench::Options& o = args.options;
     bench::Json j = {{"kind", args.command},

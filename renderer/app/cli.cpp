@@ -1,8 +1,10 @@
 #include "app/cli.h"
 
 #include "atomic_file.h"
+#include "scene/gltf_loader.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -23,6 +25,14 @@ const char* kCommonUsage =
   --validation          enable the Khronos validation layer with synchronization validation
                         (or SSGI_VALIDATION=1); any message makes the exit status non-zero
 )";
+
+std::vector<RunFile> sceneInputs(const Scene& scene) {
+    std::vector<RunFile> inputs;
+    for (const std::string& file : filesRead())
+        inputs.push_back(
+            {file == scene.sourcePath ? "the scene file" : "a file the scene reads", file});
+    return inputs;
+}
 
 std::string optionValue(int argc, char** argv, int& i) {
     if (i + 1 >= argc) throw InputError(std::string(argv[i]) + " needs a value");

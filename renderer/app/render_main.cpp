@@ -125,6 +125,13 @@ int run(int argc, char** argv) {
     const Args args = parseArgs(argc, argv);
     const cli::CommonArgs& common = args.common;
     const Scene scene = cli::loadSceneWithSettings(common);
+    const std::string exrPath = fs::path(args.output).replace_extension(".exr").string();
+    // No output over an input or over another output, before any work.
+    std::vector<RunFile> outputs = {{"--output", args.output},
+                                    {"the EXR beside --output", exrPath}};
+    if (!args.profileJson.empty()) outputs.push_back({"--profile-json", args.profileJson});
+    if (!args.profileTrace.empty()) outputs.push_back({"--profile-trace", args.profileTrace});
+    checkRunFiles(cli::sceneInputs(scene), outputs);
     vk::Context ctx({common.validation, common.device});
     Renderer renderer(ctx, scene, {common.width, common.height, args.view});
     Camera camera = scene.camera;
@@ -154,7 +161,6 @@ int run(int argc, char** argv) {
         }
     }
 
-    const std::string exrPath = fs::path(args.output).replace_extension(".exr").string();
     const std::vector<float> ldr = renderer.readImage("ldr"), hdr = renderer.readImage("hdr");
     writeImages({{args.output, common.width, common.height, &ldr},
                  {exrPath, common.width, common.height, &hdr}}); // both or neither

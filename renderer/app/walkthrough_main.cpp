@@ -81,6 +81,13 @@ Args parseArgs(int argc, char** argv) {
     return a;
 }
 
+// DIR/frame_NNNN.png (or .exr): frame f's file.
+std::string framePath(const std::string& dir, uint32_t f, const char* extension) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%04u%s", f, extension);
+    return (fs::path(dir) / name).string();
+}
+
 int run(int argc, char** argv) {
     const Args args = parseArgs(argc, argv);
     const cli::CommonArgs& common = args.common;
@@ -88,6 +95,15 @@ int run(int argc, char** argv) {
     if (scene.cameraPath.empty() && !args.still)
         throw InputError(common.scene + ": the scene has no camera_path to walk (--still "
                                         "renders its camera)");
+    // No output over an input or over another output, before any work.
+    std::vector<RunFile> outputs;
+    if (!args.timings.empty()) outputs.push_back({"--timings", args.timings});
+    if (!args.profileTrace.empty()) outputs.push_back({"--profile-trace", args.profileTrace});
+    for (uint32_t f = 0; !args.framesDir.empty() && f < args.frames; ++f) {
+        outputs.push_back({"--frames-dir", framePath(args.framesDir, f, ".png")});
+        if (args.exr) outputs.push_back({"--frames-dir", framePath(args.framesDir, f, ".exr")});
+    }
+    checkRunFiles(cli::sceneInputs(scene), outputs);
     vk::Context ctx({common.validation, common.device});
     Renderer renderer(ctx, scene, {common.width, common.height, args.view});
 
@@ -102,16 +118,14 @@ int run(int argc, char** argv) {
                                                       : cameraAt(scene.cameraPath, t));
         log.add(renderer.lastFrameProfile());
         if (!args.framesDir.empty()) {
-            char name[32];
-            std::snprintf(name, sizeof name, "frame_%04u.png", f);
-            const fs::path path = fs::path(args.framesDir) / name;
             const std::vector<float> ldr = renderer.readImage("ldr");
             std::vector<float> hdr;
-            std::vector<ImageFile> files = {{path.string(), common.width, common.height, &ldr}};
+            std::vector<ImageFile> files = {
+                {framePath(args.framesDir, f, ".png"), common.width, common.height, &ldr}};
             if (args.exr) {
                 hdr = renderer.readImage("hdr");
-                files.push_back({fs::path(path).replace_extension(".exr").string(), common.width,
-                                 common.height, &hdr});
+                files.push_back(
+                    {framePath(args.framesDir, f, ".exr"), common.width, common.height, &hdr});
             }
             writeImages(files); // a frame's PNG and EXR land together or not at all
         }

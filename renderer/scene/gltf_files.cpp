@@ -13,11 +13,30 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <mutex>
 #include <sstream>
 #include <sys/stat.h>
 #include <unistd.h>
 
 namespace ssgi {
+
+namespace {
+
+std::mutex gFilesReadMutex;
+std::vector<std::string> gFilesRead; // each once (a fuzzer reads one path millions of times)
+std::set<std::string> gFilesReadSet;
+
+void noteRead(const std::string& path) {
+    std::lock_guard lock(gFilesReadMutex);
+    if (gFilesReadSet.insert(path).second) gFilesRead.push_back(path);
+}
+
+} // namespace
+
+std::vector<std::string> filesRead() {
+    std::lock_guard lock(gFilesReadMutex);
+    return gFilesRead;
+}
 
 std::string readInputFile(const std::string& path) {
     // The system would read the path only up to the NUL: another file than the one named.
@@ -40,6 +59,7 @@ std::string readInputFile(const std::string& path) {
     if (!in) throw InputError(path + ": cannot open file for reading");
     std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     if (in.bad()) throw InputError(path + ": read error");
+    noteRead(path);
     return bytes;
 }
 
@@ -166,6 +186,7 @@ struct ExternalFiles {
             }
         }
         ::close(fd);
+        if (ok) noteRead(joined);
         return ok;
     }
     static bool write(std::string* err, const std::string&, const std::vector<unsigned char>&,
