@@ -2,10 +2,13 @@
 // where they lie beside it (gltf_internal.h readGltfModel).
 #include "scene/gltf_internal.h"
 
+#include "png_header.h"
+
 #include <tiny_gltf.h>
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -80,6 +83,13 @@ std::string withoutTrailingSpace(std::string text) {
 bool loadImageSayingWhy(tinygltf::Image* image, const int index, std::string* error,
                         std::string* warning, int width, int height, const unsigned char* bytes,
                         int size, void* user) {
+    // A PNG that cannot hold the pixels it declares, before the decoder allocates them.
+    if (const std::string problem =
+            pngSizeProblem(bytes, size_t(std::max(size, 0)), uint64_t(std::max(size, 0)));
+        !problem.empty()) {
+        if (error) *error = "image " + std::to_string(index) + " is a " + problem;
+        return false;
+    }
     if (tinygltf::LoadImageData(image, index, error, warning, width, height, bytes, size, user))
         return true;
     constexpr unsigned char kPng[] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
