@@ -66,11 +66,16 @@ std::pair<std::string, SettingOverrides> parseMethod(const std::string& text) {
 Args parseArgs(int argc, char** argv) {
     Args a;
     const std::string command = argc >= 2 ? argv[1] : "";
-    if (command != "sweep" && command != "walkthrough" && command != "indirect" &&
-        command != "cache-fixes") {
+    if (command == "--help" || command == "-h") {
         std::cout << kUsage << cli::kCommonUsage;
-        std::exit(argc >= 2 && std::string(argv[1]) == "--help" ? 0 : 2);
+        std::exit(0);
     }
+    if (command != "sweep" && command != "walkthrough" && command != "indirect" &&
+        command != "cache-fixes")
+        throw InputError((command.empty() ? std::string("no command given")
+                                          : "unknown command '" + command + "'") +
+                         ": the first argument is sweep, walkthrough, indirect or cache-fixes "
+                         "(see benchmark --help)");
     a.command = argv[1];
     for (int i = 2; i < argc; ++i) {
         const std::string arg = argv[i];

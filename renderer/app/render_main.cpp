@@ -82,8 +82,7 @@ Args parseArgs(int argc, char** argv) {
             if (fs::path(a.profileTrace).extension() != ".json")
                 throw InputError("--profile-trace: '" + a.profileTrace + "' must end in .json");
         } else if (arg == "--warmup") {
-            const std::string v = cli::optionValue(argc, argv, i);
-            a.warmup = v == "0" ? 0 : cli::parsePositiveCount(arg, v);
+            a.warmup = cli::parseCount(arg, cli::optionValue(argc, argv, i));
         } else if (!cli::parseCommonArg(argc, argv, i, a.common)) {
             throw InputError("unknown option " + arg + " (see render --help)");
         }
