@@ -99,10 +99,18 @@ int run(int argc, char** argv) {
     std::vector<RunFile> outputs;
     if (!args.timings.empty()) outputs.push_back({"--timings", args.timings});
     if (!args.profileTrace.empty()) outputs.push_back({"--profile-trace", args.profileTrace});
-    for (uint32_t f = 0; !args.framesDir.empty() && f < args.frames; ++f) {
-        outputs.push_back({"--frames-dir", framePath(args.framesDir, f, ".png")});
-        if (args.exr) outputs.push_back({"--frames-dir", framePath(args.framesDir, f, ".exr")});
-    }
+    // The frames whose names are taken (a file, a link): a name not taken yet is no input
+    // (inputs exist), the timings and the trace end in .csv or .json, and a million frames'
+    // names would take hundreds of MB to compare.
+    std::vector<const char*> extensions = {".png"};
+    if (args.exr) extensions.push_back(".exr");
+    for (uint32_t f = 0; !args.framesDir.empty() && f < args.frames; ++f)
+        for (const char* extension : extensions) {
+            const std::string frame = framePath(args.framesDir, f, extension);
+            std::error_code ec;
+            if (fs::exists(fs::symlink_status(frame, ec)))
+                outputs.push_back({"--frames-dir", frame});
+        }
     checkRunFiles(cli::sceneInputs(scene), outputs);
     vk::Context ctx({common.validation, common.device});
     Renderer renderer(ctx, scene, {common.width, common.height, args.view});
