@@ -66,11 +66,16 @@ std::pair<std::string, SettingOverrides> parseMethod(const std::string& text) {
 Args parseArgs(int argc, char** argv) {
     Args a;
     const std::string command = argc >= 2 ? argv[1] : "";
-    if (command != "sweep" && command != "walkthrough" && command != "indirect" &&
-        command != "cache-fixes") {
+    if (command == "--help" || command == "-h") {
         std::cout << kUsage << cli::kCommonUsage;
-        std::exit(argc >= 2 && std::string(argv[1]) == "--help" ? 0 : 2);
+        std::exit(0);
     }
+    if (command != "sweep" && command != "walkthrough" && command != "indirect" &&
+        command != "cache-fixes")
+        throw InputError((command.empty() ? std::string("no command given")
+                                          : "unknown command '" + command + "'") +
+                         ": the first argument is sweep, walkthrough, indirect or cache-fixes "
+                         "(see benchmark --help)");
     a.command = argv[1];
     for (int i = 2; i < argc; ++i) {
         const std::string arg = argv[i];
@@ -127,6 +132,7 @@ std::string utcNow() {
 int run(int argc, char** argv) {
     const Args args = parseArgs(argc, argv);
     const Scene scene = cli::loadSceneWithSettings(args.common);
+    checkRunFiles(cli::sceneInputs(scene), {{"--out", args.out}}); // before any work
     vk::Context ctx({args.common.validation, args.common.device});
     const bench::Options& o = args.options;
     bench::Json j = {{"kind", args.command},

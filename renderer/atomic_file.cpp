@@ -9,11 +9,14 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <dirent.h>
 #include <fcntl.h>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <pthread.h>
+#include <set>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -197,6 +200,20 @@ int ownDescriptor(const std::string& path) {
     return -1;
 }
 
+// Where a path that names no file leads: the end of its chain of symbolic links (the file a
+// write creates), or the path itself.
+fs::path throughDanglingLinks(fs::path at) {
+    for (int hops = 0; hops < 40; ++hops) {
+        struct stat link {};
+        if (::lstat(at.c_str(), &link) != 0 || !S_ISLNK(link.st_mode)) break;
+        std::error_code ec;
+        const fs::path target = fs::read_symlink(at, ec);
+        if (ec) break;
+        at = target.is_absolute() ? target : at.parent_path() / target;
+    }
+    return at;
+}
+
 Destination resolve(const std::string& path, bool writeThrough) {
     Destination d{fs::path(path)};
     // One check for every path any program writes: a NUL cuts a path short (the file at the cut
@@ -232,15 +249,132 @@ Destination resolve(const std::string& path, bool writeThrough) {
         return d;
     }
     // A dangling link: the file it names is created, the link stays.
-    for (int hops = 0; hops < 40; ++hops) {
-        struct stat link {};
-        if (::lstat(d.path.c_str(), &link) != 0 || !S_ISLNK(link.st_mode)) break;
-        std::error_code ec;
-        const fs::path target = fs::read_symlink(d.path, ec);
-        if (ec) break;
-        d.path = target.is_absolute() ? target : d.path.parent_path() / target;
-    }
+    d.path = throughDanglingLinks(d.path);
     return d;
+}
+
+// What a path resolves to, to find two names of one file: its absolute path with every link
+// and `.`/`..` resolved, and the file's identity where it exists. Not `compared` where a write
+// would not replace it (this process's descriptors, a device, a FIFO, a folder).
+struct Identity {
+    bool compared = false;
+    std::string path;
+    dev_t device = 0;
+    ino_t inode = 0; // 0: no file there yet
+};
+
+class Identities {
+public:
+    Identity of(const std::string& path) {
+        Identity id;
+        if (path.empty() || path.find('\0') != std::string::npos || ownDescriptor(path) >= 0)
+            return id;
+        fs::path at(path);
+        struct stat status {};
+        if (::stat(path.c_str(), &status) == 0) {
+            if (!S_ISREG(status.st_mode)) return id;
+            id.device = status.st_dev;
+            id.inode = status.st_ino;
+        } else {
+            at = throughDanglingLinks(at);
+        }
+        // The folder resolved once (a walkthrough's frames share one), then the name in it,
+        // itself resolved only where it is a link. (Not lexically first: `link/..` is the
+        // parent of the link's target.)
+        struct stat link {};
+        const bool isLink = ::lstat(at.c_str(), &link) == 0 && S_ISLNK(link.st_mode);
+        std::error_code ec;
+        fs::path absolute = fs::absolute(at, ec);
+        if (ec) absolute = at;
+        const fs::path name = absolute.filename();
+        if (isLink || name.empty() || name == "." || name == "..") {
+            const fs::path canonical = fs::weakly_canonical(absolute, ec);
+            id.path = (ec ? absolute.lexically_normal() : canonical).string();
+        } else {
+            const fs::path parent = absolute.parent_path();
+            auto found = folders_.find(parent.string());
+            if (found == folders_.end()) {
+                const fs::path canonical = fs::weakly_canonical(parent, ec);
+                found =
+                    folders_.emplace(parent.string(), ec ? parent.lexically_normal() : canonical)
+                        .first;
+            }
+            id.path = (found->second / name).string();
+        }
+        id.compared = true;
+        return id;
+    }
+
+private:
+    std::map<std::string, fs::path> folders_;
+};
+
+// Finds, among identities added one by one, an earlier one of the same file.
+class SameFiles {
+public:
+    // The index of an earlier identity of the same file, or -1; then remembers this one.
+    long add(const Identity& id, long index) {
+        if (!id.compared) return -1;
+        long earlier = -1;
+        if (id.inode != 0)
+            if (const auto it = inodes_.find({id.device, id.inode}); it != inodes_.end())
+                earlier = it->second;
+        if (earlier < 0)
+            if (const auto it = paths_.find(id.path); it != paths_.end()) earlier = it->second;
+        if (id.inode != 0) inodes_.emplace(std::pair{id.device, id.inode}, index);
+        paths_.emplace(id.path, index);
+        return earlier;
+    }
+
+private:
+    std::map<std::pair<dev_t, ino_t>, long> inodes_;
+    std::map<std::string, long> paths_;
+};
+
+// The PID in a temporary's or backup's name (`.ssgi-PID-N`, `.ssgi-old-PID-N`), or 0.
+pid_t temporaryOwner(const std::string& name) {
+    std::string rest;
+    if (name.rfind(".ssgi-old-", 0) == 0)
+        rest = name.substr(10);
+    else if (name.rfind(".ssgi-", 0) == 0)
+        rest = name.substr(6);
+    else
+        return 0;
+    const size_t dash = rest.find('-');
+    const auto digits = [](const std::string& text) {
+        return !text.empty() && text.size() < 10 &&
+               text.find_first_not_of("0123456789") == std::string::npos;
+    };
+    if (dash == std::string::npos || !digits(rest.substr(0, dash)) ||
+        !digits(rest.substr(dash + 1)))
+        return 0;
+    return pid_t(std::stol(rest.substr(0, dash)));
+}
+
+// What a process that died without its clean-up (SIGKILL, a crash, a power cut) left in a
+// folder: its temporaries and backups, removed by the first write of a later process into the
+// folder once no process of their PID is alive. (A temporary of a live process, this one's
+// included, is never touched.)
+void removeStaleTemporaries(const fs::path& folder) {
+    static std::mutex mutex;
+    static std::set<std::string> cleaned;
+    const std::string at = folder.empty() ? "." : folder.string();
+    {
+        std::lock_guard lock(mutex);
+        if (!cleaned.insert(at).second) return;
+    }
+    DIR* dir = ::opendir(at.c_str());
+    if (!dir) return;
+    while (const dirent* entry = ::readdir(dir)) {
+        const pid_t owner = temporaryOwner(entry->d_name);
+        if (owner <= 0 || owner == ::getpid()) continue;
+        if (::kill(owner, 0) == 0 || errno != ESRCH) continue; // alive (or not ours to judge)
+        struct stat status {};
+        if (::fstatat(::dirfd(dir), entry->d_name, &status, AT_SYMLINK_NOFOLLOW) == 0 &&
+            S_ISREG(status.st_mode))
+            ::unlinkat(::dirfd(dir), entry->d_name, 0);
+    }
+    ::closedir(dir);
 }
 
 fs::path uniqueBeside(const fs::path& target, const char* kind) {
@@ -281,17 +415,10 @@ void writeFilesAtomically(const std::vector<FileBytes>& files) {
     for (const FileBytes& file : files)
         destinations.push_back(resolve(file.path, !file.replace));
     // Two outputs that are one file (a.png a link to a.exr) would leave one of them.
-    for (size_t i = 0; i < files.size(); ++i)
-        for (size_t j = 0; j < i; ++j) {
-            const Destination &a = destinations[i], &b = destinations[j];
-            const bool sameFile = a.inode != 0 && a.device == b.device && a.inode == b.inode;
-            const bool samePath =
-                !a.direct && !b.direct &&
-                fs::absolute(a.path).lexically_normal() == fs::absolute(b.path).lexically_normal();
-            if (sameFile || samePath || (a.stream >= 0 && a.stream == b.stream))
-                throw InputError(files[i].path + " and " + files[j].path +
-                                 " are the same file: both outputs cannot be written");
-        }
+    std::vector<RunFile> outputs;
+    for (const FileBytes& file : files)
+        outputs.push_back({"", file.path});
+    checkRunFiles({}, outputs);
 
     // Every temporary complete and on the disk before anything moves.
     std::vector<fs::path> temporaries(files.size());
@@ -314,6 +441,7 @@ void writeFilesAtomically(const std::vector<FileBytes>& files) {
                                  ec.message());
             }
         }
+        removeStaleTemporaries(parent);
         const fs::path tmp = uniqueBeside(d.path, "");
         pending.push_back(std::make_unique<Pending>(tmp.string()));
         const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
@@ -380,6 +508,27 @@ void writeFilesAtomically(const std::vector<FileBytes>& files) {
     }
     for (const fs::path& backup : backups)
         if (!backup.empty()) ::unlink(backup.c_str());
+}
+
+void checkRunFiles(const std::vector<RunFile>& inputs, const std::vector<RunFile>& outputs) {
+    const auto named = [](const RunFile& file) {
+        return file.what.empty() ? file.path : file.what + " " + file.path;
+    };
+    Identities identities;
+    SameFiles seen; // indices: the inputs, then the outputs
+    for (size_t i = 0; i < inputs.size(); ++i)
+        seen.add(identities.of(inputs[i].path), long(i)); // an input named twice is read twice
+    for (size_t i = 0; i < outputs.size(); ++i) {
+        const long earlier = seen.add(identities.of(outputs[i].path), long(inputs.size() + i));
+        if (earlier < 0) continue;
+        if (size_t(earlier) < inputs.size())
+            throw InputError(named(outputs[i]) + " is the same file as " +
+                             named(inputs[size_t(earlier)]) +
+                             ": writing it would destroy an input of the run; nothing was written");
+        throw InputError(named(outputs[size_t(earlier) - inputs.size()]) + " and " +
+                         named(outputs[i]) +
+                         " are the same file: both outputs cannot be written; nothing was written");
+    }
 }
 
 void setAfterRenameHook(void (*hook)(size_t moved)) {

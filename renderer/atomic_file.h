@@ -28,9 +28,27 @@ struct FileBytes {
 // stream, after what the program printed, and never replaced, whatever is behind it. The
 // signals that end a process (SIGINT, SIGTERM, SIGHUP, SIGQUIT) are held while the files move
 // into place, so none leaves some moved and some not. Throws InputError naming the target path
-// and the system's reason; never leaves a temporary.
+// and the system's reason; never leaves a temporary. Temporaries are named `.ssgi-PID-N` (and
+// backups `.ssgi-old-PID-N`): one that a killed process (SIGKILL, a crash) left in a folder is
+// removed by the next write into that folder once no process of that PID is alive.
 void writeFilesAtomically(const std::vector<FileBytes>& files);
 void writeFileAtomically(const std::string& path, const std::string& bytes);
+
+// A file a run reads or writes, named in messages by what it is for ("--output", "the scene
+// file").
+struct RunFile {
+    std::string what;
+    std::string path;
+};
+
+// The one check of a run's files against each other, made before any work: an output that is
+// one of the run's inputs (writing it would destroy the input) or two outputs that are one file
+// (the second would replace the first) are refused with InputError naming both. Files are
+// compared by what they resolve to: `./x` and `x`, a symbolic link (dangling or not) and its
+// target, two hard links of one file. A path that is not replaced when written (this process's
+// own descriptors such as /dev/stdout, a device, a FIFO, a folder) is not compared.
+// writeFilesAtomically makes the same check among the files of one write.
+void checkRunFiles(const std::vector<RunFile>& inputs, const std::vector<RunFile>& outputs);
 
 // For the tests: called after each file has moved into place, with how many have, so that a
 // test can send a signal between two renames.

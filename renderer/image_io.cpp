@@ -1,6 +1,7 @@
 #include "image_io.h"
 
 #include "atomic_file.h"
+#include "png_header.h"
 #include "scene/scene.h"
 
 #include <OpenImageIO/filesystem.h>
@@ -205,6 +206,15 @@ std::vector<float> readImage(const std::string& path, uint32_t& width, uint32_t&
         throw InputError(path + ": declares " + std::to_string(spec.width) + "x" +
                          std::to_string(spec.height) + " pixels; images of 1.." +
                          std::to_string(kMaxImageSide) + " pixels a side are read");
+    // A PNG whose bytes cannot hold the pixels it declares: before they take memory and time.
+    if (extension == ".png") {
+        unsigned char start[29] = {};
+        std::ifstream file(path, std::ios::binary);
+        file.read(reinterpret_cast<char*>(start), sizeof start);
+        const std::string problem =
+            pngSizeProblem(start, size_t(file.gcount()), uint64_t(status.st_size));
+        if (!problem.empty()) throw InputError(path + ": a " + problem);
+    }
     // Which of the file's channels holds R, G, B and A (-1: none; alpha is then 1). By name, never
     // by position: X, Y, Z or a layer's normal.X read as RGB would pass any comparison with
     // another file of the same kind.

@@ -45,9 +45,33 @@ SceneGpu::SceneGpu(vk::Context& ctx, const Scene& scene) : ctx_(ctx), scene_(sce
         }
         meshes_.push_back(b);
     }
-    for (const Texture& t : scene.textures)
-        textures_.push_back(vk::createTexture(ctx, t.name, VK_FORMAT_R8G8B8A8_SRGB,
-                                              {t.width, t.height}, t.rgba.data(), t.rgba.size()));
+    for (size_t i = 0; i < scene.textures.size(); ++i) {
+        const Texture& t = scene.textures[i];
+        try {
+            textures_.push_back(vk::createTexture(ctx, t.name, VK_FORMAT_R8G8B8A8_SRGB,
+                                                  {t.width, t.height}, t.rgba.data(),
+                                                  t.rgba.size()));
+        } catch (const std::exception& error) {
+            // A legal texture the memory left cannot hold: named, with what it needs (the
+            // device's own out-of-memory code said neither). What was made is released, as
+            // the destructor of an object never made would not.
+            const std::string why = error.what();
+            vkDeviceWaitIdle(ctx.device);
+            for (MeshBuffers& m : meshes_) {
+                vk::destroyBuffer(ctx, m.vertices);
+                vk::destroyBuffer(ctx, m.indices);
+            }
+            for (vk::Image& made : textures_)
+                vk::destroyImage(ctx, made);
+            throw InputError(scene.sourcePath + ": texture " + std::to_string(i) +
+                             (t.name.empty() ? "" : " '" + t.name + "'") + " (" +
+                             std::to_string(t.width) + "x" + std::to_string(t.height) + ", " +
+                             std::to_string((t.rgba.size() + (1 << 20) - 1) >> 20) +
+                             " MiB, twice that while it is uploaded) does not fit in the memory "
+                             "left: " +
+                             why);
+        }
+    }
     const uint8_t white[4] = {255, 255, 255, 255};
     whiteTexture_ = vk::createTexture(ctx, "white", VK_FORMAT_R8G8B8A8_SRGB, {1, 1}, white, 4);
     auto address = [](TextureWrap wrap) {

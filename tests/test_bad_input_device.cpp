@@ -146,4 +146,65 @@ TEST_F(BadInputOnDevice, TextureBeyondTheDeviceLimit) {
     EXPECT_THROW(Renderer(test::context(), scene, {16, 16, "final"}), InputError);
 }
 
+// A legal texture that the memory left cannot hold (under an address-space limit) is named, with
+// its size: it ended in the device's bare VK_ERROR_OUT_OF_DEVICE_MEMORY. The limit is found
+// first as the least the same scene without its texture renders under; the texture (64 MiB,
+// twice that while it is uploaded) is then loaded under a little more than that.
+TEST(BadInputTexture, ATextureBeyondTheMemoryLeftIsNamed) {
+    const fs::path dir = fs::temp_directory_path() / ("ssgi-texture-" + std::to_string(getpid()));
+    fs::create_directories(dir);
+    const std::string render =
+        (fs::read_symlink("/proc/self/exe").parent_path().parent_path() / "render").string();
+    writeImage((dir / "big.png").string(), 4096, 4096,
+               std::vector<float>(size_t(4096) * 4096 * 4, 0.5f));
+    const std::vector<float> quad = {-1, 0, -1, 1, 0, -1, 1, 0, 1, -1, 0, 1};
+    const std::vector<float> uv = {0, 0, 1, 0, 1, 1, 0, 1};
+    const std::vector<uint32_t> indices = {0, 1, 2, 0, 2, 3};
+    std::string bin = meshBytes(quad, indices);
+    bin.insert(48, std::string(reinterpret_cast<const char*>(uv.data()), 32));
+    std::ofstream(dir / "quad.bin", std::ios::binary) << bin;
+    json gltf = meshJson(quad.size(), indices.size());
+    gltf["buffers"][0] = {{"uri", "quad.bin"}, {"byteLength", bin.size()}};
+    gltf["bufferViews"] = {{{"buffer", 0}, {"byteLength", 48}},
+                           {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 32}},
+                           {{"buffer", 0}, {"byteOffset", 80}, {"byteLength", 24}}};
+    gltf["accessors"][1]["bufferView"] = 2;
+    gltf["accessors"].push_back(
+        {{"bufferView", 1}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}});
+    gltf["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = 2;
+    std::ofstream(dir / "plain.gltf") << gltf.dump();
+    gltf["meshes"][0]["primitives"][0]["material"] = 0;
+    gltf["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}};
+    gltf["textures"] = {{{"source", 0}}};
+    gltf["images"] = {{{"uri", "big.png"}}};
+    std::ofstream(dir / "textured.gltf") << gltf.dump();
+    const auto renderUnder = [&](long kib, const char* scene) {
+        return test::runCommand("ulimit -v " + std::to_string(kib) + "; " + render + " " +
+                                (dir / scene).string() + " --size 16x16 --output " +
+                                (dir / "out.png").string());
+    };
+    ASSERT_EQ(renderUnder(16l << 20, "textured.gltf").status, 0) << "renders without a limit";
+    // The least limit (to 16 MiB) the scene without its texture renders under.
+    long fails = 64l << 10, renders = 16l << 20;
+    while (renders - fails > (16l << 10)) {
+        const long middle = (fails + renders) / 2;
+        (renderUnder(middle, "plain.gltf").status == 0 ? renders : fails) = middle;
+    }
+    std::string said;
+    for (long extra = 32l << 10; extra <= (224l << 10) && said.empty(); extra += 32l << 10) {
+        const test::CommandResult run = renderUnder(renders + extra, "textured.gltf");
+        if (run.output.find("texture 0 (4096x4096, 64 MiB") != std::string::npos) said = run.output;
+        if (run.status != 0) std::cerr << "under " << (renders + extra) << " KiB: " << run.output;
+        if (run.status == 0) break; // the texture fits: nothing to name
+    }
+    EXPECT_NE(said, "") << "no run under a limit named the texture";
+    EXPECT_NE(said.find("error: " + (dir / "textured.gltf").string() +
+                        ": texture 0 (4096x4096, "
+                        "64 MiB, twice that while it is uploaded) does not fit in the memory "
+                        "left"),
+              std::string::npos)
+        << said;
+    fs::remove_all(dir);
+}
+
 } // namespace

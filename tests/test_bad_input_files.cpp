@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <sstream>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <thread>
@@ -235,3 +236,163 @@ TEST_F(BadInput, ASignalNeverSplitsAnOutputPair) {
 }
 
 } // namespace
+
+// No program writes over one of its own inputs or writes two outputs into one file: an output
+// naming the scene file, a file the scene reads, the reference image, or another output (by
+// `./x`, a symbolic link, a hard link) is refused before any work with `error:` naming both and
+// exit 2, and nothing is written (the input was replaced with exit 0; of two outputs one was
+// kept while "wrote" was printed for both).
+TEST_F(BadInput, NoOutputReplacesAnInputOrAnotherOutput) {
+    const std::string original = readAll(test::sourcePath("tests/scenes/empty-box.json"));
+    const fs::path box = dir_ / "box.json";
+    // A bare glTF whose buffer is a file beside it.
+    const std::vector<uint32_t> indices = {0, 1, 2};
+    nlohmann::json gltf = test::meshJson(test::kTriangle.size(), indices.size());
+    gltf["buffers"][0]["uri"] = "tri.bin";
+    const std::string bin = test::meshBytes(test::kTriangle, indices);
+    const std::string model = write("tri.gltf", gltf.dump());
+    const fs::path buffer = dir_ / "tri.bin";
+    std::vector<float> pixels(16 * 16 * 4, 0.5f);
+    const std::string pngA = (dir_ / "a.png").string(), pngB = (dir_ / "b.png").string();
+    writeImage(pngA, 16, 16, pixels);
+    pixels[0] = 0.25f;
+    writeImage(pngB, 16, 16, pixels);
+    const std::string imageA = readAll(pngA), imageB = readAll(pngB);
+    const std::string here = (dir_ / ".").string() + "/"; // `./x`: another name of x
+
+    // The first case the stability suite lists (stability and benchmark are built where the
+    // reference is).
+    const bool withReference = fs::exists(program("stability"));
+    const test::CommandResult list =
+        withReference ? test::runCommand(program("stability") + " --list") : test::CommandResult{};
+    ASSERT_TRUE(!withReference || list.status == 0) << list.output;
+    const std::string stabilityCase = list.output.substr(0, list.output.find(' '));
+
+    struct Case {
+        std::string command, expected;
+        fs::path kept; // an input that must stay as it was ("" when none is at stake)
+        std::string keptBytes;
+    };
+    const std::string size = " --size 16x16";
+    const Case cases[] = {
+        // render: the scene file through `./`, a hard link to the glTF's buffer, two outputs.
+        {program("render") + " " + box.string() + size + " --output " + here + "r1.png" +
+             " --profile-json " + here + "box.json",
+         "--profile-json " + here + "box.json is the same file as the scene file " + box.string(),
+         box, original},
+        {program("render") + " " + model + size + " --output " + here + "r2.png" +
+             " --profile-trace " + (dir_ / "hard.json").string(),
+         "is the same file as a file the scene reads", buffer, bin},
+        {program("render") + " " + box.string() + size + " --output " + here + "r3.png" +
+             " --profile-json " + (dir_ / "p.json").string() + " --profile-trace " + here +
+             "p.json",
+         "--profile-json " + (dir_ / "p.json").string() + " and --profile-trace " + here +
+             "p.json are the same file",
+         "", ""},
+        // walkthrough: two outputs through a (dangling) link; a frame over the scene file.
+        {program("walkthrough") + " " + box.string() + size + " --still --frames 1 --timings " +
+             (dir_ / "t.json").string() + " --profile-trace " + (dir_ / "t-link.json").string(),
+         "are the same file", "", ""},
+        {program("walkthrough") + " " + box.string() + size + " --still --frames 2 --frames-dir " +
+             (dir_ / "frames").string(),
+         "frame_0001.png is the same file as the scene file", box, original},
+        // reference: the display image over the scene file, through a link.
+        {program("reference") + " " + box.string() +
+             " --size 8x8 --spp 1 --no-cache --quiet --output " + (dir_ / "ref.exr").string() +
+             " --png " + (dir_ / "scene-link.png").string(),
+         "--png " + (dir_ / "scene-link.png").string() + " is the same file as the scene file", box,
+         original},
+        // compare: a map over the reference image; two maps in one file; JSON over A by a hard
+        // link.
+        {program("compare") + " " + pngA + " " + pngB + " --error-map " + here + "b.png",
+         "--error-map " + here + "b.png is the same file as the reference image " + pngB, pngB,
+         imageB},
+        {program("compare") + " " + pngA + " " + pngB + " --error-map " +
+             (dir_ / "m.png").string() + " --flip-map " + here + "m.png",
+         "are the same file", "", ""},
+        {program("compare") + " " + pngA + " " + pngB + " --json " +
+             (dir_ / "a-hard.json").string(),
+         "is the same file as the image to judge " + pngA, pngA, imageA},
+        // stability: two of its fixed outputs made one by a link.
+        {program("stability") + " " + stabilityCase + " --quick --no-plot --out " +
+             (dir_ / "stability").string(),
+         "are the same file", "", ""},
+        // benchmark: its results over the scene file.
+        {program("benchmark") + " sweep " + box.string() + size +
+             " --no-error --no-series --frames 1 --warmup 0 --out " + here + "box.json",
+         "--out " + here + "box.json is the same file as the scene file", box, original},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.command);
+        if (!withReference && (c.command.rfind(program("stability"), 0) == 0 ||
+                               c.command.rfind(program("benchmark"), 0) == 0))
+            continue;
+        // Each case on fresh files: a run that replaced an input must not spoil the next.
+        for (const auto& entry : fs::directory_iterator(dir_))
+            if (entry.path().filename() != "a.png" && entry.path().filename() != "b.png")
+                fs::remove_all(entry.path());
+        write("box.json", original);
+        write("tri.gltf", gltf.dump());
+        write("tri.bin", bin);
+        fs::create_hard_link(buffer, dir_ / "hard.json");
+        fs::create_hard_link(pngA, dir_ / "a-hard.json");
+        fs::create_symlink("t.json", dir_ / "t-link.json");
+        fs::create_symlink("box.json", dir_ / "scene-link.png");
+        fs::create_directories(dir_ / "frames");
+        fs::create_symlink("../box.json", dir_ / "frames" / "frame_0001.png");
+        fs::create_directories(dir_ / "stability");
+        fs::create_symlink("frames.csv", dir_ / "stability" / "stability.csv");
+
+        const test::CommandResult run = test::runCommand(c.command);
+        EXPECT_EQ(run.status, 2) << run.output;
+        EXPECT_NE(run.output.find("error: "), std::string::npos) << run.output;
+        EXPECT_NE(run.output.find(c.expected), std::string::npos) << run.output;
+        EXPECT_EQ(run.output.find("wrote"), std::string::npos) << run.output;
+        if (!c.kept.empty()) {
+            EXPECT_EQ(readAll(c.kept), c.keptBytes) << c.kept;
+        }
+        // Nothing written: no output, no temporary.
+        for (const char* name : {"r1.png", "r2.png", "r3.png", "p.json", "t.json", "ref.exr",
+                                 "m.png", "frames/frame_0000.png", "stability/frames.csv"})
+            EXPECT_FALSE(fs::exists(dir_ / name)) << name;
+        EXPECT_EQ(hiddenFiles(dir_), "");
+    }
+    EXPECT_EQ(readAll(pngA), imageA);
+}
+
+// A process killed by a signal it cannot hold (SIGKILL) leaves its temporary behind; the next
+// write into that folder removes it (no process of its PID lives), and leaves the temporaries of
+// live processes alone (one was left for ever).
+TEST_F(BadInput, AKilledRunsTemporaryIsRemovedByTheNextWrite) {
+    const fs::path folder = dir_ / "out";
+    fs::create_directories(folder);
+    const pid_t child = fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+        writeFileAtomically((folder / "big.bin").string(), std::string(size_t(256) << 20, 'x'));
+        _exit(0);
+    }
+    const auto start = std::chrono::steady_clock::now();
+    while (hiddenFiles(folder).empty() &&
+           std::chrono::steady_clock::now() - start < std::chrono::seconds(20))
+        std::this_thread::sleep_for(std::chrono::microseconds(200));
+    ::kill(child, SIGKILL);
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    ASSERT_TRUE(WIFSIGNALED(status)) << "the write finished before the signal; make it longer";
+    const std::string left = hiddenFiles(folder);
+    ASSERT_NE(left, "") << "SIGKILL leaves the temporary";
+    // A live process's temporary (this one's parent's) and a file that only looks like one.
+    const std::string live = ".ssgi-" + std::to_string(::getppid()) + "-0";
+    write("out/" + live, "another run's, still being written");
+    write("out/.ssgi-notes", "not a temporary");
+
+    writeFileAtomically((folder / "next.txt").string(), "the next run");
+    std::istringstream leftPaths(left);
+    for (std::string path; leftPaths >> path;)
+        EXPECT_FALSE(fs::exists(path)) << path << " was left by the killed run";
+    EXPECT_TRUE(fs::exists(folder / live));
+    EXPECT_TRUE(fs::exists(folder / ".ssgi-notes"));
+    EXPECT_FALSE(fs::exists(folder / "big.bin"));
+    EXPECT_EQ(readAll(folder / "next.txt"), "the next run");
+}

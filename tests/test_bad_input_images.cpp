@@ -8,6 +8,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <chrono>
 #include <filesystem>
 #include <sys/stat.h>
 
@@ -138,6 +139,80 @@ TEST_F(BadInput, ImagesWrittenAreImagesRead) {
     // Fewer values than the size needs: refused, not read past.
     EXPECT_THROW(writeImage((dir_ / "short.png").string(), 4, 4, std::vector<float>(12)),
                  InputError);
+}
+
+// PNG bytes: the signature, then each chunk with its length and CRC.
+std::string pngFile(const std::vector<std::pair<std::string, std::string>>& chunks) {
+    const auto crc32 = [](const std::string& bytes) {
+        uint32_t crc = 0xffffffffu;
+        for (unsigned char byte : bytes) {
+            crc ^= byte;
+            for (int k = 0; k < 8; ++k)
+                crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+        }
+        return crc ^ 0xffffffffu;
+    };
+    const auto bigEndian = [](uint32_t v) {
+        return std::string{char(v >> 24), char(v >> 16), char(v >> 8), char(v)};
+    };
+    std::string png = "\x89PNG\r\n\x1a\n";
+    for (const auto& [type, data] : chunks)
+        png += bigEndian(uint32_t(data.size())) + type + data + bigEndian(crc32(type + data));
+    return png;
+}
+
+// A 128-byte PNG declaring 16384x16384 RGBA pixels (a legal size) with one stored deflate block
+// of 60 zero bytes: refused from its header within a second, by compare and by the glTF
+// loader (it took 27 s and 7.4 GB to refuse, 8.7 s under a 4 GB limit).
+TEST_F(BadInput, APngTooSmallForItsSizeIsRefusedFromItsHeader) {
+    const auto bigEndian = [](uint32_t v) {
+        return std::string{char(v >> 24), char(v >> 16), char(v >> 8), char(v)};
+    };
+    const std::string header =
+        bigEndian(16384) + bigEndian(16384) + std::string("\x08\x06\0\0\0", 5);
+    std::string zlib = std::string("\x78\x01\x01\x3c\x00\xc3\xff", 7) + std::string(60, '\0');
+    zlib += bigEndian(60u << 16 | 1u); // adler32 of 60 zeros: a = 1, b = 60
+    const std::string png = pngFile({{"IHDR", header}, {"IDAT", zlib}, {"IEND", ""}});
+    ASSERT_EQ(png.size(), 128u);
+    const std::string path = write("huge.png", png);
+
+    const auto start = std::chrono::steady_clock::now();
+    uint32_t width = 0, height = 0;
+    try {
+        readImage(path, width, height);
+        ADD_FAILURE() << "read";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find(path + ": a PNG of 16384x16384 pixels (1073741824 "
+                                                    "bytes decoded), which its 128 bytes cannot "
+                                                    "hold"),
+                  std::string::npos)
+            << e.what();
+    }
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
+
+    // compare, under a 4 GB address-space limit as the report had it: exit 2 naming the file.
+    const std::string compare =
+        (fs::read_symlink("/proc/self/exe").parent_path().parent_path() / "compare").string();
+    const test::CommandResult run =
+        test::runCommand("ulimit -v 4000000; " + compare + " " + path + " " + path);
+    EXPECT_EQ(run.status, 2) << run.output;
+    EXPECT_NE(run.output.find("error: " + path + ": a PNG of 16384x16384 pixels"),
+              std::string::npos)
+        << run.output;
+
+    // The same bytes as a glTF's texture.
+    nlohmann::json gltf = test::meshJson(test::kTriangle.size(), 3);
+    gltf["buffers"][0]["uri"] = "mesh.bin";
+    write("mesh.bin", test::meshBytes(test::kTriangle, {0, 1, 2}));
+    gltf["images"] = {{{"uri", "huge.png"}}};
+    gltf["textures"] = {{{"source", 0}}};
+    const auto loadStart = std::chrono::steady_clock::now();
+    EXPECT_NE(loadError(write("texture.gltf", gltf.dump()))
+                  .find("image 0 is a PNG of 16384x16384 pixels (1073741824 bytes decoded), "
+                        "which its 128 bytes cannot hold"),
+              std::string::npos);
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count(),
+              1.0);
 }
 
 } // namespace

@@ -10,6 +10,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -76,6 +77,53 @@ TEST_F(Parsers, ParsersStayLinearAndNameTheProblem) {
     EXPECT_NE(loadError(nul).find("NUL"), std::string::npos);
     gltf["buffers"][0]["uri"] = std::string("mesh.bin\0.png", 13);
     EXPECT_NE(loadError(write("nul.gltf", gltf.dump())).find("NUL"), std::string::npos);
+}
+
+// What the glTF specification refuses and tinygltf took, and tinygltf's refusals that named the
+// wrong rule: an extensionsRequired that is not an array of names (rendered with exit 0, the
+// required extension never looked at), a byteStride past 252 (refused as "must be the multiple
+// of 4" when it was one), a data: URI without a media type (refused as "not a relative path").
+TEST_F(Parsers, GltfRulesAreStatedAsTheSpecificationHasThem) {
+    const std::pair<std::function<void(json&)>, std::string> cases[] = {
+        {[](json& gltf) { gltf["extensionsRequired"] = "KHR_draco_mesh_compression"; },
+         "extensionsRequired is \"KHR_draco_mesh_compression\", not an array of extension names"},
+        {[](json& gltf) {
+             gltf["extensionsRequired"] = {{"name", "EXT_x"}};
+         },
+         "extensionsRequired is {\"name\":\"EXT_x\"}, not an array of extension names"},
+        {[](json& gltf) { gltf["extensionsRequired"] = {1}; },
+         "extensionsRequired is [1], not an array of extension names"},
+        {[](json& gltf) { gltf["extensionsUsed"] = "KHR_texture_transform"; },
+         "extensionsUsed is \"KHR_texture_transform\", not an array"},
+        {[](json& gltf) { gltf["bufferViews"][0]["byteStride"] = 256; },
+         "buffer view 0: byteStride 256 is more than 252, the largest glTF allows"},
+        {[](json& gltf) { gltf["bufferViews"][0]["byteStride"] = 14; },
+         "buffer view 0: byteStride 14 is not a multiple of 4"},
+        {[](json& gltf) { gltf["bufferViews"][1]["byteStride"] = 2; },
+         "buffer view 1: byteStride 2 is less than 4, the smallest glTF allows"},
+        {[](json& gltf) { gltf["buffers"][0]["uri"] = "data:;base64,AAAA"; },
+         "data: URI 'data:;base64,AAAA' has no media type: an embedded buffer is "
+         "data:application/octet-stream;base64,"},
+        {[](json& gltf) { gltf["buffers"][0]["uri"] = "data:application/octet-stream,AAAA"; },
+         "data: URI 'data:application/octet-stream,AAAA' is not base64"},
+        {[](json& gltf) { gltf["buffers"][0]["uri"] = "data:text/csv;base64,AAAA"; },
+         "data: URI 'data:text/csv;base64,AAAA' has the media type 'text/csv', which glTF does "
+         "not embed"},
+    };
+    int i = 0;
+    for (const auto& [change, expected] : cases) {
+        const std::string file = changedGlb(*this, "case" + std::to_string(i++),
+                                            [&](json& gltf, std::string&) { change(gltf); });
+        SCOPED_TRACE(expected);
+        EXPECT_NE(loadError(file).find(expected), std::string::npos) << loadError(file);
+    }
+    // A byteStride glTF allows, with an extensionsRequired of names, loads.
+    const std::string fine = changedGlb(*this, "fine", [](json& gltf, std::string&) {
+        gltf["bufferViews"][0]["byteStride"] = 12;
+        gltf["extensionsUsed"] = {"KHR_lights_punctual"};
+        gltf["extensionsRequired"] = {"KHR_lights_punctual"};
+    });
+    EXPECT_NO_THROW(loadScene(fine));
 }
 
 // Clip planes and fields of view inside the old ranges that drew nothing or broke the path

@@ -202,6 +202,16 @@ TEST_F(BadInput, EveryProgramChecksItsArgumentsAndSaysWhatFailed) {
         {"viewer", "--effect bogus", "--effect: unknown effect 'bogus'"},
         {"render", (dir_ / "loop-a.json").string() + " --size 16x16",
          "loop-a.json: a loop of symbolic links"},
+        // One range, whatever the value (0 was "must be at least 1", -1 "in 0..1000000").
+        {"render", box + " --frames 0", "--frames: '0' is not a whole number in 1..1000000"},
+        {"render", box + " --frames -1", "--frames: '-1' is not a whole number in 1..1000000"},
+        {"walkthrough", box + " --still --frames 0",
+         "--frames: '0' is not a whole number in 1..1000000"},
+        // An unknown command is an error, not the usage alone.
+        {"benchmark", "--bogus",
+         "error: unknown command '--bogus': the first argument is sweep, walkthrough, indirect or "
+         "cache-fixes"},
+        {"benchmark", "", "error: no command given"},
     };
     for (const Case& c : cases) {
         const fs::path program = build / c.program;

@@ -1,8 +1,10 @@
 #include "app/cli.h"
 
 #include "atomic_file.h"
+#include "scene/gltf_loader.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -24,17 +26,36 @@ const char* kCommonUsage =
                         (or SSGI_VALIDATION=1); any message makes the exit status non-zero
 )";
 
+std::vector<RunFile> sceneInputs(const Scene& scene) {
+    std::vector<RunFile> inputs;
+    for (const std::string& file : filesRead())
+        inputs.push_back(
+            {file == scene.sourcePath ? "the scene file" : "a file the scene reads", file});
+    return inputs;
+}
+
 std::string optionValue(int argc, char** argv, int& i) {
     if (i + 1 >= argc) throw InputError(std::string(argv[i]) + " needs a value");
     return argv[++i];
 }
 
-uint32_t parseCount(const std::string& option, const std::string& text) {
+namespace {
+
+// A whole number in lo..1000000, the one range an error states.
+uint32_t parseCountFrom(const std::string& option, const std::string& text, long long lo) {
     char* end = nullptr;
-    long long v = std::strtoll(text.c_str(), &end, 10);
-    if (text.empty() || *end != '\0' || v < 0 || v > 1000000)
-        throw InputError(option + ": '" + text + "' is not a whole number in 0..1000000");
+    errno = 0;
+    const long long v = std::strtoll(text.c_str(), &end, 10);
+    if (text.empty() || *end != '\0' || errno == ERANGE || v < lo || v > 1000000)
+        throw InputError(option + ": '" + text + "' is not a whole number in " +
+                         std::to_string(lo) + "..1000000");
     return uint32_t(v);
+}
+
+} // namespace
+
+uint32_t parseCount(const std::string& option, const std::string& text) {
+    return parseCountFrom(option, text, 0);
 }
 
 std::pair<std::string, double> parseSetting(const std::string& option, const std::string& text) {
@@ -47,9 +68,7 @@ std::pair<std::string, double> parseSetting(const std::string& option, const std
 }
 
 uint32_t parsePositiveCount(const std::string& option, const std::string& text) {
-    const uint32_t n = parseCount(option, text);
-    if (n == 0) throw InputError(option + ": must be at least 1");
-    return n;
+    return parseCountFrom(option, text, 1);
 }
 
 double parseNumber(const std::string& option, const std::string& text, double lo, double hi) {

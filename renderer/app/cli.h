@@ -2,6 +2,7 @@
 // settings, device, validation), the checks on their values, and writing files whole.
 #pragma once
 
+#include "atomic_file.h"
 #include "scene/scene.h"
 
 #include <string>
@@ -33,6 +34,10 @@ std::string defaultScene();
 void finishCommonArgs(CommonArgs& args);
 // The scene with the --set overrides applied and checked.
 Scene loadSceneWithSettings(const CommonArgs& args);
+
+// The files the scene loaders read (filesRead), as the inputs of checkRunFiles: "the scene file"
+// (`scene`'s own) and "a file the scene reads" (its glTFs, buffers and images).
+std::vector<RunFile> sceneInputs(const Scene& scene);
 
 // The value of option argv[i], advancing i; InputError when there is none.
 std::string optionValue(int argc, char** argv, int& i);

@@ -174,6 +174,16 @@ bool isLinear(const std::string& path) {
 
 int run(int argc, char** argv) {
     const Args args = parseArgs(argc, argv);
+    // No output over an input or over another output, before any work.
+    std::vector<RunFile> inputs = {{"the image to judge", args.test},
+                                   {"the reference image", args.reference}};
+    for (const std::string& mask : args.masks)
+        inputs.push_back({"--mask", mask});
+    std::vector<RunFile> outputs;
+    if (!args.json.empty()) outputs.push_back({"--json", args.json});
+    if (!args.errorMap.empty()) outputs.push_back({"--error-map", args.errorMap});
+    if (!args.flipMap.empty()) outputs.push_back({"--flip-map", args.flipMap});
+    checkRunFiles(inputs, outputs);
     ImageAttributes testHeader, referenceHeader;
     const Image test = load(args.test, &testHeader),
                 reference = load(args.reference, &referenceHeader);

@@ -139,6 +139,10 @@ Args parseArgs(int argc, char** argv) {
 int run(int argc, char** argv) {
     const Args args = parseArgs(argc, argv);
     Scene scene = loadScene(args.scene);
+    // No output over an input or over another output, before any work.
+    std::vector<RunFile> outputs = {{"--output", args.output}};
+    if (!args.png.empty()) outputs.push_back({"--png", args.png});
+    checkRunFiles(cli::sceneInputs(scene), outputs);
     const float exposure = float(scene.settings.exposure); // of the display image (--png)
     ReferenceRequest request;
     request.options = args.options;

@@ -82,8 +82,7 @@ Args parseArgs(int argc, char** argv) {
             if (fs::path(a.profileTrace).extension() != ".json")
                 throw InputError("--profile-trace: '" + a.profileTrace + "' must end in .json");
         } else if (arg == "--warmup") {
-            const std::string v = cli::optionValue(argc, argv, i);
-            a.warmup = v == "0" ? 0 : cli::parsePositiveCount(arg, v);
+            a.warmup = cli::parseCount(arg, cli::optionValue(argc, argv, i));
         } else if (!cli::parseCommonArg(argc, argv, i, a.common)) {
             throw InputError("unknown option " + arg + " (see render --help)");
         }
@@ -125,6 +124,13 @@ int run(int argc, char** argv) {
     const Args args = parseArgs(argc, argv);
     const cli::CommonArgs& common = args.common;
     const Scene scene = cli::loadSceneWithSettings(common);
+    const std::string exrPath = fs::path(args.output).replace_extension(".exr").string();
+    // No output over an input or over another output, before any work.
+    std::vector<RunFile> outputs = {{"--output", args.output},
+                                    {"the EXR beside --output", exrPath}};
+    if (!args.profileJson.empty()) outputs.push_back({"--profile-json", args.profileJson});
+    if (!args.profileTrace.empty()) outputs.push_back({"--profile-trace", args.profileTrace});
+    checkRunFiles(cli::sceneInputs(scene), outputs);
     vk::Context ctx({common.validation, common.device});
     Renderer renderer(ctx, scene, {common.width, common.height, args.view});
     Camera camera = scene.camera;
@@ -154,7 +160,6 @@ int run(int argc, char** argv) {
         }
     }
 
-    const std::string exrPath = fs::path(args.output).replace_extension(".exr").string();
     const std::vector<float> ldr = renderer.readImage("ldr"), hdr = renderer.readImage("hdr");
     writeImages({{args.output, common.width, common.height, &ldr},
                  {exrPath, common.width, common.height, &hdr}}); // both or neither

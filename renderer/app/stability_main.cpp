@@ -177,8 +177,18 @@ nlohmann::json toJson(const CaseResult& r) {
 
 int run(int argc, char** argv) {
     const Args args = parseArgs(argc, argv);
-    vk::Context ctx({args.common.validation, args.common.device});
     const fs::path out(args.out);
+    // No output over an input (a case's scene file) or over another output, before any work.
+    std::vector<RunFile> inputs, outputs;
+    for (const Case& c : args.cases) {
+        inputs.push_back({"the scene file of case " + c.name, args.run.repository + "/" + c.scene});
+        outputs.push_back({"the picture of case " + c.name,
+                           (out / "images" / ("stability-" + c.name + ".png")).string()});
+    }
+    for (const char* name : {"stability.md", "stability.csv", "frames.csv", "stability.json"})
+        outputs.push_back({"--out's " + std::string(name), (out / name).string()});
+    checkRunFiles(inputs, outputs);
+    vk::Context ctx({args.common.validation, args.common.device});
     fs::create_directories(out / "images");
     std::vector<CaseResult> results;
     std::ostringstream csv, perFrame;

@@ -81,6 +81,13 @@ Args parseArgs(int argc, char** argv) {
     return a;
 }
 
+// DIR/frame_NNNN.png (or .exr): frame f's file.
+std::string framePath(const std::string& dir, uint32_t f, const char* extension) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%04u%s", f, extension);
+    return (fs::path(dir) / name).string();
+}
+
 int run(int argc, char** argv) {
     const Args args = parseArgs(argc, argv);
     const cli::CommonArgs& common = args.common;
@@ -88,6 +95,23 @@ int run(int argc, char** argv) {
     if (scene.cameraPath.empty() && !args.still)
         throw InputError(common.scene + ": the scene has no camera_path to walk (--still "
                                         "renders its camera)");
+    // No output over an input or over another output, before any work.
+    std::vector<RunFile> outputs;
+    if (!args.timings.empty()) outputs.push_back({"--timings", args.timings});
+    if (!args.profileTrace.empty()) outputs.push_back({"--profile-trace", args.profileTrace});
+    // The frames whose names are taken (a file, a link): a name not taken yet is no input
+    // (inputs exist), the timings and the trace end in .csv or .json, and a million frames'
+    // names would take hundreds of MB to compare.
+    std::vector<const char*> extensions = {".png"};
+    if (args.exr) extensions.push_back(".exr");
+    for (uint32_t f = 0; !args.framesDir.empty() && f < args.frames; ++f)
+        for (const char* extension : extensions) {
+            const std::string frame = framePath(args.framesDir, f, extension);
+            std::error_code ec;
+            if (fs::exists(fs::symlink_status(frame, ec)))
+                outputs.push_back({"--frames-dir", frame});
+        }
+    checkRunFiles(cli::sceneInputs(scene), outputs);
     vk::Context ctx({common.validation, common.device});
     Renderer renderer(ctx, scene, {common.width, common.height, args.view});
 
@@ -102,16 +126,14 @@ int run(int argc, char** argv) {
                                                       : cameraAt(scene.cameraPath, t));
         log.add(renderer.lastFrameProfile());
         if (!args.framesDir.empty()) {
-            char name[32];
-            std::snprintf(name, sizeof name, "frame_%04u.png", f);
-            const fs::path path = fs::path(args.framesDir) / name;
             const std::vector<float> ldr = renderer.readImage("ldr");
             std::vector<float> hdr;
-            std::vector<ImageFile> files = {{path.string(), common.width, common.height, &ldr}};
+            std::vector<ImageFile> files = {
+                {framePath(args.framesDir, f, ".png"), common.width, common.height, &ldr}};
             if (args.exr) {
                 hdr = renderer.readImage("hdr");
-                files.push_back({fs::path(path).replace_extension(".exr").string(), common.width,
-                                 common.height, &hdr});
+                files.push_back(
+                    {framePath(args.framesDir, f, ".exr"), common.width, common.height, &hdr});
             }
             writeImages(files); // a frame's PNG and EXR land together or not at all
         }

@@ -2,10 +2,13 @@
 // where they lie beside it (gltf_internal.h readGltfModel).
 #include "scene/gltf_internal.h"
 
+#include "png_header.h"
+
 #include <tiny_gltf.h>
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -13,11 +16,30 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <mutex>
 #include <sstream>
 #include <sys/stat.h>
 #include <unistd.h>
 
 namespace ssgi {
+
+namespace {
+
+std::mutex gFilesReadMutex;
+std::vector<std::string> gFilesRead; // each once (a fuzzer reads one path millions of times)
+std::set<std::string> gFilesReadSet;
+
+void noteRead(const std::string& path) {
+    std::lock_guard lock(gFilesReadMutex);
+    if (gFilesReadSet.insert(path).second) gFilesRead.push_back(path);
+}
+
+} // namespace
+
+std::vector<std::string> filesRead() {
+    std::lock_guard lock(gFilesReadMutex);
+    return gFilesRead;
+}
 
 std::string readInputFile(const std::string& path) {
     // The system would read the path only up to the NUL: another file than the one named.
@@ -40,6 +62,7 @@ std::string readInputFile(const std::string& path) {
     if (!in) throw InputError(path + ": cannot open file for reading");
     std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     if (in.bad()) throw InputError(path + ": read error");
+    noteRead(path);
     return bytes;
 }
 
@@ -60,6 +83,13 @@ std::string withoutTrailingSpace(std::string text) {
 bool loadImageSayingWhy(tinygltf::Image* image, const int index, std::string* error,
                         std::string* warning, int width, int height, const unsigned char* bytes,
                         int size, void* user) {
+    // A PNG that cannot hold the pixels it declares, before the decoder allocates them.
+    if (const std::string problem =
+            pngSizeProblem(bytes, size_t(std::max(size, 0)), uint64_t(std::max(size, 0)));
+        !problem.empty()) {
+        if (error) *error = "image " + std::to_string(index) + " is a " + problem;
+        return false;
+    }
     if (tinygltf::LoadImageData(image, index, error, warning, width, height, bytes, size, user))
         return true;
     constexpr unsigned char kPng[] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
@@ -117,6 +147,25 @@ struct ExternalFiles {
             files.refuse(uri, "is an absolute path; glTF URIs are relative to the glTF's folder");
             return false;
         }
+        // A data: URI tinygltf did not take as one (it takes base64 with the media types glTF
+        // names) reaches here as if it were a file's name.
+        if (uri.rfind("data:", 0) == 0) {
+            const size_t end = uri.find_first_of(";,", 5);
+            const std::string type = uri.substr(5, end == std::string::npos ? 0 : end - 5);
+            const std::string shown = uri.size() > 40 ? uri.substr(0, 40) + "..." : uri;
+            if (files.problem.empty())
+                files.problem =
+                    "data: URI '" + shown + "' " +
+                    (type.empty() ? std::string("has no media type")
+                     : type == "application/octet-stream" || type == "application/gltf-buffer" ||
+                             type == "image/png" || type == "image/jpeg"
+                         ? std::string("is not base64 (its media type is followed by ;base64,)")
+                         : "has the media type '" + type + "', which glTF does not embed") +
+                    ": an embedded buffer is data:application/octet-stream;base64,... or "
+                    "data:application/gltf-buffer;base64,..., an embedded image "
+                    "data:image/png;base64,... or data:image/jpeg;base64,...";
+            return false;
+        }
         const size_t colon = uri.find(':'), slash = uri.find('/');
         if (colon != std::string::npos && colon > 1 &&
             (slash == std::string::npos || colon < slash)) {
@@ -166,6 +215,7 @@ struct ExternalFiles {
             }
         }
         ::close(fd);
+        if (ok) noteRead(joined);
         return ok;
     }
     static bool write(std::string* err, const std::string&, const std::vector<unsigned char>&,
@@ -175,19 +225,70 @@ struct ExternalFiles {
     }
 };
 
+// The JSON of a .gltf, or of a .glb's JSON chunk (when the container holds one); null when it is
+// not JSON (tinygltf says why).
+nlohmann::json gltfJson(const std::string& bytes, bool binary) {
+    std::string text = bytes;
+    if (binary) {
+        uint32_t length = 0;
+        if (bytes.size() < 20) return nullptr;
+        std::memcpy(&length, bytes.data() + 12, 4);
+        if (length > bytes.size() - 20) return nullptr;
+        text = bytes.substr(20, length);
+    }
+    return nlohmann::json::parse(text, nullptr, false);
+}
+
+// What tinygltf refuses with a message that says the wrong thing, or reads against the
+// specification, checked before it reads the file: a buffer view's byteStride (its message
+// said "must be a multiple of 4" of 256, a multiple of 4), and extensionsRequired or
+// extensionsUsed that are not arrays of names (tinygltf skipped them, so an extension the file
+// requires was never refused).
+void checkGltfJsonFirst(const std::string& path, const nlohmann::json& root) {
+    if (!root.is_object()) return;
+    for (const char* key : {"extensionsRequired", "extensionsUsed"}) {
+        if (!root.contains(key)) continue;
+        const nlohmann::json& names = root[key];
+        bool strings = names.is_array();
+        for (size_t i = 0; strings && i < names.size(); ++i)
+            strings = names[i].is_string();
+        if (!strings) {
+            std::string shown = names.dump();
+            if (shown.size() > 60) shown = shown.substr(0, 60) + "...";
+            fail(path, std::string(key) + " is " + shown +
+                           ", not an array of extension names (strings), as glTF requires");
+        }
+    }
+    if (!root.contains("bufferViews") || !root["bufferViews"].is_array()) return;
+    size_t i = 0;
+    for (const nlohmann::json& view : root["bufferViews"]) {
+        const std::string what = "buffer view " + std::to_string(i++);
+        if (!view.is_object() || !view.contains("byteStride")) continue;
+        const nlohmann::json& stride = view["byteStride"];
+        if (!stride.is_number() || stride.get<double>() != std::floor(stride.get<double>()))
+            fail(path, what + ": byteStride " + stride.dump() +
+                           " is not a whole number (glTF allows multiples of 4 from 4 to 252)");
+        const double value = stride.get<double>();
+        const std::string shown = stride.dump();
+        if (value > 252)
+            fail(path, what + ": byteStride " + shown +
+                           " is more than 252, the largest glTF allows (multiples of 4 from 4 "
+                           "to 252)");
+        if (value < 4)
+            fail(path, what + ": byteStride " + shown +
+                           " is less than 4, the smallest glTF allows (multiples of 4 from 4 to "
+                           "252)");
+        if (std::fmod(value, 4.0) != 0.0)
+            fail(path, what + ": byteStride " + shown +
+                           " is not a multiple of 4 (glTF allows multiples of 4 from 4 to 252)");
+    }
+}
+
 // What tinygltf reads without a word: a value of the wrong kind is taken as its default (a wrap
 // mode written as "CLAMP_TO_EDGE" became REPEAT), a fraction or a number beyond 32 bits is cut
 // to an int, and an index below zero means "none". The file's JSON is checked here for those,
 // and every extension it uses that the loader does not read is named once.
-void checkGltfJson(const std::string& path, const std::string& bytes, bool binary,
-                   GltfWarnings& warnings) {
-    std::string text = bytes;
-    if (binary) { // the JSON chunk: tinygltf has checked the container
-        uint32_t length = 0;
-        std::memcpy(&length, bytes.data() + 12, 4);
-        text = bytes.substr(20, length);
-    }
-    const nlohmann::json root = nlohmann::json::parse(text, nullptr, false);
+void checkGltfJson(const std::string& path, const nlohmann::json& root, GltfWarnings& warnings) {
     if (!root.is_object()) return; // tinygltf read it; nothing more to say here
     const auto isIndex = [](const nlohmann::json& v) {
         return (v.is_number_integer() || v.is_number_unsigned()) && v.get<double>() >= 0 &&
@@ -358,6 +459,8 @@ tinygltf::Model readGltfModel(const std::string& path) {
     std::string error, warning;
     // Sniff the content rather than trust the extension: a .gltf holding GLB bytes still loads.
     const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+    const nlohmann::json root = gltfJson(bytes, binary);
+    checkGltfJsonFirst(path, root);
     const bool ok =
         binary ? reader.LoadBinaryFromMemory(&model, &error, &warning,
                                              reinterpret_cast<const unsigned char*>(bytes.data()),
@@ -377,7 +480,7 @@ tinygltf::Model readGltfModel(const std::string& path) {
     for (const std::string& extension : model.extensionsRequired)
         if (extension != "KHR_lights_punctual" && extension != "KHR_materials_emissive_strength")
             fail(path, "requires the unsupported extension " + extension);
-    checkGltfJson(path, bytes, binary, warnings);
+    checkGltfJson(path, root, warnings);
     return model;
 }
 

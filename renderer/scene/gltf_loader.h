@@ -6,6 +6,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace ssgi {
 
@@ -21,5 +22,9 @@ struct GltfViewpoint {
 // per (node, primitive) with the node's world matrix times a uniform `scale`. Throws InputError
 // naming the file and the problem; warns on stderr (once per kind) about what it ignores.
 GltfViewpoint loadGltf(const std::string& path, float scale, Scene& scene);
+
+// Every file the scene loaders have read in this process, in order: scene files, glTFs, their
+// buffers and images (as opened). What a program must not write over (checkRunFiles).
+std::vector<std::string> filesRead();
 
 } // namespace ssgi
