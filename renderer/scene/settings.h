@@ -73,7 +73,7 @@ namespace ssgi {
       "the reflective shadow map, texels per side: each texel a VPL")                              \
     X(indirect, bool, true, 0, 1, "Indirect light",                                                \
       "one-bounce indirect light from the RSM on or off")                                          \
-    X(indirect_method, int, 3, 0, 3, "Indirect light",                                             \
+    X(indirect_method, int, 1, 0, 3, "Indirect light",                                             \
       "0 the thesis's gather: every VPL per half-resolution pixel, upsampled; 1 interleaved: "     \
       "each pixel of a k x k block gathers 1/k^2 of the RSM's texels, then a geometry-aware "      \
       "filter; 2 importance: 1 from clustered VPLs, some drawn by flux, visibility tested on a "   \
