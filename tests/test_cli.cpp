@@ -115,13 +115,14 @@ TEST_F(Cli, ProfilePrintsEveryPassAndWritesJson) {
 // A world cache's table too small for the view leaves pixels without a bounce, and render says
 // so without --profile; a table the image sized says nothing.
 TEST_F(Cli, AWorldCacheTableTooSmallIsSaid) {
-    Result small = run("--size 64x64 --set world_table_bits=8 --output " +
+    Result small = run("--size 64x64 --set indirect_method=3 --set world_table_bits=8 --output " +
                        (dir / "small.png").string());
     ASSERT_EQ(small.status, 0) << small.output;
     EXPECT_NE(small.output.find("warning: the world cache's table (256 entries) had no free entry"),
               std::string::npos)
         << small.output;
-    Result sized = run("--size 64x64 --output " + (dir / "sized.png").string());
+    Result sized =
+        run("--size 64x64 --set indirect_method=3 --output " + (dir / "sized.png").string());
     ASSERT_EQ(sized.status, 0) << sized.output;
     EXPECT_EQ(sized.output.find("world cache's table"), std::string::npos) << sized.output;
 }
