@@ -328,9 +328,12 @@ TEST(WorldCacheTable, IsSizedFromTheImage) {
     settings.world_table_bits = 9;
     EXPECT_EQ(worldTableBits(settings, {1920, 1080}), 9);
     Scene scene = loadScene(test::sourcePath("scenes/cornell-box.json"));
+    scene.settings.indirect_method = 3;
     Renderer renderer(test::context(), scene, {256, 256, "final"});
     renderer.renderFrame(scene.camera);
-    EXPECT_EQ(renderer.worldCacheCounts()->entries, 1u << 15);
+    const auto counts = renderer.worldCacheCounts();
+    ASSERT_TRUE(counts.has_value());
+    EXPECT_EQ(counts->entries, 1u << 15);
 }
 
 } // namespace
