@@ -167,9 +167,10 @@ int run(int argc, char** argv) {
                 exrPath.c_str(), common.width, common.height, args.frames,
                 args.frames == 1 ? "" : "s", common.scene.c_str());
 
-    // A table too small for the view leaves pixels without a bounce: said whether profiled or
-    // not (the last frame's count).
-    if (const auto world = renderer.worldCacheCounts(); world && world->full > 0)
+    // The world cache's counters of the last frame, read back once. A table too small for the
+    // view leaves pixels without a bounce: said whether profiled or not.
+    const auto world = renderer.worldCacheCounts();
+    if (world && world->full > 0)
         std::fprintf(stderr,
                      "warning: the world cache's table (%u entries) had no free entry for %u "
                      "pixels of the last frame, which have no bounce: raise world_table_bits\n",
@@ -177,21 +178,20 @@ int run(int argc, char** argv) {
     if (args.memory) printMemory(renderer.frameGraph(), common.width, common.height);
     const std::string device = std::string(ctx.properties.deviceName) + " (" + ctx.driverName + ")";
     if (args.profile) std::printf("%s", log.table(device).c_str());
-    if (args.profile)
-        if (const auto world = renderer.worldCacheCounts()) {
-            const WorldGridPlacement& grid = renderer.worldGrid();
-            std::printf("world cache (last frame): %u cells live of %u entries, %u filled, %u "
-                        "refreshed, %u evicted, %u pixels without a free entry",
-                        world->live, world->entries, world->filled, world->refreshed,
-                        world->evicted, world->full);
-            if (scene.settings.world_half_res)
-                std::printf(", %u pixels looked up alone (no half-res sample on their surface)",
-                            world->edges);
-            if (world->cut > 0)
-                std::printf(", %u gather samples left out (the device's loop limit)", world->cut);
-            std::printf("; voxel grid %dx%dx%d of side %.4g\n", grid.size.x, grid.size.y,
-                        grid.size.z, double(grid.voxel));
-        }
+    if (args.profile && world) {
+        const WorldGridPlacement& grid = renderer.worldGrid();
+        std::printf("world cache (last frame): %u cells live of %u entries, %u filled, %u "
+                    "refreshed, %u evicted, %u pixels without a free entry",
+                    world->live, world->entries, world->filled, world->refreshed, world->evicted,
+                    world->full);
+        if (scene.settings.world_half_res)
+            std::printf(", %u pixels looked up alone (no half-res sample on their surface)",
+                        world->edges);
+        if (world->cut > 0)
+            std::printf(", %u gather samples left out (the device's loop limit)", world->cut);
+        std::printf("; voxel grid %dx%dx%d of side %.4g\n", grid.size.x, grid.size.y, grid.size.z,
+                    double(grid.voxel));
+    }
     if (!args.profileJson.empty()) {
         const ProfileSummary summary = log.summary();
         nlohmann::json passes = nlohmann::json::array();
