@@ -45,7 +45,7 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
         glm::vec4(float(settings.world_cell_angle), settings.world_level_reuse ? 1.0f : 0.0f,
                   float(settings.world_frames), float(settings.world_new_cell_frames));
     base.table = glm::ivec4(int(table.width), int(table.width * table.height),
-                            int(settings.world_lifetime), settings.cache ? 1 : 0);
+                            int(settings.world_lifetime), 0);
     const int pool = int(std::max(settings.indirect_flux_pool, settings.indirect_flux_vpls));
     base.work = glm::ivec4(int(settings.world_vpls), int(settings.world_cells_per_frame), pool,
                            WORLD_VIEW_LIGHT);
@@ -78,7 +78,7 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
         tableImage("world.directions", VK_FORMAT_R32G32B32A32_SFLOAT);
     const graph::ImageRef owner = tableImage("world.owner", VK_FORMAT_R32_UINT);
     const graph::ImageRef stats =
-        build.graph.createImage("world.stats", VK_FORMAT_R32_UINT, {WORLD_STATS, 2}, usage, true);
+        build.graph.createImage("world.stats", VK_FORMAT_R32_UINT, {WORLD_STATS, 3}, usage, true);
     const graph::ImageRef indirect =
         build.graph.createImage("world.indirect", VK_FORMAT_R16G16B16A16_SFLOAT, build.size, usage);
     // Where pixels look up: every pixel, or the top-left one of every 2x2 block.

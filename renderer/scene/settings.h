@@ -73,7 +73,7 @@ namespace ssgi {
       "the reflective shadow map, texels per side: each texel a VPL")                              \
     X(indirect, bool, true, 0, 1, "Indirect light",                                                \
       "one-bounce indirect light from the RSM on or off")                                          \
-    X(indirect_method, int, 1, 0, 3, "Indirect light",                                             \
+    X(indirect_method, int, 3, 0, 3, "Indirect light",                                             \
       "0 the thesis's gather: every VPL per half-resolution pixel, upsampled; 1 interleaved: "     \
       "each pixel of a k x k block gathers 1/k^2 of the RSM's texels, then a geometry-aware "      \
       "filter; 2 importance: 1 from clustered VPLs, some drawn by flux, visibility tested on a "   \
@@ -126,11 +126,13 @@ namespace ssgi {
       "method 3: VPLs a cell gathers, with their visibility, in a frame's refresh (half by flux, " \
       "half next to it)")                                                                          \
     X(world_frames, int, 16, 1, 512, "World cache",                                                \
-      "method 3: frames of world_vpls a cell accumulates before it stops (uncached, all at once)") \
+      "method 3: frames of world_vpls a cell accumulates before it stops")                         \
     X(world_new_cell_frames, int, 8, 1, 512, "World cache",                                        \
-      "method 3, cached: frames of world_vpls a new cell gathers at once (at most world_frames)")  \
+      "method 3: frames of world_vpls a new cell gathers at once (at most world_frames), as "      \
+      "every cell does each frame without the cache")                                              \
     X(world_cells_per_frame, int, 1024, 0, 1 << 24, "World cache",                                 \
-      "method 3: cells refreshed a frame beyond the new ones (which are always filled)")           \
+      "method 3: about this many cells refreshed a frame beyond the new ones (which are always "   \
+      "filled), a window that slides over the cells short of world_frames")                        \
     X(world_table_bits, int, 0, 0, 22, "World cache",                                              \
       "method 3: the hash table holds 2^bits cells; 0: sized from the image, the power of two at " \
       "or above half its pixels, 2^14 to 2^18")                                                    \

@@ -422,9 +422,9 @@ struct WorldConstants {
     // x: the angle a cell spans from the camera (world_cell_angle, radians); y: 1 where a pixel
     // may take the cell one level coarser or finer (world_level_reuse); z: frames
     // of samples a cell accumulates (world_frames); w: frames of samples a new cell gathers at
-    // once, cached (world_new_cell_frames)
+    // once (world_new_cell_frames)
     vec4 cells;
-    ivec4 table; // x: the table images' width; y: entries; z: frames unused before eviction; w: 1 cached
+    ivec4 table; // x: the table images' width; y: entries; z: frames unused before eviction; w: unused
     // x: VPLs a cell gathers a frame; y: cells refreshed a frame beyond the new ones; z: the
     // flux pool's size; w: what the lookup writes (WORLD_VIEW_*)
     ivec4 work;
@@ -439,14 +439,16 @@ SSGI_CHECK_SIZE(WorldConstants, 64);
 #define WORLD_VIEW_CELLS 1 // each pixel's own cell's value, its edges unblended
 #define WORLD_VIEW_AGE 2   // each pixel's own cell: green its samples' share of world_frames,
                            // red where it holds none, blue its frames since last used
-// The world cache's counters (world.stats, R32UI, a row per frame parity): what `render
-// --profile` prints.
+// The world cache's counters (world.stats, R32UI, a row per frame parity, and row 2 held from
+// frame to frame): what `render --profile` prints.
 #define WORLD_STAT_LIVE 0      // cells in the table after eviction
 #define WORLD_STAT_NEW 1       // cells filled for the first time (or restarted) this frame
 #define WORLD_STAT_REFRESHED 2 // cells that gathered more samples this frame
 #define WORLD_STAT_EVICTED 3   // cells evicted this frame
 #define WORLD_STAT_FULL 4      // pixels whose cell found no free entry within its probes
-#define WORLD_STAT_BUDGET 5    // refreshes handed out (world_cells_per_frame caps them)
+#define WORLD_STAT_SHORT 5     // cells short of world_frames frames of samples, not new: the
+                               // refresh's candidates; row 2: their number the last frame that
+                               // gathered (world_schedule.comp's refresh window)
 #define WORLD_STAT_LISTED 6    // cells listed for world.gather (new and refreshed)
 // world.gather's workgroups, x, y and z (a VkDispatchIndirectCommand, copied to a buffer): a
 // workgroup per 64 listed cells, at most WORLD_GATHER_GROUPS_X along x (the least limit Vulkan

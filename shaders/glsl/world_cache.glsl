@@ -12,14 +12,14 @@
 //   world.keys       R32UI    the checksum, WORLD_EMPTY or WORLD_EVICTED
 //   world.irradiance RGBA32F  rgb: irradiance / pi at the cell's point (the mean of its
 //                             gathers), a: the frames of samples behind it (0: none yet)
-//   world.points     RGBA32F  xyz: the point it gathers at (its first pixel's), w: its
+//   world.points     RGBA32F  xyz: the point it gathers at (its pixel nearest its centre), w: its
 //                             normal (packCellNormal: a whole number, so that every texel is one)
 //   world.directions RGBA32F  the mean of its gathers' light as an L1 spherical harmonic of its
 //                             luminance (world_gather.comp), to carry its value to other normals
 //   world.used       R32UI    the last frame a pixel used it (FrameUniforms.patternFrame)
 //   world.owner      R32UI    which of this frame's pixels may give the cell its point: the
-//                             largest of its pixels' ownerRank (the first pixel in the image's
-//                             order, whichever thread runs first), WORLD_OWNERLESS where no
+//                             largest of its pixels' ownerRank (the one whose point lies nearest
+//                             the cell's centre, whichever thread runs first), WORLD_OWNERLESS where no
 //                             pixel used it; world.schedule takes the point from it where the
 //                             cell starts (new or restarted) and empties it for the next frame
 // Needs: constants (WorldConstants), common.glsl.
@@ -30,15 +30,6 @@ const int WORLD_PROBES = 16;
 const uint WORLD_EMPTY = 0u;
 const uint WORLD_EVICTED = 1u;
 const uint WORLD_OWNERLESS = 0u;
-// A pixel's claim to give its cell its point: larger for a pixel earlier in the image.
-uint ownerRank(ivec2 pixel, int width) {
-    return 0xfffffffeu - uint(pixel.x + pixel.y * width);
-}
-ivec2 ownerPixel(uint rank, int width) {
-    uint index = 0xfffffffeu - rank;
-    return ivec2(index % uint(width), index / uint(width));
-}
-
 // A PCG hash (O'Neill 2014).
 uint worldHash(uint v) {
     v = v * 747796405u + 2891336453u;
@@ -103,6 +94,32 @@ vec3 unpackCellNormal(float packed) {
 // The cell that holds p at `level` (in cells of that level).
 ivec3 worldCellOf(vec3 p, int level) {
     return ivec3(floor(p / worldCellSide(level)));
+}
+
+// A pixel's claim to give its cell (at `level`) its point: larger for a point nearer the cell's
+// centre, then for a pixel earlier in the image. The lookup interpolates a cell's value as the
+// value at its centre (world_lookup.glsl), and the point nearest it is nearly the same from any
+// view, so that a cell made while the camera moved holds what a still camera would have made
+// (the first pixel in the image's order would lie on the cell's edge, and move with the view).
+// The rank holds the distance, quantized,
+// above the pixel's index in the bits the image's pixels need.
+int ownerIndexBits(ivec2 size) {
+    return findMSB(uint(size.x * size.y)) + 1;
+}
+uint ownerRank(ivec2 pixel, ivec2 size, vec3 p, int level) {
+    int bits = ownerIndexBits(size);
+    uint mask = (1u << bits) - 1u;
+    float side = worldCellSide(level);
+    vec3 centre = (vec3(worldCellOf(p, level)) + 0.5) * side;
+    float d = min(distance(p, centre) / (0.8660254 * side), 1.0); // 1: a corner
+    uint steps = (1u << min(32 - bits, 16)) - 1u;
+    uint near = steps - uint(d * float(steps));
+    return (near << bits) | (mask - uint(pixel.x + pixel.y * size.x));
+}
+ivec2 ownerPixel(uint rank, ivec2 size) {
+    uint mask = (1u << ownerIndexBits(size)) - 1u;
+    uint index = mask - (rank & mask);
+    return ivec2(index % uint(size.x), index / uint(size.x));
 }
 
 // What a shader that finds cells defines, reading the table through the binding it has

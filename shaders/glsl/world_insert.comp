@@ -68,10 +68,10 @@ void main() {
     }
     if (found.x >= 0) {
         if (imageLoad(worldUsed, found).r != now) imageStore(worldUsed, found, uvec4(now));
-        // A starting cell's point is its first pixel's in the image, whichever thread runs
+        // A starting cell's point is its pixel's nearest its centre, whichever thread runs
         // first, so that the same frame makes the same cells wherever they lie in the table.
         // Every frame votes: a cell restarted after an object moved takes its point anew.
-        uint rank = ownerRank(pixel, int(frame.viewport.x));
+        uint rank = ownerRank(pixel, ivec2(frame.viewport.xy), p, level);
         if (imageLoad(worldOwner, found).r < rank) imageAtomicMax(worldOwner, found, rank);
         return;
     }

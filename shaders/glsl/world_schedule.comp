@@ -9,9 +9,11 @@
 // starts this frame, made or restarted, takes its point and normal from the G-buffer at the
 // pixel its pixels chose (world.owner). Then a cell is
 // listed for world.gather (world_gather.comp) with the frames' worth of VPLs it gathers:
-// - a new or restarted cell at once, uncached world_frames, cached world_new_cell_frames;
-// - an older cell with fewer than world_frames frames of samples, one, while the frame's
-//   refreshes (world_cells_per_frame) last;
+// - a new or restarted cell at once, world_new_cell_frames (at most world_frames): a camera cut,
+//   and every frame without the cache (its table is cleared each frame), costs that;
+// - an older cell with fewer than world_frames frames of samples, one, where it lies in this
+//   frame's refresh window (refreshWindow: about world_cells_per_frame of them, the same ones
+//   whichever order the threads run in);
 // - a full one not at all: its value stands while the light and the objects stay still.
 // The list (world.gather_list, as big as the table) holds entry + (frames << 22), its length in
 // the counters' WORLD_STAT_LISTED and the gather's workgroups in WORLD_STAT_GROUPS (dispatched
@@ -36,6 +38,21 @@ layout(push_constant) uniform WorldBlock { WorldConstants constants; };
 
 #include "gbuffer_position.glsl"
 #include "world_cache.glsl"
+
+// Whether a cell short of world_frames (its checksum `key`) refreshes this frame: a window of
+// the cells' hashes, as wide as world_cells_per_frame over the cells that were short the last
+// frame that gathered (row 2 of the counters, world_gather.comp), slides along them frame by
+// frame, so that every short cell refreshes in turn and which ones do depends on the cells
+// alone, not on the order the threads reach a counter (a budget handed out first come, first
+// served made the image differ from run to run). In 24-bit fixed point: the window's start
+// wraps exactly however many frames have passed.
+bool refreshWindow(uint key, uint now) {
+    float candidates = float(imageLoad(worldStats, ivec2(WORLD_STAT_SHORT, 2)).r);
+    float width = candidates > 0.0 ? min(1.0, float(constants.work.y) / candidates) : 1.0;
+    uint span = uint(width * 16777216.0);
+    uint start = (now * span) & 0xffffffu;
+    return (((worldHash(key) >> 8) - start) & 0xffffffu) < span;
+}
 
 void main() {
     ivec2 entry = ivec2(gl_GlobalInvocationID.xy);
@@ -71,7 +88,7 @@ void main() {
     uint owner = imageLoad(worldOwner, entry).r;
     if (owner != WORLD_OWNERLESS) {
         if (count == 0.0) {
-            ivec2 pixel = ownerPixel(owner, int(frame.viewport.x));
+            ivec2 pixel = ownerPixel(owner, ivec2(frame.viewport.xy));
             imageStore(worldPoints, entry,
                        vec4(gbufferPosition(pixel).xyz,
                             packCellNormal(texelFetch(gbufferNormal, pixel, 0).xyz)));
@@ -80,11 +97,11 @@ void main() {
     }
     float gathered;
     if (count == 0.0) {
-        gathered = constants.table.w != 0 ? min(constants.cells.w, frames) : frames;
+        gathered = min(constants.cells.w, frames);
         imageAtomicAdd(worldStats, ivec2(WORLD_STAT_NEW, row), 1u);
-    } else if (count < frames &&
-               imageAtomicAdd(worldStats, ivec2(WORLD_STAT_BUDGET, row), 1u) <
-                   uint(constants.work.y)) {
+    } else if (count < frames) {
+        imageAtomicAdd(worldStats, ivec2(WORLD_STAT_SHORT, row), 1u);
+        if (!refreshWindow(key, now)) return;
         gathered = 1.0;
         imageAtomicAdd(worldStats, ivec2(WORLD_STAT_REFRESHED, row), 1u);
     } else {
