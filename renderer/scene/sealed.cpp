@@ -113,32 +113,40 @@ bool LightSeals::closed(size_t meshIndex) const {
     bool isClosed = !mesh.indices.empty() && mesh.indices.size() % 3 == 0 &&
                     !(material && material->alphaMask);
     if (isClosed) {
-        // Vertices within `tolerance` of each other are one: each is looked for in the 27 cells
-        // of that size around it.
+        // Vertices within `tolerance` of each other are one. Each is looked for in its cell of
+        // 1024 times that size, and in a neighbouring cell only where it lies within
+        // `tolerance` of the border between them (rarely: a cell is looked up about once).
         Aabb box;
         for (const Vertex& v : mesh.vertices)
             box.extend(v.position);
         const double tolerance = std::max(1e-6 * double(glm::length(box.size())), 1e-30);
-        auto cellOf = [&](glm::vec3 p) {
-            return glm::i64vec3(glm::floor((glm::dvec3(p) - glm::dvec3(box.min)) / tolerance));
-        };
+        const double cellSize = 1024.0 * tolerance;
         auto key = [](glm::i64vec3 c) {
             return uint64_t(c.x) * 0x9E3779B97F4A7C15ull ^ uint64_t(c.y) * 0xC2B2AE3D27D4EB4Full ^
                    uint64_t(c.z) * 0x165667B19E3779F9ull;
         };
         std::unordered_multimap<uint64_t, uint32_t> cells;
+        cells.reserve(mesh.vertices.size());
         std::vector<uint32_t> welded(mesh.vertices.size());
         for (uint32_t i = 0; i < mesh.vertices.size(); ++i) {
-            const glm::vec3 p = mesh.vertices[i].position;
-            const glm::i64vec3 cell = cellOf(p);
+            const glm::dvec3 p(mesh.vertices[i].position);
+            const glm::dvec3 at = (p - glm::dvec3(box.min)) / cellSize;
+            const glm::i64vec3 cell(glm::floor(at));
+            glm::i64vec3 low(0), high(0); // the neighbours to look in, per axis
+            for (int axis = 0; axis < 3; ++axis) {
+                const double within = (at[axis] - double(cell[axis])) * cellSize;
+                low[axis] = within < tolerance ? -1 : 0;
+                high[axis] = cellSize - within < tolerance ? 1 : 0;
+            }
             welded[i] = i;
-            for (int dz = -1; dz <= 1 && welded[i] == i; ++dz)
-                for (int dy = -1; dy <= 1 && welded[i] == i; ++dy)
-                    for (int dx = -1; dx <= 1 && welded[i] == i; ++dx) {
-                        const auto [first, last] = cells.equal_range(key(cell + glm::i64vec3(dx, dy, dz)));
+            for (int64_t dz = low.z; dz <= high.z && welded[i] == i; ++dz)
+                for (int64_t dy = low.y; dy <= high.y && welded[i] == i; ++dy)
+                    for (int64_t dx = low.x; dx <= high.x && welded[i] == i; ++dx) {
+                        const auto [first, last] =
+                            cells.equal_range(key(cell + glm::i64vec3(dx, dy, dz)));
                         for (auto it = first; it != last; ++it)
-                            if (glm::distance(glm::dvec3(mesh.vertices[it->second].position),
-                                              glm::dvec3(p)) <= tolerance) {
+                            if (glm::distance(glm::dvec3(mesh.vertices[it->second].position), p) <=
+                                tolerance) {
                                 welded[i] = it->second;
                                 break;
                             }
