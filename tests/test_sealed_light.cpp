@@ -173,30 +173,39 @@ TEST_F(SealedLightTest, AnOpeningOrACameraInsideIsLit) {
 }
 
 // Decided for every frame: a camera that walks into the block sees the light, and black again
-// once it is back outside (no history of the lit frames is kept); a light moved out of the block
-// lights the room.
+// once it is back outside, with the screen-space bounce and the world cache alike; a light moved
+// out of the block lights the room. No camera move here is a cut (the cut thresholds are at
+// their largest), so no history starts afresh for a cut's sake.
 TEST_F(SealedLightTest, DecidedForEveryFrame) {
-    const Scene scene = sealedScene();
-    Renderer renderer(test::context(), scene, RenderOptions{kSize, kSize, "final"});
-    const Camera inside = insideTheBlock(scene);
-    for (int frame = 0; frame < 2; ++frame)
+    for (const int method : {1, 3}) {
+        Scene scene = sealedScene();
+        scene.settings.indirect_method = method;
+        scene.settings.cache_cut_angle_deg = 180.0;
+        scene.settings.cache_cut_distance = 1e9;
+        warnings.clear();
+        Renderer renderer(test::context(), scene, RenderOptions{kSize, kSize, "final"});
+        const Camera inside = insideTheBlock(scene);
+        for (int frame = 0; frame < 2; ++frame)
+            renderer.renderFrame(scene.camera);
+        EXPECT_TRUE(renderer.seal().has_value()) << method;
+        EXPECT_EQ(brightest(renderer.readImage("hdr")), 0.0f) << method;
+        for (int frame = 0; frame < 4; ++frame)
+            renderer.renderFrame(inside);
+        EXPECT_FALSE(renderer.seal().has_value()) << method;
+        EXPECT_GT(mean(renderer.readImage("hdr")), 0.01) << method;
+        for (int frame = 0; frame < 2; ++frame)
+            renderer.renderFrame(scene.camera);
+        EXPECT_TRUE(renderer.seal().has_value()) << method;
+        EXPECT_LE(brightest(renderer.readImage("hdr")), 1e-3f) << method;
+        SpotLight light = scene.light;
+        light.position.y = 0.45f; // above the block, under the ceiling
+        renderer.setLight(light);
         renderer.renderFrame(scene.camera);
-    EXPECT_TRUE(renderer.seal().has_value());
-    EXPECT_EQ(brightest(renderer.readImage("hdr")), 0.0f);
-    for (int frame = 0; frame < 2; ++frame)
-        renderer.renderFrame(inside);
-    EXPECT_FALSE(renderer.seal().has_value());
-    EXPECT_GT(mean(renderer.readImage("hdr")), 0.01);
-    renderer.renderFrame(scene.camera);
-    EXPECT_TRUE(renderer.seal().has_value());
-    EXPECT_LE(brightest(renderer.readImage("hdr")), 1e-3f);
-    SpotLight light = scene.light;
-    light.position.y = 0.45f; // above the block, under the ceiling
-    renderer.setLight(light);
-    renderer.renderFrame(scene.camera);
-    EXPECT_FALSE(renderer.seal().has_value());
-    EXPECT_GT(mean(renderer.readImage("hdr")), 0.01);
-    EXPECT_EQ(warnings.size(), 1u) << "said once for the renderer";
+        EXPECT_FALSE(renderer.seal().has_value()) << method;
+        EXPECT_GT(mean(renderer.readImage("hdr")), 0.01) << method;
+        EXPECT_EQ(renderer.cuts(), 0u) << method;
+        EXPECT_EQ(warnings.size(), 1u) << "said once for the renderer";
+    }
 }
 
 // The rule itself, on the CPU.
