@@ -157,7 +157,13 @@ ImageResult reference(const std::shared_ptr<SceneObject>& sceneObject, const Siz
         const py::object stderrFile = py::module_::import("sys").attr("stderr");
         o.progress = !stderrFile.is_none() && stderrFile.attr("isatty")().cast<bool>();
     } else {
-        o.progress = boolArg("progress", shown);
+        try {
+            o.progress = boolArg("progress", shown);
+        } catch (const ArgumentTypeError&) { // boolArg's words, with what else is taken
+            throw ArgumentTypeError("progress: expected True, False, None or a callable of "
+                                    "(samples, spp, noise), got " +
+                                    std::string(py::repr(shown)) + " (" + typeName(shown) + ")");
+        }
     }
     std::optional<py::error_already_set> stopped;
     // Signals are checked at every call (about every 10 ms); the callable is called at most

@@ -7,6 +7,7 @@
 
 #include "scene/animation.h"
 #include "scene/camera.h"
+#include "scene/warnings.h"
 #include "shared.h"
 
 #include <algorithm>
@@ -71,7 +72,8 @@ static void checkImageMemory(const vk::Context& ctx, uint32_t width, uint32_t he
 }
 
 Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& options)
-    : ctx_(ctx), scene_(scene), light_(scene.light), patternStart_(options.patternStart) {
+    : ctx_(ctx), scene_(scene), light_(scene.light), patternStart_(options.patternStart),
+      seals_(scene) {
     const uint32_t limit = ctx.properties.limits.maxImageDimension2D;
     // The screen images hold the output and the guard band on each side (PassSetup::output).
     const uint32_t band = uint32_t(scene.settings.guard_band);
@@ -182,7 +184,9 @@ void Renderer::updateUniforms(const Camera& worldCamera) {
     const float scale =
         peak > kLargestUnscaledRadiance ? std::exp2(std::ceil(std::log2(peak / 1024.0f))) : 1.0f;
     u.radianceScale = glm::vec4(scale, 0.0f, 0.0f, 0.0f);
-    u.lightColor = glm::vec4(emitted / scale, std::cos(l.innerConeAngle));
+    // A sealed light (updateSeal) lights nothing the camera sees: nothing it emits is drawn.
+    u.lightColor =
+        glm::vec4(seal_ ? glm::vec3(0.0f) : emitted / scale, std::cos(l.innerConeAngle));
     u.lightFrustum =
         glm::vec4(light.znear, light.zfar, light.tanHalfFov, float(build_->rsmSize.width));
     u.skyZenith = glm::vec4(scene_.sky.zenith / scale, 0.0f);
@@ -235,6 +239,7 @@ void Renderer::renderFrame(const Camera& camera) {
     }
     cutRequested_ = false;
     previousCamera_ = camera;
+    updateSeal(camera);
     updateUniforms(camera);
     lastFrame_ = decideFrame();
     lastSubmission_ =
@@ -248,6 +253,28 @@ void Renderer::renderFrame(const Camera& camera) {
     worldCacheEmpty_ = false;
     moved_.clear();
     ++frameIndex_;
+}
+
+void Renderer::updateSeal(const Camera& camera) {
+    if (!sealStale_ && camera.position == sealCamera_.position &&
+        camera.yfov == sealCamera_.yfov && camera.znear == sealCamera_.znear)
+        return;
+    // The rays the frame casts start on the near plane of its frustum, which the guard band
+    // widens (updateUniforms).
+    const VkExtent2D size = build_->size, output = build_->output().extent;
+    Camera widened = camera;
+    widened.yfov = 2.0f * std::atan(std::tan(0.5f * camera.yfov) * float(size.height) /
+                                    float(output.height));
+    std::optional<Seal> seal =
+        seals_.find(light_, widened, float(size.width) / float(size.height), transforms_);
+    sealStale_ = false;
+    sealCamera_ = camera;
+    if (seal.has_value() != seal_.has_value() && frameIndex_ > 0) lightChanged();
+    seal_ = std::move(seal);
+    if (seal_ && !sealWarned_) {
+        warn(sealWarning(*seal_));
+        sealWarned_ = true;
+    }
 }
 
 FrameState Renderer::decideFrame() {
@@ -291,6 +318,8 @@ void Renderer::continueFrom(Renderer& previous) {
     if (&previous.scene_ != &scene_ || frameIndex_ != 0)
         throw std::logic_error("continueFrom: a new renderer of the same scene only");
     light_ = previous.light_;
+    seal_ = previous.seal_;
+    sealWarned_ = previous.sealWarned_;
     time_ = previous.time_;
     transforms_ = previous.transforms_;
     moved_ = previous.moved_;
@@ -340,6 +369,7 @@ void Renderer::setTime(float seconds) {
     if (!any) return;
     transforms_ = next;
     uploadTransforms();
+    sealStale_ = true;
     rsmStale_ = true;
     skyMapsStale_ = true;
     voxelsStale_ = true;
@@ -349,6 +379,11 @@ void Renderer::setTime(float seconds) {
 
 void Renderer::setLight(const SpotLight& light) {
     light_ = light;
+    sealStale_ = true;
+    lightChanged();
+}
+
+void Renderer::lightChanged() {
     rsmStale_ = true;
     lightMoved_ = true;
     voxelsStale_ = true; // the grid lies within the light's frustum (world_grid.h)

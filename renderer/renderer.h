@@ -5,6 +5,7 @@
 #include "graph/frame_graph.h"
 #include "passes/frame_build.h"
 #include "scene/scene.h"
+#include "scene/sealed.h"
 #include "scene_gpu.h"
 #include "world_grid.h"
 
@@ -47,6 +48,12 @@ public:
     // Moves the light from the next frame on. The cached effects that depend on it (shadow,
     // indirect light, SSDO's bounce) start over; AO, which does not, keeps its history.
     void setLight(const SpotLight& light);
+    // Whether the last frame's light was sealed off from its camera by a closed mesh
+    // (scene/sealed.h), and by which. Such a frame has no light from it: no direct light and no
+    // virtual lights (their flux zero), as no path joins the two. Decided for every frame whose
+    // camera, light or objects moved; a change is a change of the light (above). The first
+    // sealed frame says so, once for the renderer.
+    const std::optional<Seal>& seal() const { return seal_; }
     // Places the scene's moving objects (its object paths) as they are at `seconds`, from the
     // next frame on. What an object's move can change restarts: the AO within its radius of the
     // object's old and new place and the shadow on paths to the light passing near them, per
@@ -119,6 +126,8 @@ private:
     std::vector<float> readReprojection(graph::ImageRef ref, // and of "reprojection"
                                         std::optional<VkRect2D> area);
     void updateUniforms(const Camera& camera);
+    void updateSeal(const Camera& camera); // seal_ for this frame's camera
+    void lightChanged(); // what a change of the light restarts (setLight)
     // What this frame runs and with which patterns (frame_state.h), once the camera is known.
     FrameState decideFrame();
     bool startsAfresh(const Camera& camera) const;
@@ -157,6 +166,11 @@ private:
     uint32_t cuts_ = 0;
     float time_ = std::numeric_limits<float>::lowest(); // the last setTime()
     glm::dvec3 origin_{0.0}; // world point at the GPU's origin (renderer.cpp: gpuOrigin)
+    LightSeals seals_;
+    std::optional<Seal> seal_;
+    bool sealStale_ = true;  // the light or an object moved since seal_ was decided
+    bool sealWarned_ = false;
+    Camera sealCamera_;      // the camera seal_ was decided for
 };
 
 } // namespace ssgi

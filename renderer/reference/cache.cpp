@@ -2,6 +2,7 @@
 
 #include "reference/random.h"
 #include "scene/animation.h"
+#include "scene/sealed.h"
 #include "scene/warnings.h"
 
 #include "atomic_file.h"
@@ -281,6 +282,13 @@ ReferenceImage requestedReference(Scene scene, const std::string& sceneName,
     } else {
         scene = posedAt(scene, std::numeric_limits<float>::lowest()); // the paths' first keys
     }
+    // The image is right (black but for the sky), but most likely not what was meant.
+    std::vector<glm::mat4> transforms;
+    for (const Instance& instance : scene.instances)
+        transforms.push_back(instance.transform);
+    const float aspect = float(request.options.width) / float(request.options.height);
+    if (const auto seal = LightSeals(scene).find(scene.light, camera, aspect, transforms))
+        warn(sealWarning(*seal));
     if (fromCache) *fromCache = false;
     return request.useCache
                ? cachedReference(scene, camera, request.options, request.cacheDir, fromCache)

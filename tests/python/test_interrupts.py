@@ -87,5 +87,6 @@ def test_reference_reports_its_progress(capfd):
     assert capfd.readouterr().err == ""
     ssgi.reference(scene, size=(24, 24), spp=32, cache=False, progress=True)
     assert "32" in capfd.readouterr().err  # reference's own bar
-    with pytest.raises(TypeError, match="progress: expected True or False, got 'yes'"):
+    with pytest.raises(TypeError, match=r"progress: expected True, False, None or a callable of "
+                                        r"\(samples, spp, noise\), got 'yes' \(str\)"):
         ssgi.reference(scene, size=(4, 4), spp=1, cache=False, progress="yes")
