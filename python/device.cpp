@@ -31,9 +31,8 @@ Device::~Device() {
 
 std::shared_ptr<Device> deviceNamed(const std::string& name) {
     cli::CommonArgs args;
-    args.scene = "-"; // no default scene to look for
     args.device = name;
-    cli::finishCommonArgs(args);
+    cli::finishDeviceArgs(args); // no scene to look for
     py::gil_scoped_release release;
     std::lock_guard<std::mutex> lock(registryMutex);
     const std::string key = args.device + (args.validation ? "+v" : "");

@@ -1,10 +1,14 @@
+// Writing files whole or not at all (atomic_file.h): each to a temporary beside its target,
+// then renamed over it; with the signals around it (write_signals.cpp) and the check that no
+// output is an input or another output (path_identity.cpp).
 #include "atomic_file.h"
 
+#include "path_identity.h"
 #include "scene/scene.h"
+#include "write_signals.h"
 
 #include <atomic>
 #include <cerrno>
-#include <climits>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -12,10 +16,8 @@
 #include <dirent.h>
 #include <fcntl.h>
 #include <filesystem>
-#include <map>
 #include <memory>
 #include <mutex>
-#include <pthread.h>
 #include <set>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -26,121 +28,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Temporaries and backups that exist right now, so that a signal can remove them before the
-// process dies. Fixed slots: the handler may not allocate or lock.
-constexpr int kSlots = 64;
-char gPendingPaths[kSlots][PATH_MAX];
-std::atomic<bool> gPending[kSlots];
-std::mutex gSlotsMutex;
-
-// While files move into place a signal is only noted (any thread may receive it: lavapipe's
-// threads do not block it), and the process dies of it once every file has moved.
-std::atomic<bool> gDeferring{false};
-std::atomic<int> gDeferredSignal{0};
-
-extern "C" void removePendingAndDie(int signal);
-
-void installCleanup(int signal) {
-    struct sigaction cleanup {};
-    cleanup.sa_handler = removePendingAndDie;
-    cleanup.sa_flags = SA_RESETHAND | SA_NODEFER;
-    sigemptyset(&cleanup.sa_mask);
-    ::sigaction(signal, &cleanup, nullptr);
-}
-
-extern "C" void removePendingAndDie(int signal) {
-    if (gDeferring.load()) {
-        gDeferredSignal.store(signal);
-        installCleanup(signal); // SA_RESETHAND removed it; a second signal is deferred too
-        return;
-    }
-    for (int i = 0; i < kSlots; ++i)
-        if (gPending[i].load()) ::unlink(gPendingPaths[i]);
-    // SA_RESETHAND restored the default action and SA_NODEFER lets it happen now.
-    ::raise(signal);
-}
-
-// Signals that end a process by default get the clean-up first; a program's own handlers stay.
-void installSignalCleanup() {
-    static std::once_flag once;
-    std::call_once(once, [] {
-        for (int signal : {SIGINT, SIGTERM, SIGHUP, SIGQUIT}) {
-            struct sigaction current {};
-            if (::sigaction(signal, nullptr, &current) != 0 || current.sa_handler != SIG_DFL)
-                continue;
-            installCleanup(signal);
-        }
-    });
-}
-
-// A path a signal removes while it is registered.
-class Pending {
-public:
-    explicit Pending(const std::string& path) {
-        if (path.size() >= PATH_MAX) return;
-        std::lock_guard lock(gSlotsMutex);
-        for (int i = 0; i < kSlots; ++i)
-            if (!gPending[i].load()) {
-                std::memcpy(gPendingPaths[i], path.c_str(), path.size() + 1);
-                gPending[i].store(true);
-                slot_ = i;
-                return;
-            }
-    }
-    ~Pending() {
-        if (slot_ >= 0) gPending[slot_].store(false);
-    }
-    Pending(const Pending&) = delete;
-    Pending& operator=(const Pending&) = delete;
-
-private:
-    int slot_ = -1;
-};
-
-// A write past a file-size limit or into a closed pipe fails with an error instead of a signal
-// while it lasts.
-class QuietWriteSignals {
-public:
-    QuietWriteSignals() {
-        struct sigaction ignore {};
-        ignore.sa_handler = SIG_IGN;
-        sigemptyset(&ignore.sa_mask);
-        ::sigaction(SIGXFSZ, &ignore, &oldXfsz_);
-        ::sigaction(SIGPIPE, &ignore, &oldPipe_);
-    }
-    ~QuietWriteSignals() {
-        ::sigaction(SIGXFSZ, &oldXfsz_, nullptr);
-        ::sigaction(SIGPIPE, &oldPipe_, nullptr);
-    }
-
-private:
-    struct sigaction oldXfsz_ {
-    }, oldPipe_{};
-};
-
-// Holds SIGINT, SIGTERM, SIGHUP and SIGQUIT while it lasts: blocked in this thread, noted by
-// the clean-up handler in any other; one that arrived ends the process when it ends.
-class HeldSignals {
-public:
-    HeldSignals() {
-        gDeferring.store(true);
-        sigset_t hold;
-        sigemptyset(&hold);
-        for (int signal : {SIGINT, SIGTERM, SIGHUP, SIGQUIT})
-            sigaddset(&hold, signal);
-        ::pthread_sigmask(SIG_BLOCK, &hold, &old_);
-    }
-    ~HeldSignals() {
-        gDeferring.store(false);
-        ::pthread_sigmask(SIG_SETMASK, &old_, nullptr); // one sent to this thread arrives now
-        if (const int signal = gDeferredSignal.exchange(0)) removePendingAndDie(signal);
-    }
-    HeldSignals(const HeldSignals&) = delete;
-    HeldSignals& operator=(const HeldSignals&) = delete;
-
-private:
-    sigset_t old_{};
-};
+using write_signals::HeldSignals;
+using write_signals::Pending;
+using write_signals::QuietWriteSignals;
 
 void (*gAfterRename)(size_t) = nullptr;
 
@@ -170,49 +60,6 @@ struct Destination {
     dev_t device = 0;    // the file's identity, to find two outputs that are one file
     ino_t inode = 0;
 };
-
-// The descriptor a path names when it is one of this process's own (/dev/stdout, /dev/stderr,
-// /dev/fd/N, /proc/self/fd/N, or a link to one of them), else -1. Such a path is written to as
-// a stream at the descriptor's position: opened again, a file behind it would be replaced whole
-// or written over from its start, and what the process wrote there before would be lost.
-int ownDescriptor(const std::string& path) {
-    fs::path at(path);
-    for (int hops = 0; hops < 40; ++hops) {
-        const std::string text = at.lexically_normal().string();
-        if (text == "/dev/stdin") return 0;
-        if (text == "/dev/stdout") return 1;
-        if (text == "/dev/stderr") return 2;
-        for (const std::string& prefix : std::initializer_list<std::string>{
-                 "/dev/fd/", "/proc/self/fd/", "/proc/" + std::to_string(getpid()) + "/fd/"})
-            if (text.rfind(prefix, 0) == 0) {
-                const std::string number = text.substr(prefix.size());
-                if (!number.empty() && number.size() < 9 &&
-                    number.find_first_not_of("0123456789") == std::string::npos)
-                    return std::stoi(number);
-            }
-        struct stat link {};
-        if (::lstat(at.c_str(), &link) != 0 || !S_ISLNK(link.st_mode)) return -1;
-        std::error_code ec;
-        const fs::path target = fs::read_symlink(at, ec);
-        if (ec) return -1;
-        at = target.is_absolute() ? target : at.parent_path() / target;
-    }
-    return -1;
-}
-
-// Where a path that names no file leads: the end of its chain of symbolic links (the file a
-// write creates), or the path itself.
-fs::path throughDanglingLinks(fs::path at) {
-    for (int hops = 0; hops < 40; ++hops) {
-        struct stat link {};
-        if (::lstat(at.c_str(), &link) != 0 || !S_ISLNK(link.st_mode)) break;
-        std::error_code ec;
-        const fs::path target = fs::read_symlink(at, ec);
-        if (ec) break;
-        at = target.is_absolute() ? target : at.parent_path() / target;
-    }
-    return at;
-}
 
 Destination resolve(const std::string& path, bool writeThrough) {
     Destination d{fs::path(path)};
@@ -252,84 +99,6 @@ Destination resolve(const std::string& path, bool writeThrough) {
     d.path = throughDanglingLinks(d.path);
     return d;
 }
-
-// What a path resolves to, to find two names of one file: its absolute path with every link
-// and `.`/`..` resolved, and the file's identity where it exists. Not `compared` where a write
-// would not replace it (this process's descriptors, a device, a FIFO, a folder).
-struct Identity {
-    bool compared = false;
-    std::string path;
-    dev_t device = 0;
-    ino_t inode = 0; // 0: no file there yet
-};
-
-class Identities {
-public:
-    Identity of(const std::string& path) {
-        Identity id;
-        if (path.empty() || path.find('\0') != std::string::npos || ownDescriptor(path) >= 0)
-            return id;
-        fs::path at(path);
-        struct stat status {};
-        if (::stat(path.c_str(), &status) == 0) {
-            if (!S_ISREG(status.st_mode)) return id;
-            id.device = status.st_dev;
-            id.inode = status.st_ino;
-        } else {
-            at = throughDanglingLinks(at);
-        }
-        // The folder resolved once (a walkthrough's frames share one), then the name in it,
-        // itself resolved only where it is a link. (Not lexically first: `link/..` is the
-        // parent of the link's target.)
-        struct stat link {};
-        const bool isLink = ::lstat(at.c_str(), &link) == 0 && S_ISLNK(link.st_mode);
-        std::error_code ec;
-        fs::path absolute = fs::absolute(at, ec);
-        if (ec) absolute = at;
-        const fs::path name = absolute.filename();
-        if (isLink || name.empty() || name == "." || name == "..") {
-            const fs::path canonical = fs::weakly_canonical(absolute, ec);
-            id.path = (ec ? absolute.lexically_normal() : canonical).string();
-        } else {
-            const fs::path parent = absolute.parent_path();
-            auto found = folders_.find(parent.string());
-            if (found == folders_.end()) {
-                const fs::path canonical = fs::weakly_canonical(parent, ec);
-                found =
-                    folders_.emplace(parent.string(), ec ? parent.lexically_normal() : canonical)
-                        .first;
-            }
-            id.path = (found->second / name).string();
-        }
-        id.compared = true;
-        return id;
-    }
-
-private:
-    std::map<std::string, fs::path> folders_;
-};
-
-// Finds, among identities added one by one, an earlier one of the same file.
-class SameFiles {
-public:
-    // The index of an earlier identity of the same file, or -1; then remembers this one.
-    long add(const Identity& id, long index) {
-        if (!id.compared) return -1;
-        long earlier = -1;
-        if (id.inode != 0)
-            if (const auto it = inodes_.find({id.device, id.inode}); it != inodes_.end())
-                earlier = it->second;
-        if (earlier < 0)
-            if (const auto it = paths_.find(id.path); it != paths_.end()) earlier = it->second;
-        if (id.inode != 0) inodes_.emplace(std::pair{id.device, id.inode}, index);
-        paths_.emplace(id.path, index);
-        return earlier;
-    }
-
-private:
-    std::map<std::pair<dev_t, ino_t>, long> inodes_;
-    std::map<std::string, long> paths_;
-};
 
 // The PID in a temporary's or backup's name (`.ssgi-PID-N`, `.ssgi-old-PID-N`), or 0.
 pid_t temporaryOwner(const std::string& name) {
@@ -409,7 +178,7 @@ void writeDirect(const std::string& path, const Destination& d, const std::strin
 } // namespace
 
 void writeFilesAtomically(const std::vector<FileBytes>& files) {
-    installSignalCleanup();
+    write_signals::installSignalCleanup();
     const QuietWriteSignals quiet;
     std::vector<Destination> destinations;
     for (const FileBytes& file : files)
@@ -508,27 +277,6 @@ void writeFilesAtomically(const std::vector<FileBytes>& files) {
     }
     for (const fs::path& backup : backups)
         if (!backup.empty()) ::unlink(backup.c_str());
-}
-
-void checkRunFiles(const std::vector<RunFile>& inputs, const std::vector<RunFile>& outputs) {
-    const auto named = [](const RunFile& file) {
-        return file.what.empty() ? file.path : file.what + " " + file.path;
-    };
-    Identities identities;
-    SameFiles seen; // indices: the inputs, then the outputs
-    for (size_t i = 0; i < inputs.size(); ++i)
-        seen.add(identities.of(inputs[i].path), long(i)); // an input named twice is read twice
-    for (size_t i = 0; i < outputs.size(); ++i) {
-        const long earlier = seen.add(identities.of(outputs[i].path), long(inputs.size() + i));
-        if (earlier < 0) continue;
-        if (size_t(earlier) < inputs.size())
-            throw InputError(named(outputs[i]) + " is the same file as " +
-                             named(inputs[size_t(earlier)]) +
-                             ": writing it would destroy an input of the run; nothing was written");
-        throw InputError(named(outputs[size_t(earlier) - inputs.size()]) + " and " +
-                         named(outputs[i]) +
-                         " are the same file: both outputs cannot be written; nothing was written");
-    }
 }
 
 void setAfterRenameHook(void (*hook)(size_t moved)) {

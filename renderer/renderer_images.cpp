@@ -129,7 +129,7 @@ std::vector<float> Renderer::readHdr(graph::ImageRef ref) {
     return texels;
 }
 
-// The reprojection pass's texels (shared.h REPROJECTION_*): where each pixel's surface lay in
+// The reprojection pass's texels (shared_cache.h REPROJECTION_*): where each pixel's surface lay in
 // last frame's image, in its texels (x, y), the offset of the texel that holds it from the
 // nearest one ((dx + 1) + 3 (dy + 1); -1 where none does) and the bilinear footprint's bits. The
 // whole texels follow from the pixel's world position, as reprojection.glsl unpacks them.

@@ -1,6 +1,6 @@
 // The frame's packed images hold every value written into them: a cache's count, a byte with its
-// due flag in the top bit (shared.h countCode; cache.h packCount; temporal.glsl), the
-// reprojection's point within its texel, texel offset and footprint in one word (shared.h
+// due flag in the top bit (shared_cache.h countCode; cache.h packCount; temporal.glsl), the
+// reprojection's point within its texel, texel offset and footprint in one word (shared_cache.h
 // REPROJECTION_*; reprojection.glsl), and the HDR output's 21-bit floats (shared.h hdrBits).
 #include "cache/cache.h"
 #include "renderer.h"

@@ -1,5 +1,7 @@
-// The `render` program as a user runs it: every scene renders, bad input gets a clear error and
-// a non-zero exit, and no output file is left half-written.
+// The `render` program as a user runs it: every scene renders, a shipped scene is found by its
+// name from any folder, bad input gets a clear error and a non-zero exit, and no output file is
+// left half-written.
+#include "app/cli.h"
 #include "image_io.h"
 #include "support.h"
 
@@ -227,6 +229,75 @@ TEST_F(Cli, InstalledRenderRunsFromAnyDirectory) {
                                (prefix / "share/ssgi/scenes/bunny.json").string() +
                                " --size 32x32 --output " + (dir / "bunny.png").string());
     EXPECT_EQ(r.status, 0) << r.output;
+    // And a shipped scene by its name, from the installed share/ssgi.
+    r = ssgi::test::runCommand("cd / && " + (prefix / "bin/render").string() +
+                               " bunny --size 32x32 --output " +
+                               (dir / "bunny-named.png").string());
+    EXPECT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find((prefix / "share/ssgi/scenes/bunny.json").string()), std::string::npos)
+        << r.output;
+}
+
+// A program's SCENE is a path, or a shipped scene's name (cli::resolveScene, the one place the
+// programs resolve it): a path that is there wins, a bare name that is no file is the shipped
+// scene, and a name that is neither is bad input listing the names.
+TEST_F(Cli, ASceneNameResolvesToTheShippedScene) {
+    const std::string shipped = std::string(SSGI_SOURCE_DIR) + "/scenes/";
+    EXPECT_EQ(ssgi::cli::resolveScene("cornell-box"), shipped + "cornell-box.json");
+    EXPECT_EQ(ssgi::cli::resolveScene("sponza"), shipped + "sponza.json");
+    const std::vector<std::string> names = ssgi::cli::shippedSceneNames();
+    EXPECT_TRUE(std::is_sorted(names.begin(), names.end()));
+    for (const char* name : {"bunny", "conference", "cornell-box", "sibenik", "sponza"})
+        EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
+    // Paths are the loader's to find or refuse, whether there or not.
+    EXPECT_EQ(ssgi::cli::resolveScene("missing.json"), "missing.json");
+    EXPECT_EQ(ssgi::cli::resolveScene("no/such/cornell-box"), "no/such/cornell-box");
+    try {
+        ssgi::cli::resolveScene("cornell-bx");
+        ADD_FAILURE() << "an unknown name was taken";
+    } catch (const ssgi::InputError& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("'cornell-bx'"), std::string::npos) << message;
+        EXPECT_NE(message.find("bunny, conference, cornell-box"), std::string::npos) << message;
+    }
+    // A file of that name in the working folder wins over the shipped scene.
+    const fs::path before = fs::current_path();
+    fs::current_path(dir);
+    std::ofstream("cornell-box") << "{}";
+    const std::string local = ssgi::cli::resolveScene("cornell-box");
+    fs::current_path(before);
+    EXPECT_EQ(local, "cornell-box");
+}
+
+TEST_F(Cli, ProgramsTakeAShippedSceneByNameFromAnyFolder) {
+    const std::string in = "cd " + dir.string() + " && ";
+    Result r = ssgi::test::runCommand(in + SSGI_RENDER_BINARY + " cornell-box --size 16x16" +
+                                      " --output named.png");
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find(std::string(SSGI_SOURCE_DIR) + "/scenes/cornell-box.json"),
+              std::string::npos)
+        << r.output;
+    EXPECT_TRUE(fs::exists(dir / "named.png"));
+    // Every program that takes a scene refuses an unknown name alike: exit 2, the names listed.
+    for (const std::string program :
+         {std::string(SSGI_RENDER_BINARY), std::string(SSGI_WALKTHROUGH_BINARY),
+          std::string(SSGI_BUILD_DIR) + "/reference"}) {
+        r = ssgi::test::runCommand(in + program + " cornell-bx --size 16x16");
+        EXPECT_EQ(r.status, 2) << program << "\n" << r.output;
+        EXPECT_NE(r.output.find("error: 'cornell-bx' is neither a file nor the name of a shipped "
+                                "scene; the shipped scenes: bunny, conference, cornell-box"),
+                  std::string::npos)
+            << program << "\n"
+            << r.output;
+    }
+    // A file there by that name is what is loaded (and, not being a scene file, refused).
+    std::ofstream(dir / "cornell-box") << "{}";
+    r = ssgi::test::runCommand(in + SSGI_RENDER_BINARY + " cornell-box --size 16x16" +
+                               " --output local.png");
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_NE(r.output.find("error: cornell-box: unsupported file type"), std::string::npos)
+        << r.output;
+    EXPECT_FALSE(fs::exists(dir / "local.png"));
 }
 
 struct BadInput {

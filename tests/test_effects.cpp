@@ -51,7 +51,7 @@ TEST_F(EffectTest, IndirectLightBleedsTheWallsColourOntoTheFloor) {
     EXPECT_GT((greenOn.g / greenOn.r) / (greenOff.g / greenOff.r), 1.08f);
 }
 
-// Interleaved sampling (shared.h, the functions the gather runs): the k^2 pixels of any k x k
+// Interleaved sampling (shared_vpls.h, the functions the gather runs): the k^2 pixels of any k x k
 // block gather disjoint subsets that together hold each of the pattern's VPLs exactly once.
 TEST(VplSubsets, EveryBlockGathersEachVplOnce) {
     for (int k = 1; k <= 8; ++k) {
@@ -82,7 +82,7 @@ TEST(VplSubsets, EveryBlockGathersEachVplOnce) {
     }
 }
 
-// The VPL pattern (shared.h, the functions the gathers run) has the density it claims: its total
+// The VPL pattern (shared_vpls.h, the functions the gathers run) has the density it claims: its total
 // Z is the integral of 1/r over the map, summed here cell by cell, and its points, each weighted
 // by the area it stands for (Z r / n), integrate functions over the map (or the disk) to their
 // exact integrals, wherever the centre lies: inside, near an edge, on an edge, in a corner.

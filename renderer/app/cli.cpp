@@ -18,7 +18,9 @@ namespace fs = std::filesystem;
 namespace ssgi::cli {
 
 const char* kCommonUsage =
-    R"(  SCENE                 scene file (.json) or glTF (.gltf/.glb); default scenes/cornell-box.json
+    R"(  SCENE                 scene file (.json) or glTF (.gltf/.glb), or a shipped scene's name
+                        (cornell-box, sponza, ...; an unknown name lists them); default
+                        cornell-box
   --size WxH            image size (default 512x512)
   --set KEY=VALUE       override a method setting (repeatable; see docs/settings.md)
   --device NAME         use the Vulkan device whose name contains NAME (or SSGI_DEVICE)
@@ -124,8 +126,43 @@ std::string defaultScene() {
     return fs::exists(local) ? local : dataDirectory() + "/" + local;
 }
 
+std::vector<std::string> shippedSceneNames() {
+    std::vector<std::string> names;
+    std::error_code ec;
+    for (fs::directory_iterator it(fs::path(dataDirectory()) / "scenes", ec), end; !ec && it != end;
+         it.increment(ec))
+        if (it->path().extension() == ".json" && it->is_regular_file(ec))
+            names.push_back(it->path().stem().string());
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+std::string resolveScene(const std::string& argument) {
+    if (argument.empty()) return defaultScene();
+    std::error_code ec;
+    const fs::path path(argument);
+    // A path wins; so does anything that is not a bare name (the loader says it is missing).
+    if (fs::exists(fs::symlink_status(path, ec)) || path.has_extension() ||
+        argument.find('/') != std::string::npos)
+        return argument;
+    const std::vector<std::string> names = shippedSceneNames();
+    if (std::find(names.begin(), names.end(), argument) != names.end())
+        return (fs::path(dataDirectory()) / "scenes" / (argument + ".json")).string();
+    std::string list;
+    for (const std::string& name : names)
+        list += (list.empty() ? "" : ", ") + name;
+    const std::string folder = (fs::path(dataDirectory()) / "scenes").string();
+    throw InputError("'" + argument + "' is neither a file nor the name of a shipped scene; " +
+                     (names.empty() ? "no shipped scenes were found in " + folder
+                                    : "the shipped scenes: " + list + " (in " + folder + ")"));
+}
+
 void finishCommonArgs(CommonArgs& a) {
-    if (a.scene.empty()) a.scene = defaultScene();
+    a.scene = resolveScene(a.scene);
+    finishDeviceArgs(a);
+}
+
+void finishDeviceArgs(CommonArgs& a) {
     if (const char* env = std::getenv("SSGI_DEVICE"); env && a.device.empty()) a.device = env;
 #ifndef NDEBUG
     a.validation = true; // debug builds always validate

@@ -30,8 +30,19 @@ bool parseCommonArg(int argc, char** argv, int& i, CommonArgs& args);
 std::string dataDirectory();
 // scenes/cornell-box.json from the working directory when it is there, else from dataDirectory().
 std::string defaultScene();
-// Fills what was not given (default scene, SSGI_DEVICE, SSGI_VALIDATION, debug builds).
+// The names of the shipped scenes (dataDirectory()'s scenes/*.json without the extension),
+// sorted: the names resolveScene takes.
+std::vector<std::string> shippedSceneNames();
+// The scene file a program's SCENE argument names, the one place the programs resolve it: the
+// path itself when something is there (a path always wins); a name with no folder and no
+// extension that is no file, the shipped scene of that name (dataDirectory()/scenes/NAME.json),
+// as `python -m ssgi` takes it; defaultScene() for "". A name that is neither is an InputError
+// listing the shipped names; a missing path is left to the loader, which names it.
+std::string resolveScene(const std::string& argument);
+// Fills what was not given: the scene (resolveScene), then finishDeviceArgs.
 void finishCommonArgs(CommonArgs& args);
+// SSGI_DEVICE and SSGI_VALIDATION where not given; debug builds always validate.
+void finishDeviceArgs(CommonArgs& args);
 // The scene with the --set overrides applied and checked.
 Scene loadSceneWithSettings(const CommonArgs& args);
 

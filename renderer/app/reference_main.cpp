@@ -24,7 +24,9 @@ using namespace ssgi::reference;
 namespace {
 
 const char* kUsage = R"(usage: reference [SCENE] [options]
-  SCENE                 scene file (.json) or glTF (.gltf/.glb); default scenes/cornell-box.json
+  SCENE                 scene file (.json) or glTF (.gltf/.glb), or a shipped scene's name
+                        (cornell-box, sponza, ...; an unknown name lists them); default
+                        cornell-box
   --mode M              direct, ao, indirect, full, multi or sky (default full)
   --size WxH            image size (default 256x256)
   --noise T             stop once the estimated noise (relative error against the converged
@@ -125,7 +127,7 @@ Args parseArgs(int argc, char** argv) {
             throw InputError("more than one scene given: " + a.scene + " and " + arg);
         }
     }
-    if (a.scene.empty()) a.scene = cli::defaultScene();
+    a.scene = cli::resolveScene(a.scene);
     if (a.output.empty())
         a.output = "out/" + fs::path(a.scene).stem().string() + "-" + modeName(a.options.mode) +
                    "-ref.exr";

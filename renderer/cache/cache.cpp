@@ -38,7 +38,7 @@ EffectCache* createCache(graph::FrameGraph& graph, CacheSet& caches, const Setti
         size, usage);
     // Counts are whole numbers up to cache_rotations, half a sample, or a blend's effective
     // number of samples: one byte holds them to half a sample, and whether the pixel is due
-    // (shared.h countCode).
+    // (shared_cache.h countCode).
     c.countHistory = graph.createHistory(name + ".count", kCountFormat, size, usage);
     // Each effect its own order of tiles, from its name: the same whatever the frame adds
     // before it.

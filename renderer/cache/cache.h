@@ -31,7 +31,7 @@ struct CachedEffect {
     // A scalar effect (the shadow, the AO): its history holds value and blur in two half floats
     // (RG16F) rather than an RGB value and its blur (RGBA16F).
     bool scalar = false;
-    // What an object that moved restarts (shared.h MOTION_*): the whole history; per pixel,
+    // What an object that moved restarts (shared_cache.h MOTION_*): the whole history; per pixel,
     // those within `motionReach` of it, or those whose path to the light passes near it.
     int motionTest = MOTION_RESTART_ALL;
     float motionReach = 0.0f; // scene units
@@ -63,7 +63,7 @@ struct EffectCache {
 // effective number of samples where the blur budget cut the history's weight), and whether the
 // temporal pass asked for it to be computed next frame (reuse while moving). One byte, the
 // count in half steps to CACHE_COUNT_HALVES and whole ones to CACHE_COUNT_MAX with `due` in its
-// top bit (shared.h countCode; temporal.glsl packCount, unpackCount).
+// top bit (shared_cache.h countCode; temporal.glsl packCount, unpackCount).
 constexpr VkFormat kCountFormat = VK_FORMAT_R8_UNORM;
 struct CountTexel {
     float count = 0.0f;

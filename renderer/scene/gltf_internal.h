@@ -6,6 +6,8 @@
 
 #include <tiny_gltf.h>
 
+#include <nlohmann/json.hpp>
+
 #include <initializer_list>
 #include <memory>
 #include <set>
@@ -42,6 +44,17 @@ private:
     std::string file_;
     std::set<std::string> said_;
 };
+
+// The checks of a glTF's JSON around tinygltf's reading (gltf_json_checks.cpp). gltfJson: the
+// JSON of a .gltf, or of a .glb's JSON chunk; null when it is not JSON (tinygltf says why).
+// checkGltfJsonFirst, before tinygltf reads the file: what it refuses with a wrong message or
+// reads against the specification (extension lists that are not arrays of names, a byteStride
+// glTF does not allow). checkGltfJson, after: what tinygltf takes without a word (a value of the
+// wrong kind, a fraction or a number beyond 32 bits, an index below zero), and each extension
+// the loader does not read, named once. InputError naming the file and the problem.
+nlohmann::json gltfJson(const std::string& bytes, bool binary);
+void checkGltfJsonFirst(const std::string& path, const nlohmann::json& root);
+void checkGltfJson(const std::string& path, const nlohmann::json& root, GltfWarnings& warnings);
 
 // One accessor's elements after its offsets and length have been checked against its buffer
 // (gltf_accessor.cpp), so reading any element below `count` stays inside the buffer.

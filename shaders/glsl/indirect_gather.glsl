@@ -2,7 +2,7 @@
 // Stamminger 2005): every RSM texel q is a virtual point light of flux Phi_q, and
 // E(p) = sum_q Phi_q max(0, n_p . D) max(0, n_q . -D) / (pi |q - p|^2), D = (q - p)/|q - p|
 // (equations 9-10 with the 1/pi of a diffuse emitter). VPLS texels are gathered around p's
-// projection in a polar pattern whose density falls as 1/r (shared.h vplPattern); each is
+// projection in a polar pattern whose density falls as 1/r (shared_vpls.h vplPattern); each is
 // weighted by its distance r to undo that density, so the sum estimates the sum over every
 // texel the pattern reaches. An optional screen-space visibility test marches from p toward q at
 // log-spaced steps (equation 8) and rejects the VPL where a step has just crossed behind a
@@ -13,7 +13,7 @@
 #include "indirect_visibility.glsl"
 
 // Irradiance / pi at p (normal n) from the RSM's VPLs: all VPLS of the pattern (k = 1), or the
-// interleaved subset `subset` of k*k (shared.h vplSubset), weighted so that each subset alone
+// interleaved subset `subset` of k*k (shared_vpls.h vplSubset), weighted so that each subset alone
 // estimates the whole pattern's sum and their mean is that sum.
 // `directional` receives the same VPLs' light, before p's cosine and visibility, as an L1
 // spherical harmonic of its luminance (x = sum of c, yzw = sum of c D, for c the VPL's luminance
@@ -32,7 +32,7 @@ vec3 gatherIndirect(vec3 p, vec3 n, float rotation, float radiusScale, float rad
     VplPattern pattern = vplPattern(clamp(center, vec2(0.0), vec2(1.0)), radius * radiusScale);
     float size = frame.lightFrustum.w;
     // Texels per sample: a sample at distance r stands for the map's area 1 / (VPLS density),
-    // total r / VPLS (shared.h vplPattern), of size^2 texels per unit area.
+    // total r / VPLS (shared_vpls.h vplPattern), of size^2 texels per unit area.
     float weightScale = size * size * pattern.total / float(VPLS) * float(subsets);
     vec3 irradiance = vec3(0.0);
     directional = vec4(0.0);

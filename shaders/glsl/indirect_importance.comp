@@ -4,7 +4,7 @@
 // in indirect_interleaved.comp (each pixel of a k x k block gathers one of k^2 disjoint
 // subsets, and indirect_reconstruct.comp puts them back together), from two sets of VPLs:
 // - the pattern's VPLS texels around the pixel's projection into the RSM, dense near it
-//   (shared.h vplPattern: density 1/r), which finds the close VPLs whose 1/d^2 dominates at
+//   (shared_vpls.h vplPattern: density 1/r), which finds the close VPLs whose 1/d^2 dominates at
 //   creases and contacts;
 // - FLUX_VPLS texels drawn in proportion to their reflected flux (indirect_vpls.comp), the same
 //   list for every pixel, which puts the VPLs where the light is.

@@ -3,7 +3,7 @@
 // One-bounce indirect light with interleaved sampling (Keller and Heidrich 2001; Segovia et al.
 // 2006): every pixel gathers, at full resolution, one of INTERLEAVE^2 disjoint subsets of the
 // pattern's VPLS virtual point lights, the one its place in an INTERLEAVE x INTERLEAVE block
-// names (shared.h vplSubset). A pixel so pays 1/INTERLEAVE^2 of the VPLs, and every block
+// names (shared_vpls.h vplSubset). A pixel so pays 1/INTERLEAVE^2 of the VPLs, and every block
 // gathers each VPL once; indirect_reconstruct.comp then gives each pixel the whole set's
 // estimate from its neighbours on the same surface. Beside its irradiance / pi each pixel
 // writes the directional sums of its VPLs' light (indirect_gather.glsl), with which the filter

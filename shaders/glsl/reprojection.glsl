@@ -72,7 +72,7 @@ SurfaceReprojection reprojectSurface(vec3 world, vec3 normal, float epsilonPixel
 }
 
 // The reprojection pass's image packs a SurfaceReprojection per pixel in one 32-bit word (R32UI;
-// the layout is shared.h's REPROJECTION_*): the point's place within its texel in fixed point,
+// the layout is shared_cache.h's REPROJECTION_*): the point's place within its texel in fixed point,
 // within half a 4096th of a texel of the float point (a whole 4096th where that would cross into
 // the next texel), so that a still camera's point, a float within rounding of its texel's centre,
 // is the centre exactly; the offset of the texel that holds the surface, and the footprint.

@@ -1,41 +1,20 @@
 // Structures shared by C++ and GLSL: one declaration, compiled by both. The uniform block's
 // members are only vec4, mat4 and ivec4, so that std140 lays them out exactly as C++ does; push
 // constants (std430) may also hold int and float scalars. The static_asserts hold the C++ side
-// to the sizes the shaders expect.
+// to the sizes the shaders expect. Here: the frame's uniforms, a draw's constants, the display
+// transform and the HDR output's encoding, the screen-space effects', the sky maps', the world
+// cache's and the composite's; the temporal cache's (shared_cache.h) and the VPLs'
+// (shared_vpls.h) in their own headers, which this one includes, and the C++ side's GLSL types
+// in shared_language.h. Shaders and C++ include this one.
 #ifndef SSGI_SHARED_H
 #define SSGI_SHARED_H
 
+#include "shared_cache.h"
+#include "shared_language.h"
+#include "shared_vpls.h"
+
 #ifdef __cplusplus
-#include <cmath>
-#include <glm/glm.hpp>
 namespace ssgi::shader {
-using vec2 = glm::vec2;
-using vec3 = glm::vec3;
-using vec4 = glm::vec4;
-using mat4 = glm::mat4;
-using ivec4 = glm::ivec4;
-using uint = glm::uint;
-using glm::clamp;
-using glm::floatBitsToUint;
-using glm::uintBitsToFloat;
-using glm::length;
-using glm::max;
-using glm::mix;
-using glm::step;
-using std::asinh;
-using std::cos;
-using std::exp;
-using std::floor;
-using std::pow;
-using std::sin;
-using std::sinh;
-#define SSGI_CHECK_SIZE(type, bytes) static_assert(sizeof(type) == bytes, #type " layout")
-#define SSGI_INLINE inline
-#define SSGI_OUT(type) type&
-#else
-#define SSGI_CHECK_SIZE(type, bytes)
-#define SSGI_INLINE
-#define SSGI_OUT(type) out type
 #endif
 
 // Lengths below this fraction of the scene's diagonal (FrameUniforms.sceneDiagonal) count as
@@ -99,23 +78,6 @@ struct DrawConstants {
 };
 SSGI_CHECK_SIZE(DrawConstants, 96);
 
-// What an object that moved restarts in a cache (CacheConstants.motionTest; EffectCache).
-#define MOTION_RESTART_ALL 0 // the whole history: the renderer resets it
-#define MOTION_NEAR_BOX 1    // the pixels within motionReach of a moved box (occlusion)
-#define MOTION_LIGHT_PATH 2  // the pixels whose path to the light passes within motionReach of one
-
-// What the reprojection does beyond the thesis (CacheConstants.reprojection): where the camera
-// moved the screen's edges across the radius the effect gathers within, start over. (The
-// reprojection pass's own test, thin geometry included, is ReprojectionConstants'.)
-#define REPROJECT_SCREEN_EDGE 2
-// What is reused beyond the thesis (CacheConstants.reprojection, with the REPROJECT_ flags):
-// while the camera moves, a pixel whose history holds one computation or more is reused until
-// its resampling blur reaches the effect's budget (temporal.glsl convergedAround).
-#define REUSE_WHILE_MOVING 4
-// A view-independent effect's value (CachedEffect::viewIndependent) whose history texels agree
-// is resampled without blur: kept while the camera moves (temporal.comp historyAt).
-#define REUSE_AGREEING 8
-
 // The display transform, per colour channel: Narkowicz's fit of the ACES filmic curve of
 // exposed linear radiance, then the sRGB encoding. The composite applies it on the GPU; the
 // programs that show a linear image the same way (reference --png, compare's and the golden
@@ -126,51 +88,6 @@ SSGI_INLINE float tonemapAces(float x) {
 SSGI_INLINE float encodeSrgb(float linear) {
     return mix(linear * 12.92f, 1.055f * pow(linear, 1.0f / 2.4f) - 0.055f,
                step(0.0031308f, linear));
-}
-
-// How far the interleaved indirect light's filter reaches along each axis, in pixels: its
-// radius, and at least across the k x k block of VPL subsets (indirect_reconstruct.comp). The
-// refresh tile is widened by as much, so that its pixels find their neighbours computed.
-SSGI_INLINE int interleavedFilterReach(int radius, int interleave) {
-    return max(radius, interleave / 2);
-}
-
-// The reprojection pass's image (R32UI; reprojection.glsl packReprojection): one word holds, in
-// its bits 0 to 11 and 12 to 23, where the surface lay in last frame's image within its texel
-// along x and y, in REPROJECTION_SUBTEXELs of a texel; in bits 24 to 27 the offset of the texel
-// that holds the surface from the one the point lies in, (dx + 1) + 3 (dy + 1) + 1, or 0 where
-// none does; in bits 28 to 31 the bilinear footprint. The whole texels follow from the pixel's
-// world position (reprojection.glsl unpackReprojection).
-#define REPROJECTION_SUBTEXEL 4096
-#define REPROJECTION_FRACTION_BITS 12
-#define REPROJECTION_OFFSET_SHIFT 24
-#define REPROJECTION_FOOTPRINT_SHIFT 28
-
-// A cache's count texel (R8_UNORM, one byte; cache.h kCountFormat): the rotations accumulated
-// at a pixel (0: it holds nothing) in its low 7 bits, as half steps up to CACHE_COUNT_HALVES and
-// whole ones above, to CACHE_COUNT_MAX (cache_rotations' largest value), and in bit 7 whether
-// the temporal pass asked for it to be computed next frame (reuse while moving). A count between
-// steps (a blend's effective number of samples where the blur budget cut the history's weight) is
-// rounded down, so that a pixel never counts more samples than its blend holds; the counts the
-// cache writes as such (0, a resize's half sample, whole counts, an exact effect's 1.5) are steps.
-// A due pixel holds one computation or more, so code 0 always means "nothing".
-#define CACHE_COUNT_HALVES 32
-#define CACHE_COUNT_MAX 95
-#define CACHE_COUNT_DUE 128
-SSGI_INLINE float countCode(float count, bool due) {
-    float c = count < float(CACHE_COUNT_MAX) ? count : float(CACHE_COUNT_MAX);
-    // The 1/1000 absorbs float rounding of a blend that is a whole number of samples.
-    float steps = c <= float(CACHE_COUNT_HALVES) ? floor(2.0f * c + 1e-3f)
-                                                 : float(CACHE_COUNT_HALVES) + floor(c + 1e-3f);
-    return steps + (due ? float(CACHE_COUNT_DUE) : 0.0f);
-}
-SSGI_INLINE float countOfCode(float code) {
-    float steps = code >= float(CACHE_COUNT_DUE) ? code - float(CACHE_COUNT_DUE) : code;
-    return steps <= float(2 * CACHE_COUNT_HALVES) ? 0.5f * steps
-                                                  : steps - float(CACHE_COUNT_HALVES);
-}
-SSGI_INLINE bool dueOfCode(float code) {
-    return code >= float(CACHE_COUNT_DUE);
 }
 
 // The composite's HDR output (`hdr`, RG32UI): R, G and B as 21-bit floats, a float's sign,
@@ -188,35 +105,6 @@ SSGI_INLINE uint hdrBits(float v) {
 SSGI_INLINE float hdrValue(uint bits21) {
     return uintBitsToFloat(bits21 << HDR_DROPPED_BITS);
 }
-
-// CacheConstants.refreshTileCorner packs a pixel's x and y into one int (screens are narrower).
-#define REFRESH_TILE_ROW 65536
-
-// The temporal cache of one effect (thesis 3.1; docs/temporal-cache.md), as its passes see it
-// each frame. Push constants (std430) pack these scalars as C++ does.
-struct CacheConstants {
-    int historyValid;      // 1 when last frame's history may be read
-    int rotations;         // rotations until a pixel is converged
-    int refreshTileCorner; // this frame's refresh tile's top-left pixel, x + REFRESH_TILE_ROW * y
-                           // (TileRefresh::rect places it), or -1: none
-    int tileSize;          // the refresh tile's side, pixels
-    float confidenceBias;  // bias of the thesis's confidence rule (eq. 4)
-    int runningMean;       // 1 for the running mean, 0 for the thesis's rule
-    int motionTest;        // MOTION_*: what a moved object (FrameUniforms.motion) restarts
-    float motionReach;     // scene units
-    float blurBudget;      // the resampling blur (squared pixels) a cached value may carry:
-                           // beyond it the history's weight is cut and the pixel recomputed
-    int reprojection;      // REPROJECT_* and REUSE_* flags (temporal.glsl)
-};
-SSGI_CHECK_SIZE(CacheConstants, 40);
-
-// The reprojection pass's settings (reproject.comp), from the cache's (CacheConstants).
-struct ReprojectionConstants {
-    float epsilon;    // the reprojection test, in pixel footprints (cache_epsilon)
-    int thinGeometry; // 1: where the nearest texel fails, try the texels beside it
-    int historyValid; // 0: last frame's view depths hold nothing (every pixel: not found)
-};
-SSGI_CHECK_SIZE(ReprojectionConstants, 12);
 
 // Per-frame values of the screen-space passes (push constants). Structural settings (tap and
 // sample counts, variants) are specialization constants instead. `rotation` turns the
@@ -239,128 +127,6 @@ struct AoConstants {
 };
 SSGI_CHECK_SIZE(AoConstants, 72);
 
-// Interleaved sampling of the VPLs (Keller and Heidrich 2001): the pattern's VPLs 0..n-1 are
-// split into k*k disjoint subsets, subset s holding VPLs s, s + k*k, s + 2*k*k, ...; a pixel
-// gathers the subset its place in a k x k block names, so every block of k x k pixels gathers
-// each VPL exactly once (tests/test_effects.cpp checks it).
-SSGI_INLINE int vplSubset(int x, int y, int k) {
-    return (y % k) * k + (x % k);
-}
-// The j-th VPL of subset s, and how many VPLs of n the subset holds.
-SSGI_INLINE int vplOfSubset(int s, int j, int k) {
-    return s + j * k * k;
-}
-SSGI_INLINE int vplSubsetSize(int s, int n, int k) {
-    return s < n ? (n - s + k * k - 1) / (k * k) : 0;
-}
-
-// Where a pixel's VPLs lie in the reflective shadow map: a polar pattern around the pixel's
-// projection c, whose density falls as 1/r with the distance r from c (the thesis's r = R xi1,
-// 3.3), so that the close VPLs, whose 1/d^2 dominates at creases and contacts, are drawn most.
-// - With a sampling radius R > 0 (the RSM paper's r_max): the disk of radius R, density
-//   1 / (2 pi R r); points that fall outside the map are lost.
-// - With R = 0 (the whole map): the same 1/r density over the map alone, nothing lost. The
-//   direction is drawn in proportion to how far the map reaches along it, and r uniformly up to
-//   the map's edge: density 1 / (Z r), Z the integral of that reach over the angle. Along an
-//   edge at distance d from c the reach is d / cos(psi), whose integral over psi is
-//   d asinh(tan psi), so each edge's share of Z and the point where a direction leaves the map
-//   are closed forms.
-// A sample (xi1, xi2) in [0, 1)^2 maps to r = xi1 x reach, its direction xi2 of the way round;
-// of n samples, each stands for the map's area 1 / (n density) = Z r / n (tests/test_effects.cpp
-// checks that they add up to the map's area and integrate functions over it).
-struct VplPattern {
-    vec2 center;
-    float radius; // > 0: the disk's; 0: the whole map
-    float total;  // Z: 1 / (total r) is the density per unit of the map's uv area
-    // The whole-map pattern's edges, counter-clockwise (right, top, left, bottom): each seen
-    // from c as the map's right edge turned by e quarter turns, at distance d (at least 1e-4),
-    // running from lo to lo + 1 (0 at the foot of the perpendicular from c). `start`:
-    // asinh(lo / d), where its directions begin; `before`: the shares of the edges before it.
-    vec4 d, lo, start, before;
-};
-
-// `center` in [0, 1]^2; an edge closer to it than 1e-4 subtends no angle and gets no share.
-SSGI_INLINE VplPattern vplPattern(vec2 center, float radius) {
-    VplPattern pattern;
-    pattern.center = center;
-    pattern.radius = radius;
-    pattern.total = 6.28318531f * radius; // the disk's: 2 pi R
-    pattern.d = max(vec4(1.0f - center.x, 1.0f - center.y, center.x, center.y), vec4(1e-4f));
-    pattern.lo = vec4(-center.y, center.x - 1.0f, center.y - 1.0f, -center.x);
-    pattern.start = vec4(0.0f);
-    pattern.before = vec4(0.0f);
-    if (radius > 0.0f) return pattern;
-    float sum = 0.0f;
-    for (int e = 0; e < 4; ++e) {
-        float d = pattern.d[e];
-        pattern.start[e] = asinh(pattern.lo[e] / d);
-        pattern.before[e] = sum;
-        // The reach along the edge's directions, d / cos(psi), integrates to d asinh(tan psi).
-        if (d > 1e-4f) sum += d * (asinh((pattern.lo[e] + 1.0f) / d) - pattern.start[e]);
-    }
-    pattern.total = sum;
-    return pattern;
-}
-
-// The point of VPL i of n in the map's uv (outside [0, 1)^2 only for a disk), and its distance
-// r from the centre: a Fibonacci lattice, xi1 = (i + stratum) / n (stratum in [0, 1): where in
-// its ring) and xi2 = i / golden ratio^2 + rotation / 2 pi (the golden angle's turns).
-SSGI_INLINE vec2 vplPatternPoint(VplPattern pattern, int i, int n, float stratum, float rotation,
-                                 SSGI_OUT(float) r) {
-    float xi1 = (float(i) + stratum) / float(n);
-    float turns = float(i) * 0.381966011f + rotation / 6.28318531f;
-    float xi2 = turns - floor(turns);
-    if (pattern.radius > 0.0f) {
-        float theta = 6.28318531f * xi2;
-        r = pattern.radius * xi1;
-        return pattern.center + r * vec2(cos(theta), sin(theta));
-    }
-    // The edge whose share holds xi2 (one without a share is passed over), then the offset along
-    // it where asinh(offset / d) - start = (the rest of xi2's part) / d.
-    float m = xi2 * pattern.total;
-    int e = int(m >= pattern.before.y) + int(m >= pattern.before.z) + int(m >= pattern.before.w);
-    float d = pattern.d[e];
-    float x = exp(pattern.start[e] + (m - pattern.before[e]) / d);
-    float offset = clamp(0.5f * d * (x - 1.0f / x), pattern.lo[e], pattern.lo[e] + 1.0f);
-    vec2 toExit = vec2(d, offset); // on the right edge; turned by e quarter turns
-    if ((e & 1) != 0) toExit = vec2(-toExit.y, toExit.x);
-    if ((e & 2) != 0) toExit = -toExit;
-    r = xi1 * length(toExit);
-    return pattern.center + xi1 * toExit;
-}
-
-// The pattern's density per unit of uv area at distance r from the centre (r at least half a
-// texel of a map `size` texels wide, where 1/r would spike).
-SSGI_INLINE float vplPatternDensity(VplPattern pattern, float r, float size) {
-    if (pattern.radius > 0.0f && r > pattern.radius) return 0.0f;
-    return 1.0f / (pattern.total * max(r, 0.5f / size));
-}
-
-struct IndirectConstants {
-    float rotation;     // the pattern's turn this frame (radians)
-    float scale;        // its size's jitter (with a sampling radius > 0)
-    float radius;       // the sampling radius, a fraction of the RSM (0: the whole map)
-    float radialOffset; // common.glsl radialOffset
-    int width, height;  // the gather's image (method 0: the half-resolution one)
-    int axisX, axisY;   // the interleaved method's filter: the axis of this pass
-    CacheConstants cache;
-    float visibilityStart; // indirect_visibility_start (indirect_visibility.glsl)
-};
-SSGI_CHECK_SIZE(IndirectConstants, 76);
-
-// The VPLs of indirect_method 2 (indirect_vpls.comp): the RSM clustered into a coarser VPL
-// map, and a pyramid of the VPLs' flux luminance (level 0 the map padded to `paddedSize`, a
-// power of two; level `levels` the total) through which VPLs are drawn in proportion to it.
-struct VplDrawConstants {
-    int cached;     // 1: the draw's points move frame by frame; 0: every frame draws the same
-    int mapSize;    // the RSM's side, texels
-    int vplMapSize; // the VPL map's side: mapSize / indirect_vpl_cluster, rounded up
-    int paddedSize; // the pyramid's level 0 side: a power of two, at least vplMapSize and 8
-    int levels;     // log2(paddedSize)
-    int unused[3];
-};
-SSGI_CHECK_SIZE(VplDrawConstants, 32);
-
 struct SsdoConstants {
     float rotation, scale;
     float rMax;           // r_max (scene units)
@@ -374,14 +140,6 @@ struct ContactConstants {
     float unused[3];
 };
 SSGI_CHECK_SIZE(ContactConstants, 16);
-
-// The temporal pass (temporal.comp) carries up to this many cached effects a dispatch, one a slot;
-// its storage buffer (std430, laid out as C++ lays it out) holds each slot's cache this frame.
-#define TEMPORAL_EFFECT_SLOTS 4
-struct TemporalEffects {
-    CacheConstants effects[TEMPORAL_EFFECT_SLOTS];
-};
-SSGI_CHECK_SIZE(TemporalEffects, 160);
 
 // Sky visibility maps (sky_maps.glsl): orthographic depth maps of the scene from `tile.y`
 // directions over the sphere, tiled `tile.z` to a row of an atlas, `tile.w` texels a side each,

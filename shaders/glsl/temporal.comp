@@ -6,7 +6,7 @@
 // effect's value of this frame V_t, computed with a turned and scaled sampling pattern, is
 // blended with its reprojected history V_{t-1}, by the effect's own constants (its rule, tile,
 // blur budget, motion test) and the same code for all. Up to TEMPORAL_EFFECT_SLOTS effects a
-// dispatch (shared.h), in slots 0..EFFECTS-1 (renderer/passes/temporal_pass.cpp).
+// dispatch (shared_cache.h), in slots 0..EFFECTS-1 (renderer/passes/temporal_pass.cpp).
 // Thesis rule: confidence = 1 - saturate(|V_{t-1} - V_t|) / (1 + bias) (4),
 // V = confidence V_{t-1} + (1 - confidence) V_t (5). Running mean (the principled
 // alternative): V = H + (V_t - H) / (n + 1), with H the history clamped to the spread of this

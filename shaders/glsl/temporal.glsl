@@ -32,7 +32,7 @@ bool exactEffect(CacheConstants cache) {
     return cache.rotations <= 1;
 }
 
-// A cache's count texel (R8_UNORM, EffectCache::countHistory; shared.h countCode): the rotations
+// A cache's count texel (R8_UNORM, EffectCache::countHistory; shared_cache.h countCode): the rotations
 // accumulated (0: the pixel holds nothing), and whether the pixel is due. Sampled, the byte reads
 // as code / 255, which is 0 only where the pixel holds nothing.
 float packCount(float count, bool due) {
