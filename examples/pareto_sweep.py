@@ -15,8 +15,9 @@ args = (sys.argv[1:] + ["256", "4096", "pareto.png"][len(sys.argv) - 1:])[:3]
 size, spp, chart = int(args[0]), int(args[1]), args[2]
 scene = ssgi.scene_file("cornell-box")  # the shipped scene, from any folder
 # What changes the box's image: the bounce and the shadow (it has no sky: AO changes nothing).
-configs = {"defaults": {}, "16 VPLs": {"indirect_vpls": 16}, "64 VPLs": {"indirect_vpls": 64},
-           "1024 VPLs": {"indirect_vpls": 1024}, "VPLs unoccluded": {"indirect_visibility": 0},
+configs = {"defaults": {}, "16 VPLs a cell": {"world_vpls": 16},
+           "192 VPLs a cell": {"world_vpls": 192}, "interleaved": {"indirect_method": 1},
+           "interleaved, unoccluded": {"indirect_method": 1, "indirect_visibility": 0},
            "VPLs by flux": {"indirect_method": 2}, "hard shadows": {"shadow_taps": 1},
            "512 VPLs, thesis": {"indirect_method": 0, "indirect_vpls": 512},
            "PCF 9": {"shadow_variant": 0, "shadow_taps": 9},

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <map>
 
 using namespace ssgi;
 
@@ -110,7 +111,8 @@ TEST_F(WorldCacheTest, AMovedLightRestartsEveryCell) {
     ASSERT_TRUE(counts.has_value());
     EXPECT_EQ(counts->filled, uint32_t(live));
     // A still frame after it refreshes without restarting: no cell goes back to a first
-    // gather, and as many gather one frame more as the frame's refreshes allow.
+    // gather, and about as many gather one frame more as the frame's refreshes allow (a window
+    // of the cells' hashes: world_schedule.comp; measured 1019 of 1309 for 1024).
     renderer.renderFrame(scene.camera);
     const Cells still = readCells(renderer);
     const float newCellFrames = float(scene.settings.world_new_cell_frames);
@@ -120,7 +122,43 @@ TEST_F(WorldCacheTest, AMovedLightRestartsEveryCell) {
         EXPECT_GE(still.irradiance[i].a, newCellFrames) << "entry " << i;
         refreshed += still.irradiance[i].a > newCellFrames;
     }
-    EXPECT_EQ(refreshed, std::min(live, int(scene.settings.world_cells_per_frame)));
+    const int budget = std::min(live, int(scene.settings.world_cells_per_frame));
+    EXPECT_NEAR(refreshed, budget, 0.1 * budget);
+}
+
+// Which cells refresh when the frame's refreshes do not reach them all depends on the cells
+// alone, not on the order the device's threads run in: two renderers of the same frames hold the
+// same table bit for bit. (A budget handed out first come, first served made them differ.)
+TEST_F(WorldCacheTest, TheRefreshesAreTheSameFromRunToRun) {
+    Scene s = scene;
+    s.settings.world_cells_per_frame = 64; // far fewer than the cells short of world_frames
+    std::vector<Cells> runs;
+    for (int run = 0; run < 2; ++run) {
+        Renderer renderer(test::context(), s, {kSize, kSize, "final"});
+        for (int f = 0; f < 8; ++f)
+            renderer.renderFrame(panned(f));
+        runs.push_back(readCells(renderer));
+    }
+    ASSERT_EQ(runs[0].keys.size(), runs[1].keys.size());
+    int refreshedCells = 0;
+    for (size_t i = 0; i < runs[0].keys.size(); ++i) {
+        if (!runs[0].live(i)) continue;
+        refreshedCells += runs[0].irradiance[i].a > float(s.settings.world_new_cell_frames);
+    }
+    EXPECT_GT(refreshedCells, 0);
+    // The same cells may sit in other entries (an insert's probes race), so compare by key.
+    std::map<uint32_t, glm::vec4> first;
+    for (size_t i = 0; i < runs[0].keys.size(); ++i)
+        if (runs[0].live(i)) first[runs[0].keys[i]] = runs[0].irradiance[i];
+    size_t matched = 0;
+    for (size_t i = 0; i < runs[1].keys.size(); ++i) {
+        if (!runs[1].live(i)) continue;
+        const auto it = first.find(runs[1].keys[i]);
+        ASSERT_NE(it, first.end()) << "a key only the second run made";
+        EXPECT_EQ(it->second, runs[1].irradiance[i]) << "key " << runs[1].keys[i];
+        ++matched;
+    }
+    EXPECT_EQ(matched, first.size());
 }
 
 // A moved object restarts every cell, as a moved light does: each holds a new cell's first

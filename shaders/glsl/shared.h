@@ -205,8 +205,8 @@ SSGI_CHECK_SIZE(WorldConstants, 64);
 #define WORLD_STAT_EVICTED 3   // cells evicted this frame
 #define WORLD_STAT_FULL 4      // pixels whose cell found no free entry within its probes
 #define WORLD_STAT_SHORT 5     // cells short of world_frames frames of samples, not new: the
-                               // refresh's candidates; row 2: their number the last frame that
-                               // gathered (world_schedule.comp's refresh window)
+                               // refresh's candidates; row 2: their number and the new cells'
+                               // the last frame that gathered (world_schedule.comp's window)
 #define WORLD_STAT_LISTED 6    // cells listed for world.gather (new and refreshed)
 // world.gather's workgroups, x, y and z (a VkDispatchIndirectCommand, copied to a buffer): a
 // workgroup per 64 listed cells, at most WORLD_GATHER_GROUPS_X along x (the least limit Vulkan

@@ -56,12 +56,12 @@ struct Vpl {
 
 // What a cell's gather needs of its two sets of VPLs (gatherSetup): both sets take `count`
 // samples, the flux pool's from entry `start` on, the disk's of `radius` texels around `center`
-// (p's projection into the VPL map) turned by `turn`.
+// (p's projection into the VPL map) shifted by `shift`.
 struct Gather {
     vec3 p, n;
     int count;
     uint start;
-    float turn;
+    vec2 shift;
     float total;      // the VPL map's luminance
     vec2 center;      // p in the VPL map, in texels
     float radius;     // the disk's, in texels
@@ -70,13 +70,13 @@ struct Gather {
     float near2;      // the squared distance below which a VPL is taken as at it
 };
 
-Gather gatherSetup(vec3 p, vec3 n, int count, uint start, float turn, float frames, float near2) {
+Gather gatherSetup(vec3 p, vec3 n, int count, uint start, vec2 shift, float frames, float near2) {
     Gather g;
     g.p = p;
     g.n = n;
     g.count = count;
     g.start = start;
-    g.turn = turn;
+    g.shift = shift;
     g.total = texelFetch(vplList, ivec2(POOL, 0), 0).r;
     float side = constants.change.w; // the VPL map's side
     g.radius = max(4.0, side / 16.0);
@@ -93,7 +93,7 @@ Gather gatherSetup(vec3 p, vec3 n, int count, uint start, float turn, float fram
 // weighs its own two:
 // - set 0, the flux's pool from entry g.start on: where the light is;
 // - set 1, a texel of the disk around p's projection, placed by the R2 sequence (Roberts 2018)
-//   and turned by g.turn: the VPLs next to p, whose 1/d^2 dominates at creases and contacts and
+//   and shifted by g.shift: the VPLs next to p, whose 1/d^2 dominates at creases and contacts and
 //   which the flux draws too seldom.
 // Any prefix of either set's samples is spread over all of it (the pool is drawn by a
 // low-discrepancy sequence too).
@@ -113,8 +113,8 @@ Vpl sampleVpl(Gather g, int set, int j) {
         v.normal = normal.xyz;
         v.flux = fluxProbability.rgb;
     } else {
-        vec2 u = fract(0.5 + float(j) * vec2(0.7548776662, 0.5698402910));
-        float angle = 6.2831853 * u.y + g.turn;
+        vec2 u = fract(0.5 + float(j) * vec2(0.7548776662, 0.5698402910) + g.shift);
+        float angle = 6.2831853 * u.y;
         ivec2 texel = ivec2(floor(g.center + g.radius * sqrt(u.x) * vec2(cos(angle), sin(angle))));
         int side = int(constants.change.w);
         bool inside = all(greaterThanEqual(texel, ivec2(0))) && all(lessThan(texel, ivec2(side)));
@@ -207,11 +207,13 @@ void main() {
     uint slot = gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * 64u * WORLD_GATHER_GROUPS_X;
     uint now = uint(frame.patternFrame);
     int row = int(now) & 1;
-    // The cells short of world_frames this frame, for the next frames' refresh window
-    // (world_schedule.comp): world.schedule has counted them all by now.
+    // The cells that will be short of world_frames next frame, about: this frame's short ones
+    // and its new ones, for the next frames' refresh window (world_schedule.comp);
+    // world.schedule has counted them all by now.
     if (slot == 0u)
         imageStore(worldStats, ivec2(WORLD_STAT_SHORT, 2),
-                   imageLoad(worldStats, ivec2(WORLD_STAT_SHORT, row)));
+                   imageLoad(worldStats, ivec2(WORLD_STAT_SHORT, row)) +
+                       imageLoad(worldStats, ivec2(WORLD_STAT_NEW, row)));
     if (slot >= imageLoad(worldStats, ivec2(WORLD_STAT_LISTED, row)).r) return;
     uint listed = texelFetch(gatherList, worldTexel(slot), 0).r;
     uint index = listed & 0x3fffffu;
@@ -226,9 +228,13 @@ void main() {
     // would light the whole cell many times too brightly).
     float side = worldCellSide(worldLevel(distance(point.xyz, frame.cameraPosition.xyz)));
     float near = NEAR * side;
-    float turn = 6.2831853 * float(worldHash(start) >> 8) / 16777216.0;
+    // The disk's sequence shifted by a random offset in both its coordinates (Cranley and
+    // Patterson 1976): a refresh of one frame's worth takes the sequence's first points again,
+    // and unshifted in the radius they would stand at the same radii every frame, a bias that
+    // no number of refreshes averages away.
+    vec2 shift = vec2(worldHash(start) >> 8, worldHash(start ^ 0x9e3779b9u) >> 8) / 16777216.0;
     int count = int(gathered) * constants.work.x / 2;
-    Gather g = gatherSetup(point.xyz, unpackCellNormal(point.w), count, start, turn, gathered,
+    Gather g = gatherSetup(point.xyz, unpackCellNormal(point.w), count, start, shift, gathered,
                            near * near);
     if (g.total <= 0.0) g.count = 0; // no light in the map: every sample is 0
     Share share = gatherCell(g);

@@ -40,7 +40,7 @@ layout(push_constant) uniform WorldBlock { WorldConstants constants; };
 #include "world_cache.glsl"
 
 // Whether a cell short of world_frames (its checksum `key`) refreshes this frame: a window of
-// the cells' hashes, as wide as world_cells_per_frame over the cells that were short the last
+// the cells' hashes, as wide as world_cells_per_frame over the cells short or new the last
 // frame that gathered (row 2 of the counters, world_gather.comp), slides along them frame by
 // frame, so that every short cell refreshes in turn and which ones do depends on the cells
 // alone, not on the order the threads reach a counter (a budget handed out first come, first

@@ -61,5 +61,5 @@ def test_golden_image_example_passes_and_catches_a_change(tmp_path):
     assert run.returncode == 0 and "1 passed" in run.stdout, run.stdout + run.stderr
     sys.path.insert(0, str(EXAMPLES))
     import test_golden
-    failed = test_golden.failed_checks(test_golden.render({"indirect_vpls": 64}))
+    failed = test_golden.failed_checks(test_golden.render({"world_vpls": 8}))
     assert any(check.startswith("mean FLIP") for check in failed), failed

@@ -98,7 +98,7 @@ def test_a_sweep_over_numpy_values_renders_what_python_numbers_render():
     def sweep(radii, counts):
         images = []
         for radius, count in zip(radii, counts):
-            scene = ssgi.Scene(CORNELL, settings={"ao_radius": radius, "indirect_vpls": count})
+            scene = ssgi.Scene(CORNELL, settings={"ao_radius": radius, "world_vpls": count})
             images.append(ssgi.Renderer(scene, size=(32, 32)).render(frames=2).copy())
         return images
     numpy_sweep = sweep(np.linspace(0.1, 0.4, 3), np.arange(16, 64, 16))
