@@ -162,7 +162,8 @@ Json walkthrough(vk::Context& ctx, const Scene& scene, const Options& options, u
     const std::vector<uint32_t> errorAt = pathErrorFrames(pathFrames, errorFrames);
     // "cache off" is the uncached frame with the interleaved bounce (indirect_method 1), the
     // yardstick every speed-up is taken against; "cache off, world cache" the world cache's
-    // uncached frame (what a camera cut costs it); "cache: thesis rule" the defaults.
+    // uncached frame (what a camera cut costs it); "cache: thesis rule" the interleaved bounce
+    // cached; "cache: world cache" the defaults.
     std::vector<Method> methods = {
         {"cache off", {{"cache", 0}, {"indirect_method", 1}}},
         {"cache off, world cache", {{"cache", 0}, {"indirect_method", 3}}},

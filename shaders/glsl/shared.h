@@ -197,16 +197,18 @@ SSGI_CHECK_SIZE(WorldConstants, 64);
 #define WORLD_VIEW_CELLS 1 // each pixel's own cell's value, its edges unblended
 #define WORLD_VIEW_AGE 2   // each pixel's own cell: green its samples' share of world_frames,
                            // red where it holds none, blue its frames since last used
-// The world cache's counters (world.stats, R32UI, a row per frame parity, and row 2 held from
-// frame to frame): what `render --profile` prints.
+// The world cache's counters (world.stats, R32UI, a row per frame parity): what `render
+// --profile` prints. Row 2 holds, from frame to frame, what world.schedule needs of the frame
+// before (world_insert.comp keeps it): at WORLD_STAT_LIVE its live cells, at WORLD_STAT_SHORT
+// its short and new cells, at WORLD_STAT_WINDOW the refresh window's start.
 #define WORLD_STAT_LIVE 0      // cells in the table after eviction
 #define WORLD_STAT_NEW 1       // cells filled for the first time (or restarted) this frame
 #define WORLD_STAT_REFRESHED 2 // cells that gathered more samples this frame
 #define WORLD_STAT_EVICTED 3   // cells evicted this frame
 #define WORLD_STAT_FULL 4      // pixels whose cell found no free entry within its probes
 #define WORLD_STAT_SHORT 5     // cells short of world_frames frames of samples, not new: the
-                               // refresh's candidates; row 2: their number and the new cells'
-                               // the last frame that gathered (world_schedule.comp's window)
+                               // refresh's candidates
+#define WORLD_STAT_WINDOW 2    // (row 2 only) the refresh window's start, 24-bit fixed point
 #define WORLD_STAT_LISTED 6    // cells listed for world.gather (new and refreshed)
 // world.gather's workgroups, x, y and z (a VkDispatchIndirectCommand, copied to a buffer): a
 // workgroup per 64 listed cells, at most WORLD_GATHER_GROUPS_X along x (the least limit Vulkan

@@ -30,6 +30,15 @@ const int WORLD_PROBES = 16;
 const uint WORLD_EMPTY = 0u;
 const uint WORLD_EVICTED = 1u;
 const uint WORLD_OWNERLESS = 0u;
+// The width of the refresh window (world_schedule.comp), in 24-bit fixed point (1 << 24: every
+// cell): world_cells_per_frame over `candidates`, the cells short of world_frames or new the
+// frame before.
+uint refreshSpan(uint candidates) {
+    float width =
+        candidates > 0u ? min(1.0, float(constants.work.y) / float(candidates)) : 1.0;
+    return uint(width * 16777216.0);
+}
+
 // A PCG hash (O'Neill 2014).
 uint worldHash(uint v) {
     v = v * 747796405u + 2891336453u;

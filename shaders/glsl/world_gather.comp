@@ -207,13 +207,6 @@ void main() {
     uint slot = gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * 64u * WORLD_GATHER_GROUPS_X;
     uint now = uint(frame.patternFrame);
     int row = int(now) & 1;
-    // The cells that will be short of world_frames next frame, about: this frame's short ones
-    // and its new ones, for the next frames' refresh window (world_schedule.comp);
-    // world.schedule has counted them all by now.
-    if (slot == 0u)
-        imageStore(worldStats, ivec2(WORLD_STAT_SHORT, 2),
-                   imageLoad(worldStats, ivec2(WORLD_STAT_SHORT, row)) +
-                       imageLoad(worldStats, ivec2(WORLD_STAT_NEW, row)));
     if (slot >= imageLoad(worldStats, ivec2(WORLD_STAT_LISTED, row)).r) return;
     uint listed = texelFetch(gatherList, worldTexel(slot), 0).r;
     uint index = listed & 0x3fffffu;

@@ -35,9 +35,24 @@ float worldSamplesAt(ivec2 e) {
 void main() {
     loadPixelToWorld(); // pixel_to_world.glsl
     uint now = uint(frame.patternFrame);
-    if (gl_GlobalInvocationID.xy == uvec2(0))
+    if (gl_GlobalInvocationID.xy == uvec2(0)) {
+        // Row 2 keeps what this frame's world.schedule needs of the last frame's counters: the
+        // cells live and the cells short of world_frames or new, and the refresh window moves on
+        // by the width it had (world_schedule.comp). Then the last frame's row is cleared for
+        // the next frame.
+        int last = int(now + 1u) & 1;
+        uint before = imageLoad(worldStats, ivec2(WORLD_STAT_SHORT, 2)).r;
+        uint start = imageLoad(worldStats, ivec2(WORLD_STAT_WINDOW, 2)).r;
+        imageStore(worldStats, ivec2(WORLD_STAT_WINDOW, 2),
+                   uvec4((start + refreshSpan(before)) & 0xffffffu));
+        imageStore(worldStats, ivec2(WORLD_STAT_SHORT, 2),
+                   imageLoad(worldStats, ivec2(WORLD_STAT_SHORT, last)) +
+                       imageLoad(worldStats, ivec2(WORLD_STAT_NEW, last)));
+        imageStore(worldStats, ivec2(WORLD_STAT_LIVE, 2),
+                   imageLoad(worldStats, ivec2(WORLD_STAT_LIVE, last)));
         for (int i = 0; i < WORLD_STATS; ++i)
-            imageStore(worldStats, ivec2(i, int(now + 1u) & 1), uvec4(0u));
+            imageStore(worldStats, ivec2(i, last), uvec4(0u));
+    }
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pixel, ivec2(frame.viewport.xy)))) return;
     vec4 position = gbufferPosition(pixel);

@@ -2,7 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // world.schedule (indirect_method 3): one invocation per entry of the world cache
 // (world_cache.glsl), which decides what the cell does this frame. A cell no pixel used for
-// table.z frames is evicted. A moved light or object restarts every cell in view and evicts the
+// table.z frames is evicted, or for two once the table is more than half full. A moved light or object restarts every cell in view and evicts the
 // others: the RSM is drawn again, and every cell's VPLs and their visibility may have changed
 // (keeping the cells away from a moved object, with their memory shortened, left the first
 // frames after the move well above a fresh start's error, docs/stability.md). A cell that
@@ -40,17 +40,13 @@ layout(push_constant) uniform WorldBlock { WorldConstants constants; };
 #include "world_cache.glsl"
 
 // Whether a cell short of world_frames (its checksum `key`) refreshes this frame: a window of
-// the cells' hashes, as wide as world_cells_per_frame over the cells short or new the last
-// frame that gathered (row 2 of the counters, world_gather.comp), slides along them frame by
-// frame, so that every short cell refreshes in turn and which ones do depends on the cells
-// alone, not on the order the threads reach a counter (a budget handed out first come, first
-// served made the image differ from run to run). In 24-bit fixed point: the window's start
-// wraps exactly however many frames have passed.
-bool refreshWindow(uint key, uint now) {
-    float candidates = float(imageLoad(worldStats, ivec2(WORLD_STAT_SHORT, 2)).r);
-    float width = candidates > 0.0 ? min(1.0, float(constants.work.y) / candidates) : 1.0;
-    uint span = uint(width * 16777216.0);
-    uint start = (now * span) & 0xffffffu;
+// the cells' hashes, as wide as world_cells_per_frame over the cells short or new the frame
+// before (refreshSpan), slides along them by its width each frame (world.insert moves it on:
+// row 2 of the counters), so that every short cell refreshes in turn, and which ones do depends
+// on the cells alone, not on the order the threads reach a counter. In 24-bit fixed point.
+bool refreshWindow(uint key) {
+    uint span = refreshSpan(imageLoad(worldStats, ivec2(WORLD_STAT_SHORT, 2)).r);
+    uint start = imageLoad(worldStats, ivec2(WORLD_STAT_WINDOW, 2)).r;
     return (((worldHash(key) >> 8) - start) & 0xffffffu) < span;
 }
 
@@ -69,7 +65,13 @@ void main() {
     // nothing): the pixels that come back to it make it anew.
     bool changed = constants.change.y > 0.0 || constants.change.z > 0.0;
     uint unused = now - texelFetch(worldUsed, entry, 0).r;
-    if (unused > uint(constants.table.z) || (changed && unused != 0u)) {
+    // A table more than half full the frame before (row 2 of the counters, world_insert.comp)
+    // keeps only the cells of the last two frames' views: past that load, a
+    // key's probes find no free entry ever more often, and a moving camera's new cells, which
+    // every pixel needs, would find none beside the ones it left, which no pixel needs.
+    bool crowded = float(imageLoad(worldStats, ivec2(WORLD_STAT_LIVE, 2)).r) >
+                   0.5 * float(constants.table.y);
+    if (unused > uint(constants.table.z) || (crowded && unused > 1u) || (changed && unused != 0u)) {
         imageStore(worldKeys, entry, uvec4(WORLD_EVICTED)); // a tombstone (world_cache.glsl)
         // No samples: world.insert takes a cell's samples for its having been gathered before
         // this frame, and a cell made here this frame reads as none whichever pixel writes first.
@@ -101,7 +103,7 @@ void main() {
         imageAtomicAdd(worldStats, ivec2(WORLD_STAT_NEW, row), 1u);
     } else if (count < frames) {
         imageAtomicAdd(worldStats, ivec2(WORLD_STAT_SHORT, row), 1u);
-        if (!refreshWindow(key, now)) return;
+        if (!refreshWindow(key)) return;
         gathered = 1.0;
         imageAtomicAdd(worldStats, ivec2(WORLD_STAT_REFRESHED, row), 1u);
     } else {
