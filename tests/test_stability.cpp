@@ -24,26 +24,30 @@ RunOptions quick() {
 }
 
 // Each case runs once per process, cache rule (cache_method 0, the thesis's, or 1, the
-// running mean) and bounce (`indirect_method`, 1 the default); the tests read its figures.
-const CaseResult& result(const std::string& name, int method = 0, int bounce = 1) {
+// running mean) and bounce (`indirect_method`; kDefaultBounce: the default, the world cache);
+// the tests read its figures.
+constexpr int kDefaultBounce = -1;
+const CaseResult& result(const std::string& name, int method = 0, int bounce = kDefaultBounce) {
     static std::map<std::tuple<std::string, int, int>, CaseResult> results;
     auto it = results.find({name, method, bounce});
     if (it == results.end()) {
         RunOptions o = quick();
         if (method != 0) o.settings.emplace_back("cache_method", method);
-        if (bounce != 1) o.settings.emplace_back("indirect_method", bounce);
+        if (bounce != kDefaultBounce) o.settings.emplace_back("indirect_method", bounce);
         it = results
                  .emplace(std::tuple{name, method, bounce},
                           runCase(test::context(), findCase(name), o))
                  .first;
         const CaseResult& r = it->second;
-        std::printf("%s (cache_method %d, indirect_method %d): region %zu px, NaN/Inf %zu, "
+        const std::string bounceName =
+            bounce == kDefaultBounce ? "default" : std::to_string(bounce);
+        std::printf("%s (cache_method %d, indirect_method %s): region %zu px, NaN/Inf %zu, "
                     "still flicker %.2g, "
                     "recovery %d, settled %.3g / elsewhere %.3g (a fresh start %.3g), over fresh "
                     "%.3gx, AO kept %.3f, stale %.3g\n",
-                    name.c_str(), method, bounce, r.regionPixels, r.nonFinite, r.stillFlicker,
-                    r.recoveryFrames, r.convergedError, r.restError, r.freshSettledError,
-                    r.excessOverFresh + 1.0, r.reusedAtChange, r.staleAfter);
+                    name.c_str(), method, bounceName.c_str(), r.regionPixels, r.nonFinite,
+                    r.stillFlicker, r.recoveryFrames, r.convergedError, r.restError,
+                    r.freshSettledError, r.excessOverFresh + 1.0, r.reusedAtChange, r.staleAfter);
     }
     return it->second;
 }
@@ -96,10 +100,12 @@ TEST_F(StabilityTest, AMovedObjectLeavesNoStaleLightingAfterOneFrame) {
     EXPECT_GT(r.regionPixels, 300u); // measured 613 of 4800
     // Measured: 0.0051 of the old-to-new change remains from the frame after the block stopped.
     EXPECT_LT(std::abs(r.staleAfter), 0.02);
-    // Measured: 0.88x the pixels the move did not change, 0.72x a fresh renderer's
-    // error over the first frames (the restarted pixels accumulate like a fresh start's; the
-    // rest keep their converged history).
-    EXPECT_LT(r.convergedError, 2.5 * r.restError);
+    // Settled, the region is where a fresh renderer settles (measured 0.99x; the world cache's
+    // error near the block's contacts is 2.8x the rest's in a fresh start too, the interleaved
+    // bounce's 0.88x), and over the first frames within a fresh renderer's error (measured 1.0x
+    // and 0.72x: the restarted pixels accumulate like a fresh start's; the rest keep their
+    // converged history).
+    EXPECT_LT(r.convergedError, 1.1 * r.freshSettledError);
     EXPECT_LT(r.excessOverFresh, 1.0);
     EXPECT_LE(r.stillFlicker, 1e-4); // measured 0 (2.1e-4 while the refresh blended)
 }
@@ -139,7 +145,7 @@ TEST_F(StabilityTest, ACameraCutRestartsEveryHistory) {
 struct CaseUnderRule {
     std::string name;
     int method;
-    int bounce = 1; // indirect_method
+    int bounce = kDefaultBounce; // indirect_method
 };
 
 void PrintTo(const CaseUnderRule& c, std::ostream* os) {
@@ -201,15 +207,14 @@ std::string caseTestName(const ::testing::TestParamInfo<CaseUnderRule>& info) {
 INSTANTIATE_TEST_SUITE_P(Suite, EveryCase, ::testing::ValuesIn(everyCaseUnderBothRules()),
                          caseTestName);
 
-// The bounce held in world space (indirect_method 3) restarts its cells, not a screen-space
-// history, where the light or an object moved: the same targets. A restarted cell that kept the
-// point it was made at, where the object had been, never recovered under the thesis's rule
-// (1.9x a fresh start's error over the first 8 frames).
-INSTANTIATE_TEST_SUITE_P(WorldCache, EveryCase,
-                         ::testing::Values(CaseUnderRule{"moving-light", 0, 3},
-                                           CaseUnderRule{"moving-light", 1, 3},
-                                           CaseUnderRule{"moving-object", 0, 3},
-                                           CaseUnderRule{"moving-object", 1, 3}),
-                         caseTestName);
+// The suite above runs the default bounce, the world cache (indirect_method 3). The interleaved
+// bounce (indirect_method 1) keeps a screen-space history instead, which the light, an object
+// and the depth edges test: the same targets.
+INSTANTIATE_TEST_SUITE_P(
+    InterleavedBounce, EveryCase,
+    ::testing::Values(CaseUnderRule{"moving-light", 0, 1}, CaseUnderRule{"moving-light", 1, 1},
+                      CaseUnderRule{"moving-object", 0, 1}, CaseUnderRule{"moving-object", 1, 1},
+                      CaseUnderRule{"halos", 0, 1}, CaseUnderRule{"halos", 1, 1}),
+    caseTestName);
 
 } // namespace

@@ -130,7 +130,7 @@ namespace ssgi {
     X(world_new_cell_frames, int, 8, 1, 512, "World cache",                                        \
       "method 3: frames of world_vpls a new cell gathers at once (at most world_frames), as "      \
       "every cell does each frame without the cache")                                              \
-    X(world_cells_per_frame, int, 2048, 0, 1 << 24, "World cache",                                 \
+    X(world_cells_per_frame, int, 1024, 0, 1 << 24, "World cache",                                 \
       "method 3: about this many cells refreshed a frame beyond the new ones (which are always "   \
       "filled), a window that slides over the cells short of world_frames")                        \
     X(world_table_bits, int, 0, 0, 22, "World cache",                                              \
