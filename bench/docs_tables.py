@@ -102,7 +102,7 @@ def walkthroughs_default():
             for s, (speed, err, off) in ((s, v) for s, v in walk_default_rows(d).items())]
     return (table(["camera path (%s, %d frames)" % (d["size"].replace("x", "×"), d["path_frames"]),
                    "cached frame's speed-up, default settings", "its relMSE",
-                   "the uncached frame's relMSE"], rows)
+                   "the uncached frame's relMSE (interleaved subsets)"], rows)
             + "\n" + measured(d) + "\n")
 
 
@@ -165,7 +165,8 @@ def where_it_stands():
          per_scene("converged") + bounce_note(one, method),
          "[accuracy](docs/accuracy.md#every-scene-against-converged-references)",
          "`bench/one_frame_error.py --converged 64`"],
-        ["the cache's speed-up along the camera paths (%s), default settings"
+        ["the cache's speed-up along the camera paths (%s), default settings, over the "
+         "uncached frame with interleaved subsets (`--cache 0 --set indirect_method=1`)"
          % walk["size"].replace("x", "×"),
          ", ".join("%s %.2f×" % (SCENES[s], walks[s][0]) for s in walks)
          + " (relMSE %s of the uncached frame's)" % span([walks[s][1] / walks[s][2]

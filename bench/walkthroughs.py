@@ -8,7 +8,8 @@ Writes the per-frame chart and the tables between the walkthrough-results marker
 With --data it also writes every run's summary (frame time, speed-up over the uncached run,
 mean relMSE) with the command, commit and device, and bench/docs_tables.py rewrites the tables
 made from it (the README's and the walkthroughs page's "In short"). --default-run names the run
-measured at the default settings (default: "cache: thesis rule").
+measured at the default settings (default: the cached run of the default bounce, "cache: world
+cache" where docs/settings.md's indirect_method is 3, "cache: thesis rule" otherwise).
 """
 
 import argparse
@@ -53,9 +54,13 @@ def main():
     ap.add_argument("--images", required=True)
     ap.add_argument("--doc")
     ap.add_argument("--data", help="also write the runs' summary there (docs/data/walkthroughs.json)")
-    ap.add_argument("--default-run", default="cache: thesis rule",
-                    help="the label of the run at the default settings")
+    ap.add_argument("--default-run", help="the label of the run at the default settings")
     a = ap.parse_args()
+    if a.default_run is None:
+        sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+        import docs_tables
+        method = int(docs_tables.setting_default("indirect_method"))
+        a.default_run = "cache: world cache" if method == 3 else "cache: thesis rule"
     _, walks = analysis.load(a.results)
     if not walks:
         raise SystemExit("error: no walkthrough results in %s" % a.results)
