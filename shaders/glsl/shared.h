@@ -182,7 +182,8 @@ struct WorldConstants {
     // of samples a cell accumulates (world_frames); w: frames of samples a new cell gathers at
     // once (world_new_cell_frames)
     vec4 cells;
-    ivec4 table; // x: the table images' width; y: entries; z: frames unused before eviction; w: unused
+    // x: the table images' width; y: entries; z: frames unused before eviction; w: unused
+    ivec4 table;
     // x: VPLs a cell gathers a frame; y: cells refreshed a frame beyond the new ones; z: the
     // flux pool's size; w: what the lookup writes (WORLD_VIEW_*)
     ivec4 work;

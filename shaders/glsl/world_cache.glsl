@@ -18,9 +18,9 @@
 //                             luminance (world_gather.comp), to carry its value to other normals
 //   world.used       R32UI    the last frame a pixel used it (FrameUniforms.patternFrame)
 //   world.owner      R32UI    which of this frame's pixels may give the cell its point: the
-//                             largest of its pixels' ownerRank (the one whose point lies nearest
-//                             the cell's centre, whichever thread runs first), WORLD_OWNERLESS where no
-//                             pixel used it; world.schedule takes the point from it where the
+//                             largest of its pixels' ownerRank (the one whose point lies
+//                             nearest the cell's centre, whichever thread runs first),
+//                             WORLD_OWNERLESS where no pixel used it; world.schedule takes the point from it where the
 //                             cell starts (new or restarted) and empties it for the next frame
 // Needs: constants (WorldConstants), common.glsl.
 #ifndef SSGI_WORLD_CACHE_GLSL

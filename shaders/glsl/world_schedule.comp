@@ -2,9 +2,9 @@
 #extension GL_GOOGLE_include_directive : require
 // world.schedule (indirect_method 3): one invocation per entry of the world cache
 // (world_cache.glsl), which decides what the cell does this frame. A cell no pixel used for
-// table.z frames is evicted, or for two once the table is more than half full. A moved light or object restarts every cell in view and evicts the
-// others: the RSM is drawn again, and every cell's VPLs and their visibility may have changed
-// (keeping the cells away from a moved object, with their memory shortened, left the first
+// table.z frames is evicted, or for two once the table is more than half full. A moved light or
+// object restarts every cell in view and evicts the others: the RSM is drawn again, and every
+// cell's VPLs and their visibility may have changed (keeping the cells away from a moved object, with their memory shortened, left the first
 // frames after the move well above a fresh start's error, docs/stability.md). A cell that
 // starts this frame, made or restarted, takes its point and normal from the G-buffer at the
 // pixel its pixels chose (world.owner). Then a cell is
