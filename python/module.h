@@ -110,6 +110,9 @@ struct SceneObject {
     std::string json; // a dict's scene as JSON (its glTF paths absolute); empty for a file
     SettingOverrides overrides; // the settings given from Python, kept for a reload
     std::shared_ptr<Scene> scene;
+    // Times the scene was loaded again (a setting read while loading, or one forgotten); a
+    // change between two loads is of its settings alone, its geometry the same.
+    uint64_t loads = 0;
     Scene& writable();
 };
 // Loads (again) the scene as `s` names it, with `overrides` (scene.cpp).

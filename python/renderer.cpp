@@ -2,9 +2,11 @@
 // it (the same options, the same frames, the image read back once), with the GIL released while
 // the device works. A change of the scene's settings rebuilds it at the next frame, as the
 // viewer's panel does (a new renderer from the changed scene: every cache starts over, and the
-// frames are those of a renderer made anew); the camera, the light, the time and the view carry
-// over. The light and the camera change without a rebuild: the renderer restarts what they
-// invalidate (Renderer::setLight, its cut detection).
+// frames are those of a renderer made anew, bit for bit), taking the old one's scene on the
+// device and its pipelines where only settings changed, so a change compiles only the shaders
+// it specializes otherwise; the camera, the light, the time and the view carry over. The light and
+// the camera change without a rebuild: the renderer restarts what they invalidate
+// (Renderer::setLight, its cut detection).
 #include "renderer_object.h"
 
 #include "scene/animation.h"
@@ -93,6 +95,7 @@ RendererObject::RendererObject(const std::shared_ptr<SceneObject>& scene, const 
     options_.keep = namesOf(keep.value);
     device_ = deviceNamed(device.value_or(""));
     renderer_ = build(*scene_);
+    loads_ = sceneObject_->loads;
     view_ = view;
     // The renderer passes over names its frame lacks; a name a user gave is checked here.
     for (const std::string& name : options_.keep)
@@ -104,39 +107,60 @@ RendererObject::RendererObject(const std::shared_ptr<SceneObject>& scene, const 
         }
 }
 
-std::unique_ptr<Renderer> RendererObject::build(const Scene& scene) {
+std::unique_ptr<Renderer> RendererObject::build(const Scene& scene, Renderer* previous) {
     std::unique_ptr<Renderer> made;
     {
         py::gil_scoped_release release;
         std::lock_guard<std::mutex> lock(device_->mutex);
-        made = std::make_unique<Renderer>(*device_->ctx, scene, options_);
+        made = previous ? std::make_unique<Renderer>(*device_->ctx, scene, options_, *previous)
+                        : std::make_unique<Renderer>(*device_->ctx, scene, options_);
     }
     raiseWarnings();
     return made;
 }
 
+void RendererObject::carryOver() {
+    py::gil_scoped_release release;
+    std::lock_guard<std::mutex> lock(device_->mutex);
+    renderer_->setView(view_);
+    if (time_) renderer_->setTime(*time_);
+    if (lightSet_) renderer_->setLight(light_);
+}
+
 void RendererObject::applySceneChanges() {
     const std::shared_ptr<const Scene> changed = sceneObject_->scene;
     if (changed == scene_) return;
+    // Settings alone changed: the new renderer takes the old one's parts.
+    Renderer* previous = sceneObject_->loads == loads_ ? renderer_.get() : nullptr;
     std::unique_ptr<Renderer> made;
+    // A failure after the old renderer gave up its parts leaves it empty: one made anew from the
+    // scene it had takes its place, and the error is raised.
+    auto restore = [this] {
+        if (!renderer_->emptied()) return;
+        renderer_ = build(*scene_);
+        carryOver();
+    };
     try {
-        made = build(*changed);
+        made = build(*changed, previous);
     } catch (const InputError& e) {
+        restore();
         throw InputError(std::string(e.what()) +
                          " (the scene's settings as changed since this renderer's last frame; "
                          "set them back to render again, or make a new Renderer at another size)");
+    } catch (...) {
+        restore();
+        throw;
     }
     if (!lightSet_) light_ = changed->light;
     {
         py::gil_scoped_release release;
         std::lock_guard<std::mutex> lock(device_->mutex);
         cutsBefore_ += renderer_->cuts();
-        renderer_ = std::move(made);
-        renderer_->setView(view_);
-        if (time_) renderer_->setTime(*time_);
-        if (lightSet_) renderer_->setLight(light_);
+        renderer_ = std::move(made); // the old one destroyed here, the device held
     }
+    carryOver();
     scene_ = changed;
+    loads_ = sceneObject_->loads;
     ++rebuilds_;
 }
 

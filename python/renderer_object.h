@@ -50,9 +50,14 @@ public:
 private:
     // The scene changed since the renderer was built (its settings: a new Scene behind the
     // SceneObject): builds the renderer again from it, keeping the camera, the light, the time
-    // and the view, as the viewer's panel does. With the GIL held.
+    // and the view, as the viewer's panel does; from the old renderer's parts where only the
+    // settings changed (its scene on the device, its pipelines). With the GIL held.
     void applySceneChanges();
-    std::unique_ptr<Renderer> build(const Scene& scene);
+    // A renderer of `scene`, made from `previous`'s parts where given (Renderer's taking
+    // constructor: the same geometry, other settings).
+    std::unique_ptr<Renderer> build(const Scene& scene, Renderer* previous = nullptr);
+    // Carries the camera's time, the light and the view over to renderer_ (made anew).
+    void carryOver();
     std::vector<std::string> imageNames(bool withOverwritten) const;
     bool overwritten(const std::string& name) const;
     void open() const;
@@ -67,6 +72,7 @@ private:
     std::shared_ptr<Device> device_;
     std::shared_ptr<SceneObject> sceneObject_; // the Python scene, whose changes apply
     std::shared_ptr<const Scene> scene_;       // the scene the renderer was built from
+    uint64_t loads_ = 0;                       // its SceneObject::loads then
     std::unique_ptr<Renderer> renderer_;
     RenderOptions options_;
     Camera camera_;

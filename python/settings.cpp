@@ -81,6 +81,7 @@ void applySettings(SceneObject& s, const SettingOverrides& values) {
     }
     if (reload) {
         s.scene = std::make_shared<Scene>(loadSceneObject(s, overrides));
+        ++s.loads;
     } else {
         Scene& scene = s.writable();
         scene.settings = withOverrides(scene.settings, values, "settings");
@@ -100,6 +101,7 @@ void forget(SceneObject& s, const std::vector<std::string>& names, bool all) {
         overrides.erase(name);
     if (overrides.size() == s.overrides.size() && !all) return;
     s.scene = std::make_shared<Scene>(loadSceneObject(s, overrides));
+    ++s.loads;
     s.overrides = std::move(overrides);
 }
 

@@ -20,6 +20,9 @@
 
 namespace ssgi {
 
+// The time before every path's first key, where the objects stand before the first setTime().
+constexpr float kBeforeFirstKey = std::numeric_limits<float>::lowest();
+
 // A quarter of half-float range: radiance up to this is kept in its own units.
 constexpr float kLargestUnscaledRadiance = 16384.0f;
 
@@ -72,7 +75,15 @@ static void checkImageMemory(const vk::Context& ctx, uint32_t width, uint32_t he
 }
 
 Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& options)
-    : ctx_(ctx), scene_(scene), light_(scene.light), patternStart_(options.patternStart),
+    : Renderer(ctx, scene, options, nullptr) {}
+
+Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& options,
+                   Renderer& previous)
+    : Renderer(ctx, scene, options, &previous) {}
+
+Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& options,
+                   Renderer* previous)
+    : ctx_(ctx), scene_(scene), builtSettings_(scene.settings), light_(scene.light), patternStart_(options.patternStart),
       seals_(scene) {
     const uint32_t limit = ctx.properties.limits.maxImageDimension2D;
     // The screen images hold the output and the guard band on each side (PassSetup::output).
@@ -95,14 +106,24 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
 
     // A failure past this point (out of device memory) gives back what was made before it.
     try {
-        sceneGpu_ = std::make_unique<SceneGpu>(ctx, scene);
-        transforms_ = instanceTransformsAt(scene, std::numeric_limits<float>::lowest());
+        if (previous) { // its frames' work done, its scene's copy and pipelines taken; its
+                        // graph gives up its drawn images below (takeDrawn), then goes
+            vkDeviceWaitIdle(ctx.device);
+            sceneGpu_ = std::move(previous->sceneGpu_);
+            pipelines_ = std::move(previous->pipelines_);
+            sceneGpu_->rebind(scene);
+        } else {
+            sceneGpu_ = std::make_unique<SceneGpu>(ctx, scene);
+            pipelines_ = std::make_unique<vk::PipelineStore>(ctx);
+        }
+        transforms_ = instanceTransformsAt(scene, kBeforeFirstKey);
         origin_ = gpuOrigin(scene.bounds);
         uploadTransforms();
         graph_ = std::make_unique<graph::FrameGraph>(ctx);
         graph_->setRecordingLog(options.logRecording);
-        build_ = std::make_unique<FrameBuild>(ctx, *graph_, *sceneGpu_, scene, rendered, band,
-                                              VkExtent2D{rsmSize, rsmSize}, origin_);
+        build_ =
+            std::make_unique<FrameBuild>(ctx, *graph_, *sceneGpu_, *pipelines_, scene, rendered,
+                                         band, VkExtent2D{rsmSize, rsmSize}, origin_);
         view_ = view;
         addFramePasses(*build_);
         for (const std::string& name : options.keep) {
@@ -110,10 +131,71 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
             if (const graph::ImageRef ref = imageNamed(name); ref.valid()) graph_->keep(ref);
         }
         graph_->allocateTransients();
+        if (previous) {
+            takeDrawn(*previous);
+            previous->release();
+        }
     } catch (...) {
+        if (previous) previous->release();
         release();
         throw;
     }
+}
+
+// The settings that shape the images the frame draws only once (see takeDrawn); the others
+// change the passes that read them. A setting missing here that shapes one would keep a stale
+// image: Python's test_session checks every setting against a renderer made anew.
+static constexpr const char* kDrawnSettings[] = {"rsm_size",
+                                                 "shadow_map_size",
+                                                 "sky_visibility_directions",
+                                                 "sky_visibility_map_size",
+                                                 "world_voxels",
+                                                 "indirect_vpl_cluster",
+                                                 "indirect_flux_pool",
+                                                 "indirect_flux_vpls",
+                                                 "cache",
+                                                 "ground_plane",
+                                                 "guard_band"};
+
+static bool sameLight(const SpotLight& a, const SpotLight& b) {
+    return a.position == b.position && a.direction == b.direction && a.color == b.color &&
+           a.intensity == b.intensity && a.innerConeAngle == b.innerConeAngle &&
+           a.outerConeAngle == b.outerConeAngle && a.radius == b.radius;
+}
+
+void Renderer::takeDrawn(Renderer& previous) {
+    // Drawn for the light and the objects where this renderer has them, unsealed (a sealed light
+    // draws no flux), and not to be drawn again at the old renderer's next frame.
+    if (previous.seal_ || !sameLight(previous.light_, light_) ||
+        previous.transforms_ != transforms_)
+        return;
+    for (const char* name : kDrawnSettings)
+        if (settingValue(previous.builtSettings_, name) != settingValue(builtSettings_, name))
+            return;
+    // Each group of images with the flag that has the frame draw them; a group taken whole, or
+    // drawn anew.
+    const struct {
+        bool Renderer::*stale;
+        std::vector<std::string> images;
+    } groups[] = {{&Renderer::rsmStale_,
+                   {"rsm.vpls", "rsm.depth", "shadow_map.depth", "shadow_map_back.depth",
+                    "light_depth_min", "indirect.vpl_position", "indirect.vpl_normal",
+                    "indirect.vpl_flux", "indirect.flux_pyramid"}},
+                  {&Renderer::skyMapsStale_, {"sky.maps"}},
+                  {&Renderer::voxelsStale_,
+                   {"world.voxels", "world.voxel_distance", "world.voxel_distance_xy"}}};
+    for (const auto& group : groups) {
+        if (previous.*group.stale) continue;
+        bool whole = true;
+        for (const std::string& name : group.images)
+            if (graph_->find(name).valid() != previous.graph_->find(name).valid() ||
+                (graph_->find(name).valid() && !graph_->adopt(name, *previous.graph_)))
+                whole = false;
+        if (!whole) continue;
+        this->*group.stale = false;
+        tookDrawn_ = true;
+    }
+    if (!voxelsStale_) worldGrid_ = previous.worldGrid_;
 }
 
 Renderer::~Renderer() {
@@ -124,6 +206,7 @@ void Renderer::release() {
     vkDeviceWaitIdle(ctx_.device);
     build_.reset();
     graph_.reset();
+    pipelines_.reset();
 }
 
 std::vector<glm::mat4> Renderer::gpuTransforms() const {
@@ -185,8 +268,7 @@ void Renderer::updateUniforms(const Camera& worldCamera) {
         peak > kLargestUnscaledRadiance ? std::exp2(std::ceil(std::log2(peak / 1024.0f))) : 1.0f;
     u.radianceScale = glm::vec4(scale, 0.0f, 0.0f, 0.0f);
     // A sealed light (updateSeal) lights nothing the camera sees: nothing it emits is drawn.
-    u.lightColor =
-        glm::vec4(seal_ ? glm::vec3(0.0f) : emitted / scale, std::cos(l.innerConeAngle));
+    u.lightColor = glm::vec4(seal_ ? glm::vec3(0.0f) : emitted / scale, std::cos(l.innerConeAngle));
     u.lightFrustum =
         glm::vec4(light.znear, light.zfar, light.tanHalfFov, float(build_->rsmSize.width));
     u.skyZenith = glm::vec4(scene_.sky.zenith / scale, 0.0f);
@@ -240,6 +322,8 @@ void Renderer::renderFrame(const Camera& camera) {
     cutRequested_ = false;
     previousCamera_ = camera;
     updateSeal(camera);
+    // Images taken from an unsealed renderer (takeDrawn) do not hold a sealed light's.
+    if (frameIndex_ == 0 && tookDrawn_ && seal_) rsmStale_ = skyMapsStale_ = voxelsStale_ = true;
     updateUniforms(camera);
     lastFrame_ = decideFrame();
     lastSubmission_ =
@@ -256,15 +340,15 @@ void Renderer::renderFrame(const Camera& camera) {
 }
 
 void Renderer::updateSeal(const Camera& camera) {
-    if (!sealStale_ && camera.position == sealCamera_.position &&
-        camera.yfov == sealCamera_.yfov && camera.znear == sealCamera_.znear)
+    if (!sealStale_ && camera.position == sealCamera_.position && camera.yfov == sealCamera_.yfov &&
+        camera.znear == sealCamera_.znear)
         return;
     // The rays the frame casts start on the near plane of its frustum, which the guard band
     // widens (updateUniforms).
     const VkExtent2D size = build_->size, output = build_->output().extent;
     Camera widened = camera;
-    widened.yfov = 2.0f * std::atan(std::tan(0.5f * camera.yfov) * float(size.height) /
-                                    float(output.height));
+    widened.yfov =
+        2.0f * std::atan(std::tan(0.5f * camera.yfov) * float(size.height) / float(output.height));
     std::optional<Seal> seal =
         seals_.find(light_, widened, float(size.width) / float(size.height), transforms_);
     sealStale_ = false;

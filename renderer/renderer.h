@@ -41,7 +41,22 @@ class Renderer {
 public:
     // Throws InputError for absurd options (size 0, beyond the device's limit, unknown view).
     Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& options);
+    // A renderer made anew from `previous`'s parts, for a change of settings: `scene` is
+    // previous's with other settings (or light, or camera): the same meshes, materials, textures
+    // and instances, whose copy on the device it takes over, with the pipelines previous made
+    // (vk/pipeline_store.h), which its passes take where their shaders, layouts and
+    // specializations are unchanged. Everything else starts anew: its frames are those of a
+    // renderer made from nothing, bit for bit. `previous` is checked against `options` first
+    // (InputError, and previous is untouched); past that, it is left empty, to be destroyed.
+    Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& options,
+             Renderer& previous);
     ~Renderer();
+    // Whether another renderer took this one's parts (above): only destruction is left.
+    bool emptied() const { return !sceneGpu_; }
+    // Pipelines made by this renderer and those it took its parts from, and times one was
+    // handed to a pass again (a test's measure of what a change of settings compiled).
+    size_t pipelinesMade() const { return pipelines_->made(); }
+    size_t pipelinesReused() const { return pipelines_->reused(); }
 
     // Renders one frame from `camera`, waits for it and collects its pass timings.
     void renderFrame(const Camera& camera);
@@ -117,6 +132,8 @@ public:
     const graph::FrameGraph& frameGraph() const { return *graph_; }
 
 private:
+    Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& options,
+             Renderer* previous);
     // The image readImage(name) downloads (a pair's side the last frame wrote), or none; the
     // cache whose "<effect>.meta" `name` is (composed of two images), or none.
     graph::ImageRef imageNamed(const std::string& name) const;
@@ -127,17 +144,24 @@ private:
                                         std::optional<VkRect2D> area);
     void updateUniforms(const Camera& camera);
     void updateSeal(const Camera& camera); // seal_ for this frame's camera
-    void lightChanged(); // what a change of the light restarts (setLight)
+    void lightChanged();                   // what a change of the light restarts (setLight)
     // What this frame runs and with which patterns (frame_state.h), once the camera is known.
     FrameState decideFrame();
     bool startsAfresh(const Camera& camera) const;
     std::vector<glm::mat4> gpuTransforms() const; // transforms_, moved to the GPU's origin
     void uploadTransforms();                      // gpuTransforms() to the scene's draws
     void release(); // what the destructor gives back, also when the constructor fails
+    // The taking constructor's: the images previous drew only once (the light's maps, the sky
+    // maps, the voxel grid) taken over where this frame would draw the same.
+    void takeDrawn(Renderer& previous);
 
     vk::Context& ctx_;
     const Scene& scene_;
+    // scene_'s settings when this renderer was made (a caller such as the viewer may change the
+    // scene's before making the next renderer from this one's parts: takeDrawn compares these).
+    const Settings builtSettings_;
     std::unique_ptr<SceneGpu> sceneGpu_;
+    std::unique_ptr<vk::PipelineStore> pipelines_; // outlives build_, which takes from it
     std::unique_ptr<graph::FrameGraph> graph_;
     std::unique_ptr<FrameBuild> build_;
     SpotLight light_;
@@ -152,6 +176,7 @@ private:
     bool voxelsStale_ = true;       // the light or an object moved since the voxel grid was drawn
     bool lightMoved_ = false;       // the light changed since the last frame
     bool worldCacheEmpty_ = true;   // no frame has filled the world cache's table yet
+    bool tookDrawn_ = false;        // takeDrawn kept some of them
     int view_ = 0;                  // what the composite shows (its place in kViews)
     FrameState lastFrame_;          // what the last frame ran
     std::vector<glm::mat4> transforms_; // where the instances stand
@@ -168,9 +193,9 @@ private:
     glm::dvec3 origin_{0.0}; // world point at the GPU's origin (renderer.cpp: gpuOrigin)
     LightSeals seals_;
     std::optional<Seal> seal_;
-    bool sealStale_ = true;  // the light or an object moved since seal_ was decided
+    bool sealStale_ = true; // the light or an object moved since seal_ was decided
     bool sealWarned_ = false;
-    Camera sealCamera_;      // the camera seal_ was decided for
+    Camera sealCamera_; // the camera seal_ was decided for
 };
 
 } // namespace ssgi

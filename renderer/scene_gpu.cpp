@@ -3,6 +3,7 @@
 #include "shared.h"
 
 #include <cstddef>
+#include <stdexcept>
 
 namespace ssgi {
 
@@ -14,7 +15,7 @@ vk::VertexInput sceneVertexInput() {
              {3, 0, VK_FORMAT_R16G16B16A16_UNORM, offsetof(Vertex, color)}}};
 }
 
-SceneGpu::SceneGpu(vk::Context& ctx, const Scene& scene) : ctx_(ctx), scene_(scene) {
+SceneGpu::SceneGpu(vk::Context& ctx, const Scene& scene) : ctx_(ctx), scene_(&scene) {
     for (const Instance& instance : scene.instances)
         transforms_.push_back(instance.transform);
     const uint32_t limit = ctx.properties.limits.maxImageDimension2D;
@@ -102,17 +103,27 @@ SceneGpu::~SceneGpu() {
         vkDestroySampler(ctx_.device, entry.second, nullptr);
 }
 
+void SceneGpu::rebind(const Scene& scene) {
+    if (scene.meshes.size() != scene_->meshes.size() ||
+        scene.materials.size() != scene_->materials.size() ||
+        scene.textures.size() != scene_->textures.size() ||
+        scene.instances.size() != scene_->instances.size())
+        throw std::logic_error("SceneGpu::rebind: a scene of other meshes, materials, textures "
+                               "or instances than the one on the device");
+    scene_ = &scene;
+}
+
 void SceneGpu::draw(VkCommandBuffer cmd, const vk::Pipeline& opaque, const vk::Pipeline& masked,
                     VkBuffer frameUniforms, VkDeviceSize frameUniformsSize,
                     const std::function<void(vk::Descriptors&)>& extra,
                     const std::vector<bool>& only) const {
     VkPipeline bound = VK_NULL_HANDLE;
-    for (size_t i = 0; i < scene_.instances.size(); ++i) {
+    for (size_t i = 0; i < scene_->instances.size(); ++i) {
         if (!only.empty() && !only[i]) continue;
-        const Instance& instance = scene_.instances[i];
+        const Instance& instance = scene_->instances[i];
         const MeshBuffers& mesh = meshes_[instance.mesh];
         if (mesh.indexCount == 0) continue;
-        const Material& material = scene_.materials[scene_.meshes[instance.mesh].material];
+        const Material& material = scene_->materials[scene_->meshes[instance.mesh].material];
         const vk::Pipeline& pipeline = material.alphaMask ? masked : opaque;
         if (pipeline.pipeline != bound) {
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline);
@@ -124,7 +135,7 @@ void SceneGpu::draw(VkCommandBuffer cmd, const vk::Pipeline& opaque, const vk::P
         constants.baseColorFactor = material.baseColorFactor;
         constants.material = {textured ? 1.0f : 0.0f,
                               material.alphaMask ? material.alphaCutoff : 0.0f,
-                              scene_.meshes[instance.mesh].vertexColors ? 1.0f : 0.0f, 0.0f};
+                              scene_->meshes[instance.mesh].vertexColors ? 1.0f : 0.0f, 0.0f};
         vk::Descriptors descriptors;
         descriptors.uniformBuffer(0, frameUniforms, frameUniformsSize);
         if (pipeline.bindingCount > 1) {

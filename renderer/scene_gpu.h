@@ -42,6 +42,10 @@ public:
               const std::vector<bool>& only = {}) const;
     // Places the instances (moving objects) for the draws recorded from now on.
     void setTransforms(const std::vector<glm::mat4>& transforms) { transforms_ = transforms; }
+    // Draws `scene` from now on: a scene with the meshes, materials, textures and instances of
+    // the one this was made from (a copy with other settings, light or camera), which the
+    // device's copy goes on standing for. std::logic_error for one of other counts.
+    void rebind(const Scene& scene);
 
 private:
     struct MeshBuffers {
@@ -49,7 +53,7 @@ private:
         uint32_t indexCount = 0;
     };
     vk::Context& ctx_;
-    const Scene& scene_;
+    const Scene* scene_;
     std::vector<MeshBuffers> meshes_;
     std::vector<glm::mat4> transforms_; // per instance
     std::vector<vk::Image> textures_;

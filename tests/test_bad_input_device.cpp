@@ -116,6 +116,25 @@ TEST_F(BadInputOnDevice, BeyondTheDeviceLimits) {
     scene.settings.shadow_map_size = limit + 1.0; // past checkSetting, as a caller could
     EXPECT_THROW(Renderer(test::context(), scene, {16, 16, "final"}), InputError);
 }
+
+// A voxel grid within the setting's range whose image is wider than this device allows (512 a
+// side is 32768 texels wide; lavapipe's limit is 16384) is refused with the most it can take; it
+// was an image the validation layer refused.
+TEST_F(BadInputOnDevice, AVoxelGridBeyondTheDeviceLimitSaysTheMost) {
+    Scene scene = loadScene(test::sourcePath("tests/scenes/empty-box.json"));
+    scene.settings.indirect_method = 3;
+    scene.settings.world_voxels = 512;
+    if (2 * 128 * 128 <= test::context().properties.limits.maxImageDimension2D)
+        GTEST_SKIP() << "this device holds a 512-voxel grid's image";
+    try {
+        Renderer renderer(test::context(), scene, {16, 16, "final"});
+        ADD_FAILURE() << "a 512-voxel grid was made";
+    } catch (const InputError& error) {
+        EXPECT_NE(std::string(error.what()).find("world_voxels 512 needs a 32768x128"),
+                  std::string::npos)
+            << error.what();
+    }
+}
 // An image size the device allows in each dimension but whose images its memory cannot hold
 // says what it needs and what there is (it was the bare text of a failed vkBindImageMemory).
 TEST_F(BadInputOnDevice, ImageSizeBeyondTheDeviceMemory) {

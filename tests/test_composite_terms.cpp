@@ -20,7 +20,8 @@ TEST_F(CompositeTermsTest, OnlyATermsViewOnceAndInTheOrderGiven) {
     const Scene scene = loadScene(test::sourcePath("tests/scenes/empty-box.json"));
     SceneGpu sceneGpu(test::context(), scene);
     graph::FrameGraph graph(test::context());
-    FrameBuild build(test::context(), graph, sceneGpu, scene, {16, 16}, 0, {16, 16},
+    vk::PipelineStore pipelines(test::context());
+    FrameBuild build(test::context(), graph, sceneGpu, pipelines, scene, {16, 16}, 0, {16, 16},
                      glm::dvec3(0.0));
     const graph::ImageRef a =
         graph.createImage("a", VK_FORMAT_R16G16B16A16_SFLOAT, {16, 16}, VK_IMAGE_USAGE_SAMPLED_BIT);

@@ -93,6 +93,20 @@ ImageRef FrameGraph::find(const std::string& name) const {
     return {};
 }
 
+bool FrameGraph::adopt(const std::string& name, FrameGraph& from) {
+    const ImageRef mine = find(name), theirs = from.find(name);
+    if (!mine.valid() || !theirs.valid()) return false;
+    Resource& a = resources_[mine.index];
+    Resource& b = from.resources_[theirs.index];
+    if (a.transient || b.transient || !a.historyPair.empty() || !b.historyPair.empty() ||
+        a.image.format != b.image.format || a.image.extent.width != b.image.extent.width ||
+        a.image.extent.height != b.image.extent.height || a.image.usage != b.image.usage)
+        return false;
+    std::swap(a.image, b.image);
+    std::swap(a.state, b.state);
+    return true;
+}
+
 void FrameGraph::addPass(const std::string& name, PassKind kind, std::vector<ImageUse> uses,
                          RecordFn record, EnabledFn enabled) {
     passes_.push_back({name, kind, std::move(uses), std::move(record), std::move(enabled)});

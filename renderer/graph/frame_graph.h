@@ -154,6 +154,12 @@ public:
     // transfer source, keeping the graph's record of its state (the viewer copies the frame out).
     const vk::Image& prepareTransferSource(VkCommandBuffer cmd, ImageRef ref);
     ImageRef find(const std::string& name) const;
+    // Takes `from`'s persistent image `name` (not a history's side), its contents and state, in
+    // place of this graph's own of that name, which `from` gets back to destroy with itself:
+    // a renderer made from another's parts keeps what that one drew (Renderer's taking
+    // constructor). False, and nothing changes, where either graph lacks it, it is transient in
+    // either, or its format, extent or usage differ.
+    bool adopt(const std::string& name, FrameGraph& from);
     // Every image the graph owns (history pairs as two), with the device memory it needs.
     struct HeldImage {
         std::string name;

@@ -9,10 +9,11 @@
 namespace ssgi {
 
 FrameBuild::FrameBuild(vk::Context& ctx, graph::FrameGraph& graph, const SceneGpu& sceneGpu,
-                       const Scene& scene, VkExtent2D size, uint32_t guardBand, VkExtent2D rsmSize,
-                       const glm::dvec3& gpuOrigin)
+                       vk::PipelineStore& pipelines, const Scene& scene, VkExtent2D size,
+                       uint32_t guardBand, VkExtent2D rsmSize, const glm::dvec3& gpuOrigin)
     : ctx(ctx), graph(graph), sceneGpu(sceneGpu), scene(scene), settings(scene.settings),
-      size(size), guardBand(guardBand), rsmSize(rsmSize), gpuOrigin(gpuOrigin) {
+      size(size), guardBand(guardBand), rsmSize(rsmSize), gpuOrigin(gpuOrigin),
+      pipelines_(pipelines) {
     try {
         frameUniforms = vk::createBuffer(ctx, sizeof(shader::FrameUniforms),
                                          VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
@@ -31,36 +32,13 @@ FrameBuild::~FrameBuild() {
 }
 
 void FrameBuild::release() {
-    for (vk::Pipeline& p : pipelines_)
-        vk::destroyPipeline(ctx, p);
     for (vk::Buffer& b : buffers_)
         vk::destroyBuffer(ctx, b);
-    pipelines_.clear();
     buffers_.clear();
     vk::destroyBuffer(ctx, frameUniforms);
     vkDestroySampler(ctx.device, nearestSampler, nullptr);
     vkDestroySampler(ctx.device, linearSampler, nullptr);
     nearestSampler = linearSampler = VK_NULL_HANDLE;
-}
-
-const vk::Pipeline& FrameBuild::computePipeline(const ComputePassDesc& desc,
-                                                const std::vector<vk::LayoutBinding>& layout) {
-    std::string key = desc.shader + " push " + std::to_string(desc.pushSize) + " spec";
-    for (const vk::SpecConstant& c : desc.spec.constants)
-        key += " " + c.name + "=" + std::to_string(c.value);
-    for (const vk::LayoutBinding& b : layout)
-        key += " " + std::to_string(int(b.type)) + ":" + b.name + (b.readOnly ? ":readonly" : "");
-    const auto found = computePipelines_.find(key);
-    if (found != computePipelines_.end()) return pipelines_[found->second];
-    pipelines_.push_back(
-        vk::createComputePipeline(ctx, desc.shader, layout, desc.pushSize, desc.spec));
-    computePipelines_[key] = pipelines_.size() - 1;
-    return pipelines_.back();
-}
-
-vk::Pipeline FrameBuild::graphicsPipeline(const vk::GraphicsPipelineDesc& desc) {
-    pipelines_.push_back(vk::createGraphicsPipeline(ctx, desc));
-    return pipelines_.back();
 }
 
 void FrameBuild::addCompositeTerm(const std::string& view, graph::ImageRef image) {

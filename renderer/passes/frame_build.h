@@ -1,9 +1,9 @@
 // What every pass is built from: the device, the graph to add itself to, the scene and its copy
-// on the device, the frame's uniforms and samplers, the frame's sizes, the pipelines and buffers
-// the passes made (owned here, destroyed with it), and the cached effects' histories. Made once
-// by the Renderer with the frame's passes and left as it is from then on: what changes from frame
-// to frame is the FrameState the graph hands to every pass (frame_state.h). Owned by the
-// Renderer, so the passes' callbacks may keep a reference to it.
+// on the device, the frame's uniforms and samplers, the frame's sizes, the pipelines the passes use
+// (the Renderer's store), the buffers they made (owned here, destroyed with it), and the cached
+// effects' histories. Made once by the Renderer with the frame's passes and left as it is from then
+// on: what changes from frame to frame is the FrameState the graph hands to every pass
+// (frame_state.h). Owned by the Renderer, so the passes' callbacks may keep a reference to it.
 #pragma once
 
 #include "cache/cache.h"
@@ -12,6 +12,7 @@
 #include "scene/scene.h"
 #include "scene_gpu.h"
 #include "vk/pipeline.h"
+#include "vk/pipeline_store.h"
 #include "vk/resources.h"
 
 #include <map>
@@ -32,9 +33,10 @@ class FrameBuild {
 public:
     // The frame's uniforms and both samplers are made here; the passes are added by
     // addFramePasses (passes.h).
+    // The pipelines come from `pipelines` (the Renderer's, which may outlive this build).
     FrameBuild(vk::Context& ctx, graph::FrameGraph& graph, const SceneGpu& sceneGpu,
-               const Scene& scene, VkExtent2D size, uint32_t guardBand, VkExtent2D rsmSize,
-               const glm::dvec3& gpuOrigin);
+               vk::PipelineStore& pipelines, const Scene& scene, VkExtent2D size,
+               uint32_t guardBand, VkExtent2D rsmSize, const glm::dvec3& gpuOrigin);
     ~FrameBuild(); // the device must be idle
     FrameBuild(const FrameBuild&) = delete;
     FrameBuild& operator=(const FrameBuild&) = delete;
@@ -66,11 +68,16 @@ public:
     // the composite's slots (COMPOSITE_TERMS).
     void addCompositeTerm(const std::string& view, graph::ImageRef image);
     // A compute pipeline for `desc` (compute_pass.cpp), made once and shared by every pass that
-    // asks for the same shader, layout and specialization (the interleaved filter's two axes).
+    // asks for the same shader, layout and specialization (the interleaved filter's two axes),
+    // and by the builds of a renderer made from this one's parts (vk/pipeline_store.h).
     const vk::Pipeline& computePipeline(const ComputePassDesc& desc,
-                                        const std::vector<vk::LayoutBinding>& layout);
-    // A graphics pipeline, destroyed with the build.
-    vk::Pipeline graphicsPipeline(const vk::GraphicsPipelineDesc& desc);
+                                        const std::vector<vk::LayoutBinding>& layout) {
+        return pipelines_.compute(desc.shader, layout, desc.pushSize, desc.spec);
+    }
+    // A graphics pipeline, shared likewise.
+    const vk::Pipeline& graphicsPipeline(const vk::GraphicsPipelineDesc& desc) {
+        return pipelines_.graphics(desc);
+    }
     // A host-visible uniform buffer holding `bytes`, destroyed with the build.
     const vk::Buffer& uniformBuffer(const void* data, VkDeviceSize bytes);
     // A device buffer of `bytes` for `usage`, destroyed with the build.
@@ -80,9 +87,8 @@ public:
     const vk::Buffer& storageBuffer(VkDeviceSize bytes);
 
 private:
-    void release();                      // what the destructor gives back; idempotent
-    std::deque<vk::Pipeline> pipelines_; // a deque: computePipeline hands out references
-    std::map<std::string, size_t> computePipelines_; // computePipeline()'s, by what makes them
+    void release(); // what the destructor gives back; idempotent
+    vk::PipelineStore& pipelines_;
     std::deque<vk::Buffer> buffers_;
 };
 

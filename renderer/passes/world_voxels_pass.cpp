@@ -27,6 +27,14 @@ WorldGrid addWorldVoxelPasses(FrameBuild& build) {
         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     // Two texels a block (world_voxels.glsl).
     const VkExtent2D extent{uint32_t(2 * blocks * blocks), uint32_t(blocks)};
+    const uint32_t limit = build.ctx.properties.limits.maxImageDimension2D;
+    if (extent.width > limit) {
+        const int most = int(std::sqrt(double(limit / 2))) * WORLD_BLOCK;
+        throw InputError("world_voxels " + std::to_string(side) + " needs a " +
+                         std::to_string(extent.width) + "x" + std::to_string(extent.height) +
+                         " image of the voxel grid, beyond this device's largest 2D image (" +
+                         std::to_string(limit) + "): at most " + std::to_string(most) + " here");
+    }
     grid.voxels = build.graph.createImage("world.voxels", VK_FORMAT_R32_UINT, extent, usage, true);
     const graph::EnabledFn onVoxelFrames = [](const FrameState& frame) { return frame.drawVoxels; };
     using graph::Use;

@@ -60,12 +60,12 @@ void Viewer::applyPanelRequests() {
         const Settings previous = scene_.settings;
         scene_.settings = p.settings;
         try {
-            rebuildRenderer();
+            rebuildRenderer(Rebuild::Settings);
             p.message.clear();
         } catch (const InputError& e) {
             p.message = e.what();
             scene_.settings = p.settings = previous;
-            rebuildRenderer();
+            rebuildRenderer(Rebuild::Settings); // from the old renderer, if it is whole
         }
         p.settingsChanged = p.viewChanged = false;
     }

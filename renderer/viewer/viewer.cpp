@@ -100,18 +100,22 @@ VkRect2D Viewer::sceneRect() const {
     return {{int32_t(panel), 0}, {std::max(1u, window.width - panel), std::max(1u, window.height)}};
 }
 
-void Viewer::rebuildRenderer(bool resized) {
+void Viewer::rebuildRenderer(Rebuild why) {
     // A resize keeps the caches (resampled to the new size); anything else starts them over.
-    std::unique_ptr<Renderer> previous = resized ? std::move(renderer_) : nullptr;
+    std::unique_ptr<Renderer> previous = why != Rebuild::Anew ? std::move(renderer_) : nullptr;
     renderer_.reset();
     const VkRect2D rect = sceneRect();
     renderSize_ = {std::max(1u, uint32_t(std::lround(rect.extent.width * options_.renderScale))),
                    std::max(1u, uint32_t(std::lround(rect.extent.height * options_.renderScale)))};
     scene_.light = panel_.light; // the renderer starts from the scene's light
-    renderer_ = std::make_unique<Renderer>(
-        *ctx_, scene_,
-        RenderOptions{renderSize_.width, renderSize_.height, viewNames()[size_t(panel_.view)]});
-    if (previous) renderer_->continueFrom(*previous);
+    const RenderOptions options{renderSize_.width, renderSize_.height,
+                                viewNames()[size_t(panel_.view)]};
+    if (why == Rebuild::Settings && previous && !previous->emptied()) {
+        renderer_ = std::make_unique<Renderer>(*ctx_, scene_, options, *previous);
+    } else {
+        renderer_ = std::make_unique<Renderer>(*ctx_, scene_, options);
+        if (why == Rebuild::Resized && previous) renderer_->continueFrom(*previous);
+    }
     previous.reset();
     panel_.cachedEffects = renderer_->cachedEffects();
     panel_.cacheAvailable = !panel_.cachedEffects.empty();
@@ -230,7 +234,7 @@ int Viewer::run() {
         if (!sameExtent({uint32_t(std::lround(rect.extent.width * options_.renderScale)),
                          uint32_t(std::lround(rect.extent.height * options_.renderScale))},
                         renderSize_))
-            rebuildRenderer(true);
+            rebuildRenderer(Rebuild::Resized);
 
         const Camera camera = nextCamera(seconds);
         dragLight();

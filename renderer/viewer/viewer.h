@@ -51,7 +51,11 @@ public:
 
 private:
     void loadScene(const std::string& path);
-    void rebuildRenderer(bool resized = false);
+    // Anew: the scene loaded; Resized: the window's size changed (the caches resampled);
+    // Settings: the panel's settings changed (the renderer made from the old one's parts: its
+    // pipelines, the scene on the device and what it drew once stay where the change allows).
+    enum class Rebuild { Anew, Resized, Settings };
+    void rebuildRenderer(Rebuild why = Rebuild::Anew);
     VkRect2D sceneRect() const;
     Camera nextCamera(float seconds);
     void dragLight();
