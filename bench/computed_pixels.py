@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Which passes run on a moving frame, and how much of each cached effect they compute: along a
 scene's camera path, the share of the covered pixels each cached effect computed (its raw image's
-alpha is 1 there, 0 where it reused its cache) and every pass's GPU milliseconds, as means over
+alpha is 1 there, 0 where it reused its cache) and every pass's GPU milliseconds and the compute
+invocations it dispatched (what a GPU pays for, skipped pixels' lanes included), as means over
 the frames after the first four. Settings as `--set` takes them.
 
     PYTHONPATH=build/python python3 bench/computed_pixels.py scenes/bunny.json --frames 48 \\
@@ -38,7 +39,7 @@ def main():
     effects = [e for e in EFFECTS if e + ".history" in names]
     renderer = ssgi.Renderer(scene, size=(width, height), keep=effects)
     computed = {e: [] for e in effects}
-    passes = {}
+    passes, invocations = {}, {}
     for f in range(args.frames):
         renderer.set_time(duration * f / max(args.frames - 1, 1))
         renderer.render(1)
@@ -48,16 +49,22 @@ def main():
         for e in effects:
             raw = renderer.read(e)[..., 3]
             computed[e].append(float(((raw > 0.5) & covered).sum()) / max(int(covered.sum()), 1))
-        for name, ms in renderer.profile()["passes"].items():
+        profile = renderer.profile()
+        for name, ms in profile["passes"].items():
             passes.setdefault(name, []).append(ms)
+        for name, count in profile["invocations"].items():
+            invocations.setdefault(name, []).append(count)
     print("computed share of the covered pixels (mean over frames 4-%d):" % (args.frames - 1))
     for e, shares in computed.items():
         if shares:
             print("  %-16s %5.1f%%" % (e, 100.0 * statistics.mean(shares)))
-    print("GPU ms per pass (mean):")
+    print("GPU ms and compute invocations per pass (means; a pass that ran in none of the frames "
+          "is left out):")
     for name, ms in passes.items():
-        print("  %-24s %7.2f" % (name, statistics.mean(ms)))
-    print("  %-24s %7.2f" % ("sum", sum(statistics.mean(ms) for ms in passes.values())))
+        print("  %-24s %7.2f %10.0f" % (name, statistics.mean(ms),
+                                        statistics.mean(invocations[name])))
+    print("  %-24s %7.2f %10.0f" % ("sum", sum(statistics.mean(ms) for ms in passes.values()),
+                                    sum(statistics.mean(n) for n in invocations.values())))
 
 
 if __name__ == "__main__":

@@ -10,11 +10,15 @@ py::dict RendererObject::profile() const {
     open();
     FrameProfile p;
     locked([&] { p = renderer_->lastFrameProfile(); });
-    py::dict passes;
+    py::dict passes, invocations;
     for (const PassTiming& pass : p.passes)
-        if (pass.ran) passes[py::str(pass.name)] = pass.milliseconds;
+        if (pass.ran) {
+            passes[py::str(pass.name)] = pass.milliseconds;
+            invocations[py::str(pass.name)] = pass.invocations;
+        }
     py::dict d;
     d["passes"] = passes;
+    d["invocations"] = invocations;
     d["sum_ms"] = p.passSumMs();
     d["host_ms"] = p.hostMs;
     return d;
@@ -102,7 +106,8 @@ void defineRenderer(py::module_& m) {
             "scene", [](const R& r) { return r.scene(); }, "The scene the renderer renders.")
         .def("cut", &R::cut, "Starts every cached history afresh at the next frame.")
         .def("profile", &R::profile,
-             "The last frame's {'passes': {name: ms}, 'sum_ms', 'host_ms'} (docs/profiling.md).")
+             "The last frame's {'passes': {name: ms}, 'invocations': {name: compute invocations\n"
+             "dispatched}, 'sum_ms', 'host_ms'} (docs/profiling.md).")
         .def("memory", &R::memory,
              "What the frame graph holds: 'images' by name in bytes, 'shared_bytes', "
              "'shared_images', 'held_bytes'.")

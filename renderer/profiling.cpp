@@ -11,9 +11,20 @@ namespace ssgi {
 
 namespace {
 
-PassStatistics statistics(const std::string& name, std::vector<double> values) {
+template <class T> double median(std::vector<T> values) {
+    if (values.empty()) return 0.0;
+    std::sort(values.begin(), values.end());
+    const size_t n = values.size();
+    return n % 2 ? double(values[n / 2])
+                 : 0.5 * (double(values[n / 2 - 1]) + double(values[n / 2]));
+}
+
+PassStatistics statistics(const std::string& name, std::vector<double> values,
+                          std::vector<uint64_t> invocations = {}) {
     PassStatistics s{name};
     s.framesMs = values;
+    s.medianInvocations = median(invocations);
+    s.framesInvocations = std::move(invocations);
     if (values.empty()) return s;
     std::sort(values.begin(), values.end());
     const size_t n = values.size();
@@ -26,12 +37,24 @@ PassStatistics statistics(const std::string& name, std::vector<double> values) {
 // A row of the table, its name left-aligned in a column `width` wide.
 std::string row(const PassStatistics& s, int width) {
     char line[256];
-    std::snprintf(line, sizeof line, "%-*s %10.3f %10.3f %10.3f\n", width, s.name.c_str(),
-                  s.medianMs, s.minMs, s.maxMs);
+    // Invocations: none dispatched in any timed frame (a graphics pass, or the host's row) is "-".
+    const bool any = std::any_of(s.framesInvocations.begin(), s.framesInvocations.end(),
+                                 [](uint64_t n) { return n > 0; });
+    char invocations[32] = "-";
+    if (any) std::snprintf(invocations, sizeof invocations, "%.0f", s.medianInvocations);
+    std::snprintf(line, sizeof line, "%-*s %10.3f %10.3f %10.3f %12s\n", width, s.name.c_str(),
+                  s.medianMs, s.minMs, s.maxMs, invocations);
     return line;
 }
 
 } // namespace
+
+uint64_t FrameProfile::invocations() const {
+    uint64_t sum = 0;
+    for (const PassTiming& p : passes)
+        sum += p.invocations;
+    return sum;
+}
 
 double FrameProfile::passSumMs() const {
     double sum = 0.0;
@@ -45,15 +68,19 @@ ProfileSummary ProfileLog::summary() const {
     s.warmupFrames = std::min<uint32_t>(warmup_, uint32_t(frames_.size()));
     std::vector<std::string> order;
     std::map<std::string, std::vector<double>> perPass;
+    std::map<std::string, std::vector<uint64_t>> perPassInvocations;
     std::vector<double> sums, hosts;
+    std::vector<uint64_t> invocations;
     for (size_t f = s.warmupFrames; f < frames_.size(); ++f) {
         const FrameProfile& frame = frames_[f];
         for (const PassTiming& p : frame.passes) {
             if (!perPass.count(p.name)) order.push_back(p.name);
             perPass[p.name].push_back(p.milliseconds);
+            perPassInvocations[p.name].push_back(p.invocations);
         }
         const double sum = frame.passSumMs();
         sums.push_back(sum);
+        invocations.push_back(frame.invocations());
         hosts.push_back(frame.hostMs);
         if (frame.hostMs > 0.0) {
             s.worstCoverage = std::min(s.worstCoverage, sum / frame.hostMs);
@@ -64,8 +91,8 @@ ProfileSummary ProfileLog::summary() const {
     }
     s.timedFrames = uint32_t(sums.size());
     for (const std::string& name : order)
-        s.passes.push_back(statistics(name, perPass[name]));
-    s.passSum = statistics("sum of passes", sums);
+        s.passes.push_back(statistics(name, perPass[name], perPassInvocations[name]));
+    s.passSum = statistics("sum of passes", sums, invocations);
     s.host = statistics("host clock", hosts);
     return s;
 }
@@ -83,8 +110,8 @@ std::string ProfileLog::table(const std::string& device) const {
     int width = 18; // the names' column: as wide as the longest
     for (const PassStatistics& p : s.passes)
         width = std::max(width, int(std::min<size_t>(p.name.size(), 120)));
-    std::snprintf(line, sizeof line, "%-*s %10s %10s %10s\n", width, "pass", "median ms", "min",
-                  "max");
+    std::snprintf(line, sizeof line, "%-*s %10s %10s %10s %12s\n", width, "pass", "median ms",
+                  "min", "max", "invocations");
     out += line;
     for (const PassStatistics& p : s.passes)
         out += row(p, width);

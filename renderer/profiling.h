@@ -17,21 +17,28 @@ struct PassTiming {
     double milliseconds = 0.0;
     double startMs = 0.0, endMs = 0.0;
     bool ran = true;
+    // Compute-shader invocations the pass dispatched: its workgroups times their size, lanes
+    // past the image's edge and skipped pixels included, as a GPU pays for them (a pipeline
+    // statistics query; 0 for a graphics pass, and where the device has no such queries).
+    uint64_t invocations = 0;
 };
 
 // One frame: its passes, and the host's clock from the submission to the fence.
 struct FrameProfile {
     uint32_t frame = 0;
     std::vector<PassTiming> passes;
-    double hostMs = 0.0;       // submission to fence, on the host's steady clock
-    double hostSubmitUs = 0.0; // when it was submitted, microseconds on that clock
-    double passSumMs() const;  // the passes added up
+    double hostMs = 0.0;          // submission to fence, on the host's steady clock
+    double hostSubmitUs = 0.0;    // when it was submitted, microseconds on that clock
+    double passSumMs() const;     // the passes added up
+    uint64_t invocations() const; // every pass's invocations added up
 };
 
 struct PassStatistics {
     std::string name;
     double medianMs = 0.0, minMs = 0.0, maxMs = 0.0;
-    std::vector<double> framesMs; // each timed frame's, in order
+    std::vector<double> framesMs;            // each timed frame's, in order
+    double medianInvocations = 0.0;          // PassTiming::invocations, the timed frames' median
+    std::vector<uint64_t> framesInvocations; // each timed frame's
 };
 
 struct ProfileSummary {

@@ -217,6 +217,39 @@ TEST_F(RenderTest, FrameReportsEveryPassInOrderWithTimings) {
     EXPECT_EQ(found, 1u);
 }
 
+// The profile counts the compute invocations each pass dispatched (a pipeline statistics query a
+// pass): a full-screen pass covers the image in whole workgroups of at most 16 x 16, skipped
+// lanes and all; a graphics pass and a pass turned off count none.
+TEST_F(RenderTest, EachPassCountsTheInvocationsItDispatched) {
+    if (!test::context().pipelineStatistics)
+        GTEST_SKIP() << "this device has no pipeline statistics queries";
+    const Scene scene = loadScene(test::sourcePath("scenes/cornell-box.json"));
+    Renderer renderer(test::context(), scene, {20, 12, "final"});
+    renderer.renderFrame(scene.camera);
+    renderer.renderFrame(scene.camera); // the RSM and the maps are not drawn again
+    size_t screenPasses = 0, turnedOff = 0;
+    for (const auto& t : renderer.timings()) {
+        if (t.name == "composite" || t.name == "direct" || t.name == "temporal") {
+            ++screenPasses;
+            EXPECT_GE(t.invocations, 20u * 12u) << t.name;
+            EXPECT_LE(t.invocations, 32u * 16u) << t.name;
+        }
+        if (t.name == "gbuffer") EXPECT_EQ(t.invocations, 0u);
+        if (!t.ran) {
+            ++turnedOff;
+            EXPECT_EQ(t.invocations, 0u) << t.name;
+        }
+    }
+    EXPECT_EQ(screenPasses, 3u);
+    EXPECT_GT(turnedOff, 0u);
+    EXPECT_EQ(renderer.lastFrameProfile().invocations(), [&] {
+        uint64_t sum = 0;
+        for (const auto& t : renderer.timings())
+            sum += t.invocations;
+        return sum;
+    }());
+}
+
 // The default frame's transient images share memory: their block is about half of what they
 // need apart (at 1920x1080 on the bunny, 87.0 of 181.7 MiB), the effects' raw outputs among
 // those that take turns, and no history is in it.

@@ -166,7 +166,8 @@ class Renderer:
     def cut(self) -> None:
         """Starts every cached history afresh at the next frame."""
     def profile(self) -> dict:
-        """The last frame's {'passes': {name: ms}, 'sum_ms', 'host_ms'} (docs/profiling.md)."""
+        """The last frame's {'passes': {name: ms}, 'invocations': {name: compute invocations
+        dispatched}, 'sum_ms', 'host_ms'} (docs/profiling.md)."""
     def memory(self) -> dict:
         """What the frame graph holds: 'images' by name in bytes, 'shared_bytes', 'shared_images',
         'held_bytes'.

@@ -201,7 +201,9 @@ int run(int argc, char** argv) {
                               {"median_ms", s.medianMs},
                               {"min_ms", s.minMs},
                               {"max_ms", s.maxMs},
-                              {"frames_ms", s.framesMs}});
+                              {"frames_ms", s.framesMs},
+                              {"median_invocations", s.medianInvocations},
+                              {"frames_invocations", s.framesInvocations}});
             total += s.medianMs;
         }
         nlohmann::json j = {{"scene", common.scene},
@@ -213,6 +215,7 @@ int run(int argc, char** argv) {
                             {"warmup_frames", summary.warmupFrames},
                             {"passes", passes},
                             {"total_median_ms", total},
+                            {"median_invocations", summary.passSum.medianInvocations},
                             {"sum_of_passes_median_ms", summary.passSum.medianMs},
                             {"host_median_ms", summary.host.medianMs},
                             {"host_frames_ms", summary.host.framesMs},

@@ -32,6 +32,7 @@ FrameGraph::~FrameGraph() {
         vk::destroyImage(ctx_, r.image);
     if (sharedBlock_) vkFreeMemory(ctx_.device, sharedBlock_, nullptr);
     if (queryPool_) vkDestroyQueryPool(ctx_.device, queryPool_, nullptr);
+    if (statisticsPool_) vkDestroyQueryPool(ctx_.device, statisticsPool_, nullptr);
 }
 
 uint32_t FrameGraph::addResource(const std::string& name, VkFormat format, VkExtent2D extent,
@@ -149,9 +150,17 @@ void FrameGraph::record(VkCommandBuffer cmd, const FrameState& frame) {
         info.queryType = VK_QUERY_TYPE_TIMESTAMP;
         info.queryCount = queriesNeeded;
         VK_CHECK(vkCreateQueryPool(ctx_.device, &info, nullptr, &queryPool_));
+        if (ctx_.pipelineStatistics) {
+            if (statisticsPool_) vkDestroyQueryPool(ctx_.device, statisticsPool_, nullptr);
+            info.queryType = VK_QUERY_TYPE_PIPELINE_STATISTICS;
+            info.pipelineStatistics = VK_QUERY_PIPELINE_STATISTIC_COMPUTE_SHADER_INVOCATIONS_BIT;
+            info.queryCount = queriesNeeded / 2;
+            VK_CHECK(vkCreateQueryPool(ctx_.device, &info, nullptr, &statisticsPool_));
+        }
         queryCapacity_ = queriesNeeded;
     }
     vkCmdResetQueryPool(cmd, queryPool_, 0, queryCapacity_);
+    if (statisticsPool_) vkCmdResetQueryPool(cmd, statisticsPool_, 0, queryCapacity_ / 2);
 
     std::vector<bool> touched(resources_.size(), false);
     lastBarriers_.clear();
@@ -163,6 +172,10 @@ void FrameGraph::record(VkCommandBuffer cmd, const FrameState& frame) {
             // Both stamps together: the pass spans nothing, where it would have stood.
             vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queryPool_, 2 * p);
             vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queryPool_, 2 * p + 1);
+            if (statisticsPool_) { // and no invocations
+                vkCmdBeginQuery(cmd, statisticsPool_, p, 0);
+                vkCmdEndQuery(cmd, statisticsPool_, p);
+            }
             continue;
         }
         ran_[p] = true;
@@ -202,7 +215,9 @@ void FrameGraph::record(VkCommandBuffer cmd, const FrameState& frame) {
             ctx_.cmdBeginLabel(cmd, &label);
         }
         writeTimestamp(cmd, 2 * p, pass.name);
+        if (statisticsPool_) vkCmdBeginQuery(cmd, statisticsPool_, p, 0);
         pass.record(PassContext{cmd, frame, *this, pass.name, pass.uses});
+        if (statisticsPool_) vkCmdEndQuery(cmd, statisticsPool_, p);
         if (logRecording_) lastCommands_.push_back({RecordedCommand::Kind::Pass, pass.name});
         writeTimestamp(cmd, 2 * p + 1, pass.name);
         if (ctx_.cmdEndLabel) ctx_.cmdEndLabel(cmd);
@@ -215,6 +230,12 @@ void FrameGraph::endFrame() {
         VK_CHECK(vkGetQueryPoolResults(
             ctx_.device, queryPool_, 0, uint32_t(stamps.size()), stamps.size() * sizeof(uint64_t),
             stamps.data(), sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+    std::vector<uint64_t> invocations(passes_.size(), 0);
+    if (statisticsPool_ && !invocations.empty())
+        VK_CHECK(vkGetQueryPoolResults(
+            ctx_.device, statisticsPool_, 0, uint32_t(invocations.size()),
+            invocations.size() * sizeof(uint64_t), invocations.data(), sizeof(uint64_t),
+            VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
     const double period = ctx_.properties.limits.timestampPeriod; // ns per tick
     timings_.clear();
     const uint64_t first = stamps.empty() ? 0 : stamps[0];
@@ -222,7 +243,8 @@ void FrameGraph::endFrame() {
     for (uint32_t p = 0; p < passes_.size(); ++p) {
         const bool ran = p < ran_.size() && ran_[p];
         const double start = ms(stamps[2 * p]), end = ms(stamps[2 * p + 1]);
-        timings_.push_back({passes_[p].name, ran ? end - start : 0.0, start, end, ran});
+        timings_.push_back(
+            {passes_[p].name, ran ? end - start : 0.0, start, end, ran, invocations[p]});
     }
     for (History& h : histories_) {
         h.currentSlot = 1 - h.currentSlot;

@@ -224,6 +224,9 @@ private:
     std::vector<bool> ran_; // per pass, in the last recorded frame
     VkQueryPool queryPool_ = VK_NULL_HANDLE;
     uint32_t queryCapacity_ = 0;
+    // One compute-invocation count a pass (PassTiming::invocations), where the device has
+    // pipeline statistics queries.
+    VkQueryPool statisticsPool_ = VK_NULL_HANDLE;
     bool allocated_ = false; // allocateTransients() has run
     bool keepAll_ = false;
     VkDeviceMemory sharedBlock_ = VK_NULL_HANDLE;

@@ -294,6 +294,11 @@ Context::Context(const ContextOptions& options) {
     features2.features.shaderStorageImageWriteWithoutFormat = VK_TRUE;
     // The world cache's voxel grid is marked from fragment shaders (world_voxelize.frag).
     features2.features.fragmentStoresAndAtomics = VK_TRUE;
+    // Where the device has them: the invocations each pass dispatched (FrameGraph, --profile).
+    VkPhysicalDeviceFeatures available;
+    vkGetPhysicalDeviceFeatures(physicalDevice, &available);
+    pipelineStatistics = available.pipelineStatisticsQuery == VK_TRUE;
+    features2.features.pipelineStatisticsQuery = available.pipelineStatisticsQuery;
 
     const char* deviceExtensions[] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME,
                                       VK_KHR_SWAPCHAIN_EXTENSION_NAME};

@@ -61,6 +61,9 @@ public:
     VkPhysicalDeviceMemoryProperties memoryProperties{};
     std::string driverName; // e.g. "llvmpipe" + driver info
     bool validationEnabled = false;
+    // Pipeline statistics queries are on (the device has them): the frame graph counts the
+    // compute invocations each pass dispatched.
+    bool pipelineStatistics = false;
 
     // Validation messages (warnings and errors) seen so far; tests require zero.
     uint32_t validationMessageCount() const { return validationMessages_; }
