@@ -206,12 +206,33 @@ def where_it_stands():
     return table(["figure", "today", "page", "measured by"], rows)
 
 
+def python_sweep():
+    """docs/python.md's sweep: one Renderer against a Renderer per value, per setting."""
+    runs = load("python-sweep")
+    rows = []
+    for r in runs:
+        per_value = sorted(r["per_value_s"])[len(r["per_value_s"]) // 2]
+        together = sorted(r["one_renderer_s"])[len(r["one_renderer_s"]) // 2]
+        rows.append(["`%s` (%s)" % (r["setting"], ", ".join(str(v) for v in r["values"])),
+                     "%.2f s" % per_value, "%.2f s" % together, "%.2f×" % r["ratio"]])
+    first = runs[0]
+    commits = sorted({r["commit"] for r in runs})
+    return (table(["setting (values)", "a Renderer per value", "one Renderer", "faster"], rows) +
+            "\n*Measured by `python3 bench/python_sweep.py --setting NAME --values ... --json "
+            "docs/data/python-sweep.json` at commit%s `%s` on %s (%s, %dx%d, medians of %d rounds"
+            "%s).*\n" % ("s" if len(commits) > 1 else "", "`, `".join(commits), first["device"],
+                          first["scene"], first["size"][0], first["size"][1], first["rounds"],
+                          ", the validation layer on" if first["validation"] else
+                          ", no validation layer"))
+
+
 # Each generated table: (the page, the marker's name, the function that writes it).
 TABLES = [
     ("README.md", "where-it-stands", where_it_stands),
     ("docs/accuracy.md", "one-frame-error", one_frame_error),
     ("docs/bench-walkthroughs.md", "walkthroughs-default", walkthroughs_default),
     ("docs/stability.md", "stability-summary", stability_summary),
+    ("docs/python.md", "python-sweep", python_sweep),
 ]
 
 

@@ -2,7 +2,8 @@
 """A sweep over one setting through the Python module: six values at 96x96, one frame each, on one
 Renderer (each change makes the renderer again from the old one's parts) against a Renderer per
 value, in alternating order, the images compared bit for bit. Prints each round's times and the
-medians' ratio; --json FILE keeps them (docs/python.md, "What a change costs").
+medians' ratio; --json FILE keeps them in a list of runs, one a setting (the run of the same
+setting replaced), which bench/docs_tables.py writes docs/python.md's table from.
 
     PYTHONPATH=build/python python3 bench/python_sweep.py [--setting NAME --values A,B,...]
 """
@@ -81,12 +82,17 @@ def main():
     print(f"{args.setting} {args.values} at {args.size}: one Renderer is {ratio:.2f}x faster "
           f"(medians of {args.rounds}), images identical")
     if args.json:
-        pathlib.Path(args.json).write_text(json.dumps({
-            "commit": commit(), "date": time.strftime("%Y-%m-%d"), "scene": args.scene,
-            "setting": args.setting, "values": values, "size": list(size),
-            "validation": ssgi.Renderer(ssgi.Scene(args.scene), (8, 8)).validation,
-            "per_value_s": apart, "one_renderer_s": together, "ratio": ratio}, indent=1) + "\n")
-
+        path = pathlib.Path(args.json)
+        runs = json.loads(path.read_text()) if path.exists() else []
+        with ssgi.Renderer(ssgi.Scene(args.scene), (8, 8)) as renderer:
+            device, validation = renderer.device, renderer.validation
+        run = {"setting": args.setting, "values": values, "scene": pathlib.Path(args.scene).name,
+               "size": list(size), "rounds": args.rounds, "per_value_s": apart,
+               "one_renderer_s": together, "ratio": ratio, "commit": commit(),
+               "date": time.strftime("%Y-%m-%d"), "device": device, "validation": validation,
+               "command": "python3 bench/python_sweep.py " + " ".join(sys.argv[1:])}
+        runs = [r for r in runs if r["setting"] != args.setting] + [run]
+        path.write_text(json.dumps(runs, indent=1) + "\n")
 
 if __name__ == "__main__":
     main()
