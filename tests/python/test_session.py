@@ -145,8 +145,8 @@ def test_a_change_the_renderer_cannot_take_is_refused_saying_what_to_do():
 
 def test_a_six_value_sweep_at_96_on_one_renderer_is_a_renderer_per_value():
     """The issue's sweep: six values at 96x96, one Renderer against one per value, the same
-    images; its times are printed (with the validation layer on, as every test here runs). A
-    rebuild costs what a new renderer costs: docs/python.md ("What a change costs")."""
+    images; its times are printed (with the validation layer on, as every test here runs).
+    bench/python_sweep.py measures them: docs/python.md ("What a change costs")."""
     values = [8, 16, 32, 64, 128, 256]
     start = time.perf_counter()
     per_value = [fresh({"indirect_vpls": v}, frames=1, size=(96, 96)) for v in values]
