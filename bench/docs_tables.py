@@ -116,6 +116,8 @@ def stability_summary():
             ["changed region's error once settled, worst case",
              "%.2f× a fresh start's" % d["settled_worst"]],
             ["flicker on a still camera; NaN or Inf", "%d; %d" % (d["flicker"], d["nan"])]]
+    if d.get("failing"):
+        rows.append(["what misses a target", "; ".join(d["failing"])])
     return (table(["at %s, both cache rules" % d["size"].replace("x", "×"), ""], rows) + "\n" + measured(d)
             + "\n")
 
@@ -186,10 +188,13 @@ def where_it_stands():
                    for s, v in memory["scenes"].items()) + bounce_note(memory, method),
          "[the frame](docs/frame.md#memory)", "`build/render --memory`"],
         ["stability: scripted failure cases (%s, both cache rules)" % stab["size"].replace("x", "×"),
-         "%d of %d meet every target; recovery in %d frame (%s); error within %.2f× a fresh "
-         "start's over 8 frames, %.2f× settled; no flicker, no NaN"
-         % (stab["pairs_met"], stab["pairs"], stab["recovery_frames"],
-            stab["recovery_exception"], stab["first8_worst"], stab["settled_worst"])
+         "%d of %d meet every target%s; recovery in %d frame (%s); error within %.2f× a fresh "
+         "start's over 8 frames, %.2f× settled; %s, no NaN"
+         % (stab["pairs_met"], stab["pairs"],
+            " (not: %s)" % stab["failing_cases"] if stab.get("failing") else "",
+            stab["recovery_frames"], stab["recovery_exception"], stab["first8_worst"],
+            stab["settled_worst"],
+            "flicker in %d" % stab["flicker"] if stab["flicker"] else "no flicker")
          + bounce_note(stab, method),
          "[stability](docs/stability.md#in-short)", "`build/stability --quick`"],
         ["%s: the cache's speed-up along the camera paths" % gpu["device"],
