@@ -182,7 +182,7 @@ def where_it_stands():
          + "; the settled frame %s the cost of `direct` + `composite`"
          % span([v["over_direct_composite"] for v in settled["scenes"].values()])
          + bounce_note(settled, method),
-         "[benchmarks](docs/bench.md#in-short)", "`bench/run.sh`"],
+         "[benchmarks](docs/bench.md#in-short)", settled.get("measured_by", "`bench/run.sh`")],
         ["GPU memory the frame holds at 1920×1080",
          ", ".join("%s %.1f MiB" % (SCENES[s], v["1920x1080"])
                    for s, v in memory["scenes"].items()) + bounce_note(memory, method),
