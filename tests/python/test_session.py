@@ -143,6 +143,24 @@ def test_a_change_the_renderer_cannot_take_is_refused_saying_what_to_do():
     assert np.array_equal(renderer.render(), image)  # a renderer made anew: the same frame
 
 
+def test_a_change_refused_after_the_old_renderer_gave_its_parts_leaves_one_that_renders():
+    """A setting refused while the frame is built (a voxel grid wider than lavapipe's largest
+    image), after the old renderer gave the new one its parts: the error says what to do, a
+    renderer made anew takes the old one's place, and setting it back renders a new renderer's
+    frames."""
+    scene = ssgi.Scene(CORNELL)
+    with ssgi.Renderer(scene, SIZE) as renderer:
+        renderer.render()
+        renderer.settings["world_voxels"] = 512
+        try:
+            renderer.render()  # a device whose images are 32768 wide takes it
+        except ssgi.InputError as error:
+            assert "world_voxels 512 needs a 32768x128 image" in str(error)
+            assert "set them back" in str(error)
+        del renderer.settings["world_voxels"]
+        assert np.array_equal(renderer.render(frames=2), fresh({}))
+
+
 def test_a_six_value_sweep_at_96_on_one_renderer_is_a_renderer_per_value():
     """The issue's sweep: six values at 96x96, one Renderer against one per value, the same
     images; its times are printed (with the validation layer on, as every test here runs).
