@@ -22,6 +22,7 @@ import json
 import math
 import os
 import re
+import statistics
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -216,8 +217,8 @@ def python_sweep():
     runs = load("python-sweep")
     rows = []
     for r in runs:
-        per_value = sorted(r["per_value_s"])[len(r["per_value_s"]) // 2]
-        together = sorted(r["one_renderer_s"])[len(r["one_renderer_s"]) // 2]
+        per_value = statistics.median(r["per_value_s"])  # as python_sweep.py's ratio takes them
+        together = statistics.median(r["one_renderer_s"])
         rows.append(["`%s` (%s)" % (r["setting"], ", ".join(str(v) for v in r["values"])),
                      "%.2f s" % per_value, "%.2f s" % together, "%.2f×" % r["ratio"]])
     first = runs[0]

@@ -1,6 +1,7 @@
 // ssgi.Renderer's object: the real-time renderer of a Scene on a device, driven as the render
 // program drives it. Its scene, camera, light and view may change between frames: each applies
-// at the next frame (renderer.cpp says how); the bindings are in renderer_api.cpp.
+// at the next frame (renderer.cpp says how; the camera, the light and the time are in
+// renderer_camera_light.cpp); the bindings are in renderer_api.cpp.
 #pragma once
 
 #include "device.h"

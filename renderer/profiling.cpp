@@ -26,11 +26,10 @@ PassStatistics statistics(const std::string& name, std::vector<double> values,
     s.medianInvocations = median(invocations);
     s.framesInvocations = std::move(invocations);
     if (values.empty()) return s;
-    std::sort(values.begin(), values.end());
-    const size_t n = values.size();
-    s.medianMs = n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-    s.minMs = values.front();
-    s.maxMs = values.back();
+    s.medianMs = median(values);
+    const auto [least, most] = std::minmax_element(values.begin(), values.end());
+    s.minMs = *least;
+    s.maxMs = *most;
     return s;
 }
 

@@ -20,9 +20,6 @@
 
 namespace ssgi {
 
-// The time before every path's first key, where the objects stand before the first setTime().
-constexpr float kBeforeFirstKey = std::numeric_limits<float>::lowest();
-
 // A quarter of half-float range: radiance up to this is kept in its own units.
 constexpr float kLargestUnscaledRadiance = 16384.0f;
 
@@ -83,8 +80,8 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
 
 Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& options,
                    Renderer* previous)
-    : ctx_(ctx), scene_(scene), builtSettings_(scene.settings), light_(scene.light), patternStart_(options.patternStart),
-      seals_(scene) {
+    : ctx_(ctx), scene_(scene), builtSettings_(scene.settings), light_(scene.light),
+      patternStart_(options.patternStart), seals_(scene) {
     const uint32_t limit = ctx.properties.limits.maxImageDimension2D;
     // The screen images hold the output and the guard band on each side (PassSetup::output).
     const uint32_t band = uint32_t(scene.settings.guard_band);
@@ -140,62 +137,6 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, const RenderOptions& op
         release();
         throw;
     }
-}
-
-// The settings that shape the images the frame draws only once (see takeDrawn); the others
-// change the passes that read them. A setting missing here that shapes one would keep a stale
-// image: Python's test_session checks every setting against a renderer made anew.
-static constexpr const char* kDrawnSettings[] = {"rsm_size",
-                                                 "shadow_map_size",
-                                                 "sky_visibility_directions",
-                                                 "sky_visibility_map_size",
-                                                 "world_voxels",
-                                                 "indirect_vpl_cluster",
-                                                 "indirect_flux_pool",
-                                                 "indirect_flux_vpls",
-                                                 "cache",
-                                                 "ground_plane",
-                                                 "guard_band"};
-
-static bool sameLight(const SpotLight& a, const SpotLight& b) {
-    return a.position == b.position && a.direction == b.direction && a.color == b.color &&
-           a.intensity == b.intensity && a.innerConeAngle == b.innerConeAngle &&
-           a.outerConeAngle == b.outerConeAngle && a.radius == b.radius;
-}
-
-void Renderer::takeDrawn(Renderer& previous) {
-    // Drawn for the light and the objects where this renderer has them, unsealed (a sealed light
-    // draws no flux), and not to be drawn again at the old renderer's next frame.
-    if (previous.seal_ || !sameLight(previous.light_, light_) ||
-        previous.transforms_ != transforms_)
-        return;
-    for (const char* name : kDrawnSettings)
-        if (settingValue(previous.builtSettings_, name) != settingValue(builtSettings_, name))
-            return;
-    // Each group of images with the flag that has the frame draw them; a group taken whole, or
-    // drawn anew.
-    const struct {
-        bool Renderer::*stale;
-        std::vector<std::string> images;
-    } groups[] = {{&Renderer::rsmStale_,
-                   {"rsm.vpls", "rsm.depth", "shadow_map.depth", "shadow_map_back.depth",
-                    "light_depth_min", "indirect.vpl_position", "indirect.vpl_normal",
-                    "indirect.vpl_flux", "indirect.flux_pyramid"}},
-                  {&Renderer::skyMapsStale_, {"sky.maps"}},
-                  {&Renderer::voxelsStale_,
-                   {"world.voxels", "world.voxel_distance", "world.voxel_distance_xy"}}};
-    for (const auto& group : groups) {
-        if (previous.*group.stale) continue;
-        bool whole = true;
-        for (const std::string& name : group.images)
-            if (graph_->find(name).valid() != previous.graph_->find(name).valid() ||
-                (graph_->find(name).valid() && !graph_->adopt(name, *previous.graph_)))
-                whole = false;
-        if (!whole) continue;
-        this->*group.stale = false;
-        tookDrawn_ = true;
-    }
-    if (!voxelsStale_) worldGrid_ = previous.worldGrid_;
 }
 
 Renderer::~Renderer() {
@@ -396,28 +337,6 @@ FrameState Renderer::decideFrame() {
         for (CachedEffectFrame& effect : f.effects)
             effect.refreshTile = -1;
     return f;
-}
-
-void Renderer::continueFrom(Renderer& previous) {
-    if (&previous.scene_ != &scene_ || frameIndex_ != 0)
-        throw std::logic_error("continueFrom: a new renderer of the same scene only");
-    light_ = previous.light_;
-    seal_ = previous.seal_;
-    sealWarned_ = previous.sealWarned_;
-    time_ = previous.time_;
-    transforms_ = previous.transforms_;
-    moved_ = previous.moved_;
-    uploadTransforms();
-    previousViewProjection_ = previous.previousViewProjection_;
-    previousPixelToWorld_ = previous.previousPixelToWorld_;
-    previousCamera_ = previous.previousCamera_;
-    cutRequested_ = previous.cutRequested_;
-    cuts_ = previous.cuts_;
-    frameIndex_ = previous.frameIndex_;
-    patternStart_ = previous.patternStart_;
-    if (scene_.settings.cache_resize && frameIndex_ > 0)
-        carryCaches(*previous.graph_, previous.build_->caches, previous.build_->size, *graph_,
-                    build_->caches);
 }
 
 FrameProfile Renderer::lastFrameProfile() const {

@@ -189,7 +189,9 @@ private:
     Camera previousCamera_;
     bool cutRequested_ = false;
     uint32_t cuts_ = 0;
-    float time_ = std::numeric_limits<float>::lowest(); // the last setTime()
+    // The time before every path's first key, where the objects stand before the first setTime().
+    static constexpr float kBeforeFirstKey = std::numeric_limits<float>::lowest();
+    float time_ = kBeforeFirstKey; // the last setTime()
     glm::dvec3 origin_{0.0}; // world point at the GPU's origin (renderer.cpp: gpuOrigin)
     LightSeals seals_;
     std::optional<Seal> seal_;

@@ -114,6 +114,7 @@ struct SpotLight {
     float innerConeAngle = 0.0f;       // radians, half-angle
     float outerConeAngle = 0.7853982f; // radians, half-angle, < 90 degrees
     float radius = 0.0f;               // disk radius (soft shadows); 0 = point
+    bool operator==(const SpotLight&) const = default;
 };
 
 // Radiance of the sky seen from the scene: a vertical gradient from horizon to zenith (equal
