@@ -22,11 +22,14 @@ PipelineStore::~PipelineStore() {
         destroyPipeline(ctx_, p);
 }
 
-const Pipeline* PipelineStore::find(const std::string& key) {
-    const auto found = byKey_.find(key);
-    if (found == byKey_.end()) return nullptr;
-    ++reused_;
-    return &pipelines_[found->second];
+const Pipeline& PipelineStore::held(const std::string& key, const std::function<Pipeline()>& make) {
+    if (const auto found = byKey_.find(key); found != byKey_.end()) {
+        ++reused_;
+        return pipelines_[found->second];
+    }
+    pipelines_.push_back(make());
+    byKey_[key] = pipelines_.size() - 1;
+    return pipelines_.back();
 }
 
 const Pipeline& PipelineStore::compute(const std::string& shader,
@@ -36,10 +39,8 @@ const Pipeline& PipelineStore::compute(const std::string& shader,
     append(key, spec);
     key += " set0";
     append(key, bindings);
-    if (const Pipeline* p = find(key)) return *p;
-    pipelines_.push_back(createComputePipeline(ctx_, shader, bindings, pushConstantSize, spec));
-    byKey_[key] = pipelines_.size() - 1;
-    return pipelines_.back();
+    return held(
+        key, [&] { return createComputePipeline(ctx_, shader, bindings, pushConstantSize, spec); });
 }
 
 const Pipeline& PipelineStore::graphics(const GraphicsPipelineDesc& desc) {
@@ -59,10 +60,7 @@ const Pipeline& PipelineStore::graphics(const GraphicsPipelineDesc& desc) {
     append(key, desc.fragmentSpec);
     key += " set0";
     append(key, desc.bindings);
-    if (const Pipeline* p = find(key)) return *p;
-    pipelines_.push_back(createGraphicsPipeline(ctx_, desc));
-    byKey_[key] = pipelines_.size() - 1;
-    return pipelines_.back();
+    return held(key, [&] { return createGraphicsPipeline(ctx_, desc); });
 }
 
 } // namespace ssgi::vk

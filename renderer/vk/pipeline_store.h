@@ -8,6 +8,7 @@
 #include "vk/pipeline.h"
 
 #include <deque>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -31,7 +32,8 @@ public:
     size_t reused() const { return reused_; }
 
 private:
-    const Pipeline* find(const std::string& key);
+    // The pipeline held under `key`, made by `make` the first time.
+    const Pipeline& held(const std::string& key, const std::function<Pipeline()>& make);
     Context& ctx_;
     std::deque<Pipeline> pipelines_; // a deque: references handed out stay valid
     std::map<std::string, size_t> byKey_;
