@@ -19,6 +19,8 @@ protected:
     Scene scene = [] {
         Scene s = loadScene(test::sourcePath("scenes/bunny.json"));
         s.settings.cache_tile_sky_visibility = 16;
+        // The per-pixel pass and its cache, which the world cache's cells replace by default.
+        s.settings.world_sky_visibility = false;
         return s;
     }();
 

@@ -1,9 +1,9 @@
 // The frame, pass by pass, in order: rasterise the camera's and the light's views; the indirect
 // light; the shadow term; ambient occlusion (or the direct light and SSDO in its place); the
-// sky's visibility; the temporal pass that blends them all into their histories; the direct
-// light; composite and tonemap. Which passes there are follows from
-// the scene's settings; which of them run on a given frame, from the FrameState (frame_state.h).
-// docs/frame.md draws the frame this builds.
+// sky's visibility (per pixel, or held in the world cache's cells); the temporal pass that blends
+// them all into their histories; the direct light; composite and tonemap. Which passes there are
+// follows from the scene's settings; which of them run on a given frame, from the FrameState
+// (frame_state.h). docs/frame.md draws the frame this builds.
 #include "passes/passes.h"
 
 namespace ssgi {
@@ -32,9 +32,14 @@ void addFramePasses(FrameBuild& build) {
     if (settings.depth_peeling && (settings.ssdo || settings.contact_shadows ||
                                    (screenSpaceBounce && settings.indirect_visibility)))
         rasterized.secondLayer = addPeelPass(build, rasterized);
+    // The sky's maps before the indirect light, whose world cache may hold the sky's visibility
+    // in its cells (skyInWorldCache): none to see under a black sky, as in the Cornell boxes.
+    std::optional<SkyMaps> skyMaps;
+    if (hasSkyVisibility(scene)) skyMaps = addSkyMapsPass(build);
+    const bool skyInCells = skyInWorldCache(scene);
     // The indirect light first: its working images are the frame's largest set at once, and the
     // other effects' values, which wait for the temporal pass, are not made yet to add to it.
-    if (settings.indirect) addIndirectLight(build, rasterized);
+    if (settings.indirect) addIndirectLight(build, rasterized, skyInCells ? &*skyMaps : nullptr);
     composite.shadow = addShadowPass(build, rasterized);
     if (settings.ssdo) {
         // SSDO's bounce reads the direct light, which reads the blended shadow: a temporal pass
@@ -47,9 +52,9 @@ void addFramePasses(FrameBuild& build) {
     } else if (settings.ao) {
         addAoPass(build, rasterized);
     }
-    // The sky's visibility beyond the screen, for the sky term beside the AO (none to see
-    // under a black sky, as in the Cornell boxes).
-    if (hasSkyVisibility(scene)) addSkyVisibilityPasses(build, rasterized);
+    // The sky's visibility beyond the screen at each pixel, for the sky term beside the AO,
+    // where the world cache's cells do not hold it.
+    if (skyMaps && !skyInCells) addSkyVisibilityPass(build, rasterized, *skyMaps);
     // One pass blends every cached effect's value of this frame into its history (the frame's
     // only one without SSDO), before anything reads the blended values.
     addTemporalPass(build, rasterized.gbuffer);

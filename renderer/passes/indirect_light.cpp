@@ -2,7 +2,8 @@
 // the method the settings choose (indirect_method: 0 the thesis's half-resolution gather and its
 // upsampling, 1 interleaved VPL subsets and their filter, 2 the same with VPLs drawn by flux
 // beside them), its value then handed to the frame's temporal pass; or (3) the world cache,
-// which holds it in world space instead, with no screen-space cache.
+// which holds it in world space instead, with no screen-space cache (and with `sky`, the sky's
+// visibility beside it, a term of its own).
 #include "passes/passes.h"
 
 namespace ssgi {
@@ -21,14 +22,15 @@ shader::IndirectConstants indirectConstants(const FrameBuild& build, const Effec
     return c;
 }
 
-graph::ImageRef addIndirectLight(FrameBuild& build, const GBufferAndRsm& in) {
+graph::ImageRef addIndirectLight(FrameBuild& build, const GBufferAndRsm& in, const SkyMaps* sky) {
     if (build.settings.indirect_method == 3) {
         // Held in world space, where the view does not change it: no screen-space cache.
         const FluxVpls vpls = addFluxVplPasses(build, in, build.settings.cache);
         const WorldGrid grid = addWorldVoxelPasses(build);
-        const graph::ImageRef value = addWorldCachePasses(build, in, vpls, grid);
-        build.addCompositeTerm("indirect", value);
-        return value;
+        const WorldLookups looked = addWorldCachePasses(build, in, vpls, grid, sky);
+        build.addCompositeTerm("indirect", looked.indirect);
+        if (sky) build.addCompositeTerm("sky-visibility", looked.skyVisibility);
+        return looked.indirect;
     }
     // A moved light, or any moved object (whose shadow and RSM moved too), restarts it whole.
     const CachedEffect effect{.name = "indirect",

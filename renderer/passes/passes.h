@@ -84,11 +84,17 @@ WorldGrid addWorldVoxelPasses(FrameBuild& build);
 // The world cache's table holds 2^this cells: world_table_bits, or where it is 0, from the
 // image's size (world_cache_pass.cpp).
 int worldTableBits(const Settings& settings, VkExtent2D size);
-// world.clear + world.insert + world.update + world.lookup, indirect_method 3: the bounce from
-// cells of a hash table in world space, which gather the flux's VPLs (`vpls.list`) with their
-// visibility in `grid`; returns the bounce looked up at every pixel (world_cache_pass.cpp).
-graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& inputs,
-                                    const FluxVpls& vpls, const WorldGrid& grid);
+// world.clear + world.insert + world.schedule + world.gather + world.lookup, indirect_method 3:
+// the bounce from cells of a hash table in world space, which gather the flux's VPLs
+// (`vpls.list`) with their visibility in `grid`; with `sky` (skyInWorldCache), the cells hold
+// the sky's visibility in those maps too. Returns both looked up at every pixel
+// (world_cache_pass.cpp); `skyVisibility` is invalid without `sky`.
+struct SkyMaps;
+struct WorldLookups {
+    graph::ImageRef indirect, skyVisibility;
+};
+WorldLookups addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& inputs,
+                                 const FluxVpls& vpls, const WorldGrid& grid, const SkyMaps* sky);
 
 // indirect (interleaved VPL subsets) + indirect.filter_x + indirect.filter_y: the same light,
 // indirect_method 1; with `fluxVpls` (method 2) the flux's VPLs beside the pattern's.
@@ -96,8 +102,10 @@ graph::ImageRef addInterleavedIndirectPasses(FrameBuild& build, const GBufferAnd
                                              const EffectCache* cache,
                                              const FluxVpls* fluxVpls = nullptr);
 
-// The one-bounce indirect light, cached, by the method the settings choose (indirect_light.cpp).
-graph::ImageRef addIndirectLight(FrameBuild& build, const GBufferAndRsm& inputs);
+// The one-bounce indirect light, cached, by the method the settings choose (indirect_light.cpp);
+// with `sky` (skyInWorldCache), the world cache's sky's visibility as a term too.
+graph::ImageRef addIndirectLight(FrameBuild& build, const GBufferAndRsm& inputs,
+                                 const SkyMaps* sky);
 
 // ssdo: directionally occluded sky light plus one bounce, as radiance. Depth peeling's second
 // layer (inputs.secondLayer) makes its occlusion test two-layered.
@@ -110,9 +118,21 @@ struct CompositeImages {
     graph::ImageRef direct, shadow;
 };
 
-// sky.maps + sky_visibility: the fraction of the sky's light reaching each pixel past the
-// occluders beyond the AO's radius, from depth maps of the scene over the sky's directions.
-graph::ImageRef addSkyVisibilityPasses(FrameBuild& build, const GBufferAndRsm& inputs);
+// sky.maps: depth maps of the scene over the sky's directions, in one atlas, and what a lookup
+// of the sky's visibility in them needs (sky_visibility.glsl; sky_visibility_pass.cpp).
+struct SkyMaps {
+    graph::ImageRef atlas;
+    vk::Buffer exactTriangles; // TrianglesBlock: the occluders tested exactly
+    shader::SkyMapView view;
+    float aoReach = 0.0f;      // occluders nearer are the AO's
+    float normalOffset = 0.0f; // a receiver's offset along its normal
+};
+SkyMaps addSkyMapsPass(FrameBuild& build);
+// sky_visibility: the fraction of the sky's light reaching each pixel past the occluders beyond
+// the AO's radius, looked up in `maps`, cached; not made where the world cache's cells hold it
+// (skyInWorldCache).
+graph::ImageRef addSkyVisibilityPass(FrameBuild& build, const GBufferAndRsm& inputs,
+                                     const SkyMaps& maps);
 
 struct CompositeOutputs {
     graph::ImageRef hdr, ldr;

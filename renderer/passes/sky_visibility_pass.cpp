@@ -8,7 +8,9 @@
 // noise, so that one computation is its value (CachedEffect::exact), reused wherever it
 // reprojects while the camera moves, and computed again for new surfaces, where its resampling
 // has blurred it past its budget (cache_blur_sky_visibility), in the refresh tile, and after the
-// maps were drawn again (a moved object restarts it).
+// maps were drawn again (a moved object restarts it). Where the world cache's cells hold the
+// sky's visibility instead (skyInWorldCache: world_cache_pass.cpp reads the maps), only sky.maps
+// is made here.
 //   reads:  gbuffer.view_depth, gbuffer.normal, sky.maps (and its cache's history)
 //   writes: sky.maps, sky_visibility, sky_visibility.history
 #include "passes/passes.h"
@@ -78,7 +80,7 @@ SkyOccluders splitSkyOccluders(const Scene& scene, const glm::dvec3& gpuOrigin) 
 
 } // namespace
 
-graph::ImageRef addSkyVisibilityPasses(FrameBuild& build, const GBufferAndRsm& in) {
+SkyMaps addSkyMapsPass(FrameBuild& build) {
     const Scene& scene = build.scene;
     const int count = int(scene.settings.sky_visibility_directions);
     const int tileSize = int(scene.settings.sky_visibility_map_size);
@@ -162,16 +164,26 @@ graph::ImageRef addSkyVisibilityPasses(FrameBuild& build, const GBufferAndRsm& i
         },
         [](const FrameState& frame) { return frame.drawSkyMaps; });
 
-    const vk::Buffer& exactTriangles =
-        build.uniformBuffer(&occluders.exact, sizeof(occluders.exact));
+    SkyMaps out;
+    out.atlas = maps;
+    out.exactTriangles = build.uniformBuffer(&occluders.exact, sizeof(occluders.exact));
+    out.view = view;
     // Occluders nearer than the AO's radius are the AO's; with no AO, only a few texels' worth
     // of nearness is left out (the map's own resolution).
     const float texel = 2.0f * radius / float(tileSize);
-    shader::SkyVisibilityConstants constants{};
-    constants.maps = view;
     const float nearest = scene.settings.ao && !scene.settings.ssdo ? aoRadius(scene) : 0.0f;
-    constants.aoReach = std::max(nearest, 3.0f * texel);
-    constants.normalOffset = 1.5f * texel;
+    out.aoReach = std::max(nearest, 3.0f * texel);
+    out.normalOffset = 1.5f * texel;
+    return out;
+}
+
+graph::ImageRef addSkyVisibilityPass(FrameBuild& build, const GBufferAndRsm& in,
+                                     const SkyMaps& maps) {
+    using graph::Use;
+    shader::SkyVisibilityConstants constants{};
+    constants.maps = maps.view;
+    constants.aoReach = maps.aoReach;
+    constants.normalOffset = maps.normalOffset;
     CachedComputePass pass;
     pass.effect = {.name = "sky_visibility",
                    .lightDependent = false,
@@ -183,8 +195,8 @@ graph::ImageRef addSkyVisibilityPasses(FrameBuild& build, const GBufferAndRsm& i
     pass.shader = "sky_visibility.comp";
     pass.inputs = {{"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
                    {"gbufferNormal", in.gbuffer.normal, Use::Sampled},
-                   {"skyMaps", maps, Use::Sampled}};
-    pass.uniforms = {{"TrianglesBlock", exactTriangles}};
+                   {"skyMaps", maps.atlas, Use::Sampled}};
+    pass.uniforms = {{"TrianglesBlock", maps.exactTriangles}};
     pass.pushSize = sizeof(shader::SkyVisibilityConstants);
     return addCachedComputePass(build, in.gbuffer, std::move(pass),
                                 [constants](const CachedRecorder& r) { r.dispatch(constants); });

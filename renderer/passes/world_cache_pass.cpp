@@ -1,19 +1,24 @@
-// world.clear, world.insert, world.schedule, world.gather, world.lookup, world.upsample,
-// world.lookup_edges (indirect_method 3): the bounce held in world space. A hash table of cells
-// (world_cache.glsl), each the irradiance at one surface point gathered from the RSM's VPLs with
-// their visibility through the voxel grid (world_voxels_pass.cpp), which does not depend on the
-// view: a moving camera looks the cells up and fills only the new ones. The table persists from
-// frame to frame; without the cache it is cleared every frame and every cell filled at once. With
-// world_half_res, the lookup runs at the top-left pixel of every 2x2 block, world.upsample brings
-// the bounce to full resolution, and world.lookup_edges looks it up at the pixels that have no
-// sample on their surface.
+// world.clear, world.insert, world.schedule, world.sky_visibility, world.gather, world.lookup,
+// world.upsample, world.lookup_edges (indirect_method 3): the bounce held in world space. A hash
+// table of cells (world_cache.glsl), each the irradiance at one surface point gathered from the
+// RSM's VPLs with their visibility through the voxel grid (world_voxels_pass.cpp), which does not
+// depend on the view: a moving camera looks the cells up and fills only the new ones. The table
+// persists from frame to frame; without the cache it is cleared every frame and every cell
+// filled at once. With the sky's maps (skyInWorldCache), a cell holds the sky's visibility at its
+// point too, computed once when it starts (world_sky_visibility.comp), and the lookup writes it
+// beside the bounce, in place of the per-pixel sky_visibility pass. With world_half_res, the
+// lookup runs at the top-left pixel of every 2x2 block, world.upsample brings the bounce to full
+// resolution, and world.lookup_edges looks it up at the pixels that have no sample on their
+// surface.
 //   reads:  gbuffer.view_depth, .normal, indirect.vpl_list (the flux's pool), the VPL map
-//           (indirect.vpl_position, .vpl_normal, .vpl_flux), world.voxels, .voxel_distance
-//   writes: world.keys, .irradiance, .points, .used, .directions, .owner (the table),
+//           (indirect.vpl_position, .vpl_normal, .vpl_flux), world.voxels, .voxel_distance,
+//           sky.maps (with the sky)
+//   writes: world.keys, .irradiance, .points, .used, .directions, .owner, .sky (the table),
 //           world.stats (its counters), world.gather_list (the cells that gather this frame),
 //           world.indirect (the bounce, irradiance / pi, RGBA16F: the composite's "indirect"),
-//           world.indirect_half and world.edge_list (world_half_res: the bounce at every other
-//           pixel, and the pixels looked up alone)
+//           world.sky_visibility (with the sky: the composite's "sky-visibility"),
+//           world.indirect_half, world.sky_visibility_half and world.edge_list (world_half_res:
+//           both at every other pixel, and the pixels looked up alone)
 #include "passes/passes.h"
 #include "passes/views.h"
 
@@ -31,8 +36,8 @@ int worldTableBits(const Settings& settings, VkExtent2D size) {
     return std::clamp(int(std::ceil(std::log2(std::max(half, 1.0)))), 14, 18);
 }
 
-graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
-                                    const FluxVpls& vpls, const WorldGrid& grid) {
+WorldLookups addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in, const FluxVpls& vpls,
+                                 const WorldGrid& grid, const SkyMaps* sky) {
     const Settings& settings = build.settings;
     const int bits = worldTableBits(settings, build.size);
     // Powers of two both ways: world_cache.glsl indexes the table with masks and shifts.
@@ -77,6 +82,9 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
     const graph::ImageRef directions =
         tableImage("world.directions", VK_FORMAT_R32G32B32A32_SFLOAT);
     const graph::ImageRef owner = tableImage("world.owner", VK_FORMAT_R32_UINT);
+    // The sky's visibility at each cell's point (rgb; a 1 once computed), with the sky.
+    const graph::ImageRef skyTable =
+        sky ? tableImage("world.sky", VK_FORMAT_R16G16B16A16_SFLOAT) : graph::ImageRef{};
     const graph::ImageRef stats =
         build.graph.createImage("world.stats", VK_FORMAT_R32_UINT, {WORLD_STATS, 3}, usage, true);
     const graph::ImageRef indirect =
@@ -86,12 +94,21 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
     const VkExtent2D screen = build.size;
     const VkExtent2D lookupSize =
         halfRes ? VkExtent2D{(screen.width + 1) / 2, (screen.height + 1) / 2} : screen;
-    const vk::Specialization scale{{{"SCALE", halfRes ? 2 : 1}}};
+    const int withSky = sky ? 1 : 0;
+    // Without the sky, the shaders' sky images (never read or written: SKY 0) are bound to the
+    // bounce's, used alike.
+    const graph::ImageRef skyVisibility =
+        sky ? build.graph.createImage("world.sky_visibility", VK_FORMAT_R16G16B16A16_SFLOAT, screen,
+                                      usage)
+            : indirect;
 
     using graph::Use;
     // Empty keys are zeros, and so are the counters; the cells' values and points too, so that
     // every texel of the table holds a number (an entry's are written before they are read).
-    addClearPass(build, "world.clear", {keys, used, stats, irradiance, points, directions, owner},
+    std::vector<graph::ImageRef> cleared = {keys,   used,       stats, irradiance,
+                                            points, directions, owner};
+    if (sky) cleared.push_back(skyTable);
+    addClearPass(build, "world.clear", cleared,
                  [](const FrameState& frame) { return frame.clearWorldCache; });
 
     ComputePassDesc insert{"world.insert", "world_insert.comp"};
@@ -161,6 +178,25 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
     };
     addDispatchSizePass("world.dispatch_size", 0, WORLD_STAT_GROUPS);
 
+    if (sky) {
+        // Before the gather, while a starting cell's samples still read 0.
+        shader::WorldSky skyView{sky->view, glm::vec4(sky->aoReach, sky->normalOffset, 0.0f, 0.0f)};
+        ComputePassDesc skyPass{"world.sky_visibility", "world_sky_visibility.comp"};
+        skyPass.images = {{"gatherList", list, Use::Sampled},
+                          {"worldStats", stats, Use::StorageRead},
+                          {"worldIrradiance", irradiance, Use::Sampled},
+                          {"worldPoints", points, Use::Sampled},
+                          {"skyMaps", sky->atlas, Use::Sampled},
+                          {"worldSky", skyTable, Use::StorageWrite}};
+        skyPass.uniforms = {{"TrianglesBlock", sky->exactTriangles},
+                            {"SkyBlock", build.uniformBuffer(&skyView, sizeof(skyView))}};
+        skyPass.pushSize = sizeof(shader::WorldConstants);
+        addComputePass(
+            build, std::move(skyPass), [sizes, constants, commandOffset](const ComputeRecorder& r) {
+                r.dispatchIndirect(sizes, commandOffset(r.frame(), 0), constants(r.frame()));
+            });
+    }
+
     ComputePassDesc gather{"world.gather", "world_gather.comp"};
     gather.images = {{"voxels", grid.voxels, Use::Sampled},
                      {"voxelDistance", grid.distance, Use::Sampled},
@@ -185,6 +221,11 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
         halfRes ? build.graph.createImage("world.indirect_half", VK_FORMAT_R16G16B16A16_SFLOAT,
                                           lookupSize, usage)
                 : indirect;
+    const graph::ImageRef skyLooked =
+        halfRes && sky ? build.graph.createImage("world.sky_visibility_half",
+                                                 VK_FORMAT_R16G16B16A16_SFLOAT, lookupSize, usage)
+        : halfRes      ? looked
+                       : skyVisibility;
     // What world_lookup.glsl reads: the G-buffer and the table, bound first by both passes that
     // look up.
     const std::vector<ShaderImage> lookupReads = {
@@ -194,11 +235,13 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
         {"worldIrradiance", irradiance, Use::Sampled},
         {"worldUsed", used, Use::Sampled},
         {"worldPoints", points, Use::Sampled},
-        {"worldDirections", directions, Use::Sampled}};
+        {"worldDirections", directions, Use::Sampled},
+        {"worldSky", sky ? skyTable : irradiance, Use::Sampled}};
     ComputePassDesc lookup{"world.lookup", "world_lookup.comp", lookupReads};
     lookup.images.push_back({"indirectImage", looked, Use::StorageWrite});
+    lookup.images.push_back({"skyImage", skyLooked, Use::StorageWrite});
     lookup.pushSize = sizeof(shader::WorldConstants);
-    lookup.spec = scale;
+    lookup.spec = {{{"SCALE", halfRes ? 2 : 1}, {"SKY", withSky}}};
     addComputePass(build, std::move(lookup), [lookupSize, constants](const ComputeRecorder& r) {
         r.dispatch(lookupSize.width, lookupSize.height, constants(r.frame()));
     });
@@ -212,8 +255,11 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
                            {"halfIndirect", looked, Use::Sampled},
                            {"indirectImage", indirect, Use::StorageWrite},
                            {"worldStats", stats, Use::StorageReadWrite},
-                           {"edgeList", edges, Use::StorageWrite}};
+                           {"edgeList", edges, Use::StorageWrite},
+                           {"halfSky", skyLooked, Use::Sampled},
+                           {"skyImage", skyVisibility, Use::StorageWrite}};
         upsample.pushSize = sizeof(shader::WorldConstants);
+        upsample.spec = {{{"SKY", withSky}}};
         addComputePass(build, std::move(upsample), [screen, constants](const ComputeRecorder& r) {
             r.dispatch(screen.width, screen.height, constants(r.frame()));
         });
@@ -222,14 +268,16 @@ graph::ImageRef addWorldCachePasses(FrameBuild& build, const GBufferAndRsm& in,
         edgeLookup.images.push_back({"worldStats", stats, Use::Sampled});
         edgeLookup.images.push_back({"edgeList", edges, Use::Sampled});
         edgeLookup.images.push_back({"indirectImage", indirect, Use::StorageReadWrite});
+        edgeLookup.images.push_back({"skyImage", skyVisibility, Use::StorageReadWrite});
         edgeLookup.pushSize = sizeof(shader::WorldConstants);
+        edgeLookup.spec = {{{"SKY", withSky}}};
         addComputePass(build, std::move(edgeLookup),
                        [sizes, constants, commandOffset](const ComputeRecorder& r) {
                            r.dispatchIndirect(sizes, commandOffset(r.frame(), 1),
                                               constants(r.frame()));
                        });
     }
-    return indirect;
+    return {indirect, sky ? skyVisibility : graph::ImageRef{}};
 }
 
 } // namespace ssgi

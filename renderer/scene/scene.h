@@ -180,5 +180,9 @@ float aoRadius(const Scene& scene);
 // Whether the frame looks up the sky's visibility (addSkyVisibilityPasses): on, beside the AO
 // (SSDO occludes the sky by itself), under a sky that is not black (none to see there).
 bool hasSkyVisibility(const Scene& scene);
+// Whether the world cache's cells hold the sky's visibility beside the bounce, in place of the
+// per-pixel pass: where there is one, with the world cache's bounce (indirect_method 3) and
+// world_sky_visibility.
+bool skyInWorldCache(const Scene& scene);
 
 } // namespace ssgi

@@ -144,4 +144,10 @@ bool hasSkyVisibility(const Scene& scene) {
     return scene.settings.sky_visibility && !scene.settings.ssdo && !blackSky;
 }
 
+bool skyInWorldCache(const Scene& scene) {
+    const Settings& s = scene.settings;
+    return hasSkyVisibility(scene) && s.indirect && s.indirect_method == 3 &&
+           s.world_sky_visibility;
+}
+
 } // namespace ssgi

@@ -173,6 +173,15 @@ struct SkyTriangles {
 };
 SSGI_CHECK_SIZE(SkyTriangles, 16 + 3 * 32 * 16);
 
+// The sky's visibility the world cache's cells hold (world_sky_visibility.comp, a uniform
+// buffer; indirect_method 3 with world_sky_visibility): the maps, and in `reach` the two
+// distances of SkyVisibilityConstants, x aoReach and y normalOffset.
+struct WorldSky {
+    SkyMapView maps;
+    vec4 reach;
+};
+SSGI_CHECK_SIZE(WorldSky, 48);
+
 // The world cache of indirect_method 3 (world_cache_pass.cpp): a hash table of cells in world
 // space (world_cache.glsl), each the bounce gathered at one surface point from the flux's VPLs
 // with the visibility of a voxel occupancy grid (world_voxels.glsl), which pixels look up.

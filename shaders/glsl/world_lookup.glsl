@@ -4,10 +4,12 @@
 // world.insert took (its own, or one coarser or finer where its own cell is absent) and with its
 // normal's direction, trilinearly by the point's place between their centres, so that no cell's
 // edge shows; a cell absent or still empty drops out of the weights. Each cell's value is carried
-// over from its own normal to the point's by its light's directional estimate (toNormal). The
-// debug views (WORLD_VIEW_*) show the point's own cell instead.
-// Needs: frame, constants (WorldConstants), common.glsl, world_cache.glsl, and the samplers
-// worldKeys, worldIrradiance, worldUsed, worldPoints, worldDirections.
+// over from its own normal to the point's by its light's directional estimate (toNormal). Where
+// the cells hold the sky's visibility too (SKY: world_sky_visibility.comp), it is interpolated
+// with the same weights. The debug views (WORLD_VIEW_*) show the point's own cell instead.
+// Needs: frame, constants (WorldConstants), common.glsl, world_cache.glsl, the constant SKY, and
+// the samplers worldKeys, worldIrradiance, worldUsed, worldPoints, worldDirections, worldSky
+// (world.sky, read where SKY).
 #ifndef SSGI_WORLD_LOOKUP_GLSL
 #define SSGI_WORLD_LOOKUP_GLSL
 
@@ -29,8 +31,10 @@ float toNormal(ivec2 entry, vec3 n) {
 }
 
 // What the lookup writes at the surface point p with normal n: the bounce (irradiance / pi), or
-// for a debug view, the point's own cell.
-vec4 worldLookup(vec3 p, vec3 n, int view) {
+// for a debug view, the point's own cell; and in `sky`, where SKY, the sky's visibility (1
+// where no cell holds it, and in the debug views).
+vec4 worldLookup(vec3 p, vec3 n, int view, out vec4 sky) {
+    sky = vec4(1.0);
     int level = worldLevel(distance(p, frame.cameraPosition.xyz));
     int direction = worldDirection(n);
     // The cell and level world.insert took (world_cache.glsl).
@@ -48,7 +52,7 @@ vec4 worldLookup(vec3 p, vec3 n, int view) {
     vec3 u = p / worldCellSide(level) - 0.5;
     ivec3 base = ivec3(floor(u));
     vec3 f = u - vec3(base);
-    vec3 sum = vec3(0.0);
+    vec3 sum = vec3(0.0), skySum = vec3(0.0);
     float weights = 0.0;
     // The layer of cells along the normal's axis that holds the point first, then the other,
     // each from the corner nearest the point. A surface across that axis (a floor, a wall) has
@@ -72,8 +76,10 @@ vec4 worldLookup(vec3 p, vec3 n, int view) {
         vec3 w3 = mix(1.0 - f, f, vec3(offset));
         float w = w3.x * w3.y * w3.z;
         sum += cell.rgb * w * toNormal(entry, n);
+        if (SKY) skySum += texelFetch(worldSky, entry, 0).rgb * w;
         weights += w;
     }
+    if (SKY && weights > 0.0) sky = vec4(skySum / weights, 1.0);
     return vec4(weights > 0.0 ? sum / weights : vec3(0.0), 1.0);
 }
 

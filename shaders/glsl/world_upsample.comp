@@ -6,10 +6,13 @@
 // or every pixel in a debug view, is listed for world.lookup_edges, which looks the cache up at
 // those pixels alone: on lavapipe a branch costs every invocation of its SIMD row whether it is
 // taken or not, so a lookup here, at the few pixels that need it, would cost as much as at all.
+// With SKY, the sky's visibility the cells hold (world.sky_visibility_half) from the same
+// samples.
 #include "shared.h"
 #include "common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
+layout(constant_id = 0) const bool SKY = false; // the cells hold the sky's visibility
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameUniforms frame; };
 layout(set = 0, binding = 1) uniform sampler2D gbufferViewDepth;
@@ -18,6 +21,8 @@ layout(set = 0, binding = 3) uniform sampler2D halfIndirect; // world.indirect_h
 layout(set = 0, binding = 4, rgba16f) uniform writeonly image2D indirectImage;
 layout(set = 0, binding = 5, r32ui) uniform uimage2D worldStats;
 layout(set = 0, binding = 6, r32ui) uniform writeonly uimage2D edgeList; // world.edge_list
+layout(set = 0, binding = 7) uniform sampler2D halfSky; // world.sky_visibility_half (SKY)
+layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D skyImage; // unwritten: !SKY
 layout(push_constant) uniform WorldBlock { WorldConstants constants; };
 
 #include "gbuffer_position.glsl"
@@ -36,6 +41,7 @@ void main() {
     vec4 position = gbufferPosition(pixel);
     if (position.w == 0.0) {
         imageStore(indirectImage, pixel, vec4(0.0));
+        if (SKY) imageStore(skyImage, pixel, vec4(1.0));
         return;
     }
     vec3 p = position.xyz;
@@ -51,6 +57,12 @@ void main() {
                                          stretch, 0.985);
     if (samples.a > 0.0 && constants.work.w == WORLD_VIEW_LIGHT) {
         imageStore(indirectImage, pixel, vec4(samples.rgb / samples.a, 1.0));
+        if (SKY) {
+            // The same samples, weighed alike: where the bounce has one, so has the sky.
+            vec4 sky = compatibleHalfSamples(halfSky, textureSize(halfSky, 0), pixel, p, n,
+                                             stretch, 0.985);
+            imageStore(skyImage, pixel, vec4(sky.rgb / sky.a, 1.0));
+        }
         return;
     }
     uint slot = imageAtomicAdd(worldStats, ivec2(WORLD_STAT_EDGES, row), 1u);
