@@ -19,7 +19,7 @@ protected:
     Scene scene = [] {
         Scene s = loadScene(test::sourcePath("scenes/bunny.json"));
         s.settings.cache_tile_sky_visibility = 16;
-        // The per-pixel pass and its cache, which the world cache's cells replace by default.
+        // The per-pixel pass and its cache, not the world cache's cells.
         s.settings.world_sky_visibility = false;
         return s;
     }();

@@ -49,6 +49,7 @@ protected:
     Scene scene = [] {
         Scene s = loadScene(test::sourcePath("scenes/sponza.json"));
         s.settings.cache = false;
+        s.settings.world_sky_visibility = true;
         return s;
     }();
     Scene perPixel = [this] {
