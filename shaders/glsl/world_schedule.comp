@@ -50,6 +50,27 @@ bool refreshWindow(uint key) {
     return (((worldHash(key) >> 8) - start) & 0xffffffu) < span;
 }
 
+// Whether the cell at `entry` (its checksum `key`) takes the point of the pixel its pixels
+// chose this frame (`owner`) in place of its own: where that lies nearer the cell's centre
+// than RETAKE times the distance its point does. The cell's level is the pixel's or one beside
+// it (findPixelCell), the one whose key is the cell's. Each retake at least halves the
+// distance, so a cell retakes a few times at most however the camera moves.
+const float RETAKE = 0.5;
+bool retakes(uint owner, uint key, ivec2 entry) {
+    ivec2 pixel = ownerPixel(owner, ivec2(frame.viewport.xy));
+    vec3 p = gbufferPosition(pixel).xyz;
+    int direction = worldDirection(texelFetch(gbufferNormal, pixel, 0).xyz);
+    int level = worldLevel(distance(p, frame.cameraPosition.xyz));
+    for (int l = level - 1; l <= level + 1; ++l) {
+        ivec3 cell = worldCellOf(p, l);
+        if (worldKey(cell, l, direction).checksum != key) continue;
+        vec3 centre = (vec3(cell) + 0.5) * worldCellSide(l);
+        vec3 held = imageLoad(worldPoints, entry).xyz;
+        return distance(p, centre) < RETAKE * distance(held, centre);
+    }
+    return false;
+}
+
 void main() {
     ivec2 entry = ivec2(gl_GlobalInvocationID.xy);
     uint now = uint(frame.patternFrame);
@@ -84,10 +105,14 @@ void main() {
     vec4 cell = imageLoad(worldIrradiance, entry);
     float frames = constants.cells.z;
     float count = changed ? 0.0 : cell.a;
-    if (count != cell.a) imageStore(worldIrradiance, entry, vec4(cell.rgb, count));
-    // A cell that starts this frame (made, or restarted) takes its point and normal from the
-    // pixel its pixels chose: after an object moved, the old point may lie where it was.
     uint owner = imageLoad(worldOwner, entry).r;
+    // A cell whose pixels offer a point much nearer its centre than the one it gathers at
+    // starts again there (retakes): a view that saw only its edge (the screen's, or an
+    // occluder's) chose the point, and the lookup takes its value for the centre's.
+    if (count > 0.0 && owner != WORLD_OWNERLESS && retakes(owner, key, entry)) count = 0.0;
+    if (count != cell.a) imageStore(worldIrradiance, entry, vec4(cell.rgb, count));
+    // A cell that starts this frame (made, restarted or retaken) takes its point and normal from
+    // the pixel its pixels chose: after an object moved, the old point may lie where it was.
     if (owner != WORLD_OWNERLESS) {
         if (count == 0.0) {
             ivec2 pixel = ownerPixel(owner, ivec2(frame.viewport.xy));
