@@ -5,11 +5,12 @@
 // table.z frames is evicted, or for two once the table is more than half full. A moved light or
 // object restarts every cell in view and evicts the others: the RSM is drawn again, and every
 // cell's VPLs and their visibility may have changed (keeping the cells away from a moved object, with their memory shortened, left the first
-// frames after the move well above a fresh start's error, docs/stability.md). A cell that
-// starts this frame, made or restarted, takes its point and normal from the G-buffer at the
+// frames after the move well above a fresh start's error, docs/stability.md). A live cell
+// whose pixels offer a point much nearer its centre restarts too (retakes). A cell that starts
+// this frame, made, restarted or retaken, takes its point and normal from the G-buffer at the
 // pixel its pixels chose (world.owner). Then a cell is
 // listed for world.gather (world_gather.comp) with the frames' worth of VPLs it gathers:
-// - a new or restarted cell at once, world_new_cell_frames (at most world_frames): a camera cut,
+// - a new, restarted or retaken cell at once, world_new_cell_frames (at most world_frames): a camera cut,
 //   and every frame without the cache (its table is cleared each frame), costs that;
 // - an older cell with fewer than world_frames frames of samples, one, where it lies in this
 //   frame's refresh window (refreshWindow: about world_cells_per_frame of them, the same ones
