@@ -97,30 +97,39 @@ TEST_F(CacheTest, ConvergedPixelsAreSkippedAndASettledFrameComputesNothing) {
 }
 
 // cache_samples: a cached effect takes that share of its samples a frame (at least one), an
-// effect computed anew every frame all of them.
+// effect computed anew every frame, or a frame where its history restarts, all of them.
 TEST(CacheSamples, ACachedEffectTakesItsShareOfItsSamples) {
     Settings half;
     half.cache_samples = 0.5;
-    EXPECT_EQ(samplesPerFrame(half, "ao", 8), 4);
-    EXPECT_EQ(samplesPerFrame(half, "shadow", 49), 25); // 24.5 rounds up
-    EXPECT_EQ(samplesPerFrame(half, "ao", 1), 1);
+    EXPECT_EQ(samplesPerFrame(half, "ao", 8, false), 4);
+    EXPECT_EQ(samplesPerFrame(half, "ao", 8, true), 8);
+    EXPECT_EQ(samplesPerFrame(half, "shadow", 49, false), 25); // 24.5 rounds up
+    EXPECT_EQ(samplesPerFrame(half, "ao", 1, false), 1);
     half.cache_samples = 0.01;
-    EXPECT_EQ(samplesPerFrame(half, "ao", 8), 1); // never none
+    EXPECT_EQ(samplesPerFrame(half, "ao", 8, false), 1); // never none
     half.cache_ao = false;
-    EXPECT_EQ(samplesPerFrame(half, "ao", 8), 8);
-    EXPECT_EQ(samplesPerFrame(half, "shadow", 12), 1);
+    EXPECT_EQ(samplesPerFrame(half, "ao", 8, false), 8);
+    EXPECT_EQ(samplesPerFrame(half, "shadow", 12, false), 1);
     half.cache = false;
-    EXPECT_EQ(samplesPerFrame(half, "shadow", 12), 12);
+    EXPECT_EQ(samplesPerFrame(half, "shadow", 12, false), 12);
 }
 
-// A cached frame at cache_samples 0.5 computes the AO and the shadow exactly as one whose
-// sample counts are halved by hand; an uncached effect keeps its counts.
-TEST_F(CacheTest, HalfTheSamplesAreTheHalvedCounts) {
+// At cache_samples 0.5 the first frame, where every history restarts, computes the AO and the
+// shadow with all their samples, as at 1; the next frame exactly as one whose sample counts are
+// halved by hand. Were the share taken on the first frame too, frame 0 would differ from the
+// whole one; were it not taken after, frame 1 would differ from the halved one.
+TEST_F(CacheTest, AFrameWhoseHistoryRestartsTakesEverySampleTheNextItsShare) {
     scene.settings.indirect = false;
-    auto firstFrame = [&](const Scene& s) {
+    scene.settings.cache_samples = 1.0;
+    using Frame = std::pair<std::vector<float>, std::vector<float>>; // the raw AO and shadow
+    auto twoFrames = [&](const Scene& s) {
         Renderer renderer(test::context(), s, {64, 64, "final", {"ao", "shadow"}});
-        renderer.renderFrame(s.camera);
-        return std::pair{renderer.readImage("ao"), renderer.readImage("shadow")};
+        std::vector<Frame> frames;
+        for (int f = 0; f < 2; ++f) {
+            renderer.renderFrame(s.camera);
+            frames.push_back({renderer.readImage("ao"), renderer.readImage("shadow")});
+        }
+        return frames;
     };
     Scene shared = scene;
     shared.settings.cache_samples = 0.5;
@@ -128,15 +137,12 @@ TEST_F(CacheTest, HalfTheSamplesAreTheHalvedCounts) {
     byHand.settings.ao_directions = scene.settings.ao_directions / 2;
     byHand.settings.ao_steps = scene.settings.ao_steps / 2;
     byHand.settings.shadow_directions = scene.settings.shadow_directions / 2;
-    const auto [ao, shadow] = firstFrame(shared);
-    const auto [aoByHand, shadowByHand] = firstFrame(byHand);
-    EXPECT_EQ(ao, aoByHand);
-    EXPECT_EQ(shadow, shadowByHand);
-    const auto [aoWhole, shadowWhole] = firstFrame(scene);
-    EXPECT_NE(ao, aoWhole); // the share changed what was computed
-    EXPECT_NE(shadow, shadowWhole);
-    shared.settings.cache_ao = false; // the AO computed anew each frame: all its samples
-    EXPECT_EQ(firstFrame(shared).first, aoWhole);
+    const std::vector<Frame> half = twoFrames(shared), whole = twoFrames(scene),
+                             halved = twoFrames(byHand);
+    EXPECT_EQ(half[0], whole[0]);
+    EXPECT_EQ(half[1], halved[1]);
+    EXPECT_NE(half[1].first, whole[1].first); // the share changed what was computed
+    EXPECT_NE(half[1].second, whole[1].second);
 }
 
 // A settled frame computes nothing and changes nothing: its histories are converged, and the

@@ -20,8 +20,8 @@ bool effectCached(const Settings& settings, const std::string& name) {
     return settings.cache && settingValue(settings, "cache_" + name) != 0.0;
 }
 
-int samplesPerFrame(const Settings& settings, const std::string& name, int count) {
-    if (!effectCached(settings, name)) return count;
+int samplesPerFrame(const Settings& settings, const std::string& name, int count, bool restart) {
+    if (restart || !effectCached(settings, name)) return count;
     return std::max(1, int(std::lround(double(count) * settings.cache_samples)));
 }
 

@@ -22,9 +22,16 @@ graph::ImageRef addAoPass(FrameBuild& build, const GBufferAndRsm& in) {
     pass.inputs = {{"gbufferViewDepth", in.gbuffer.viewDepth, Use::Sampled},
                    {"gbufferNormal", in.gbuffer.normal, Use::Sampled}};
     pass.pushSize = sizeof(shader::AoConstants);
-    pass.spec = {{{"VARIANT", int(settings.ao_variant)},
-                  {"DIRECTIONS", samplesPerFrame(settings, "ao", int(settings.ao_directions))},
-                  {"STEPS", samplesPerFrame(settings, "ao", int(settings.ao_steps))}}};
+    const auto spec = [&settings](bool restart) {
+        const auto samples = [&](double count) {
+            return samplesPerFrame(settings, "ao", int(count), restart);
+        };
+        return vk::Specialization{{{"VARIANT", int(settings.ao_variant)},
+                                   {"DIRECTIONS", samples(settings.ao_directions)},
+                                   {"STEPS", samples(settings.ao_steps)}}};
+    };
+    pass.spec = spec(false);
+    pass.restartSpec = spec(true);
     return addCachedComputePass(build, in.gbuffer, std::move(pass),
                                 [&build](const CachedRecorder& r) {
                                     shader::AoConstants constants{};

@@ -88,6 +88,7 @@ graph::ImageRef addCachedComputePass(FrameBuild& build, const GBuffer& gbuffer,
     pass.uniforms = std::move(desc.uniforms);
     pass.pushSize = desc.pushSize;
     pass.spec = std::move(desc.spec);
+    pass.restartSpec = std::move(desc.restartSpec);
     addComputePass(build, std::move(pass),
                    [&build, cache, record = std::move(record)](const ComputeRecorder& r) {
                        record(CachedRecorder(build, cache, r));

@@ -24,12 +24,18 @@ public:
     const FrameState& frame() const { return recorder_.frame(); }
     // The sampling pattern's radial place: this frame's when cached, else -1 (a fixed pattern).
     float radialOffset() const { return ssgi::radialOffset(cache_, frame()); }
-    // Sets `constants.cache` and dispatches the pixels the cache leaves to compute this frame.
+    // Sets `constants.cache` and dispatches the pixels the cache leaves to compute this frame,
+    // by the pass's restart variant where the history restarts (CachedComputePass::restartSpec).
     template <typename T> void dispatch(T constants) const {
         constants.cache = cacheConstants(build_.settings, cache_, frame());
         const VkExtent2D area = cacheDispatch(cache_, frame(), build_.size);
-        recorder_.dispatch(area.width, area.height, constants);
+        if (historyRestarts())
+            recorder_.restarting().dispatch(area.width, area.height, constants);
+        else
+            recorder_.dispatch(area.width, area.height, constants);
     }
+    // Whether the effect's cache holds nothing of last frame (or there is no cache).
+    bool historyRestarts() const { return !cache_ || !frame().effects[cache_->slot].hasHistory; }
 
 private:
     const FrameBuild& build_;
@@ -52,6 +58,10 @@ struct CachedComputePass {
     std::vector<ShaderBuffer> uniforms;
     uint32_t pushSize = 0;
     vk::Specialization spec;
+    // Its variant for a frame where the history restarts and every pixel is computed anew: the
+    // first frame, a cut, a moved light for an effect of the light (all of its samples, where
+    // `spec` takes the share cache_samples of them).
+    std::optional<vk::Specialization> restartSpec;
 };
 using CachedRecordFn = std::function<void(const CachedRecorder&)>;
 

@@ -66,12 +66,16 @@ void addComputePass(FrameBuild& build, ComputePassDesc desc, ComputeRecordFn rec
         layout.push_back(
             {b.storage ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER : VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
              b.name, b.storage});
-    const vk::Pipeline pipeline = build.computePipeline(desc, layout);
+    const vk::Pipeline pipeline = build.computePipeline(desc, layout, desc.spec);
+    const vk::Pipeline restartPipeline =
+        desc.restartSpec ? build.computePipeline(desc, layout, *desc.restartSpec) : pipeline;
     const std::string name = desc.name;
     build.graph.addPass(
         name, graph::PassKind::Compute, std::move(uses),
-        [&build, desc = std::move(desc), record = std::move(record), pipeline](
-            const graph::PassContext& pc) { record(ComputeRecorder(build, pc, desc, pipeline)); },
+        [&build, desc = std::move(desc), record = std::move(record), pipeline,
+         restartPipeline](const graph::PassContext& pc) {
+            record(ComputeRecorder(build, pc, desc, pipeline, restartPipeline));
+        },
         std::move(enabled));
 }
 

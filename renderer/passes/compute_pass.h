@@ -12,6 +12,7 @@
 #include "vk/pipeline.h"
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,10 @@ struct ComputePassDesc {
     std::vector<ShaderBuffer> uniforms;
     uint32_t pushSize = 0; // the shader's push-constant block, bytes
     vk::Specialization spec;
+    // A second variant, for the frames where the pass's results start anew (its cache's history
+    // restarts): ComputeRecorder::restarting dispatches it. A cached effect takes all of its
+    // samples there and its share on the frames that continue (cache.h samplesPerFrame).
+    std::optional<vk::Specialization> restartSpec;
 };
 
 // What a compute pass's record function gets: this frame's state, and dispatch(), which pushes
@@ -52,9 +57,16 @@ struct ComputePassDesc {
 class ComputeRecorder {
 public:
     ComputeRecorder(const FrameBuild& build, const graph::PassContext& pass,
-                    const ComputePassDesc& desc, const vk::Pipeline& pipeline)
-        : build_(build), pass_(pass), desc_(desc), pipeline_(pipeline) {}
+                    const ComputePassDesc& desc, const vk::Pipeline& pipeline,
+                    const vk::Pipeline& restartPipeline)
+        : build_(build), pass_(pass), desc_(desc), pipeline_(pipeline),
+          restartPipeline_(restartPipeline) {}
     const FrameState& frame() const { return pass_.frame; }
+    // This recorder dispatching the pass's restart variant (ComputePassDesc::restartSpec; the
+    // pass's own pipeline where it has none).
+    ComputeRecorder restarting() const {
+        return ComputeRecorder(build_, pass_, desc_, restartPipeline_, restartPipeline_);
+    }
     template <typename T> void dispatch(uint32_t width, uint32_t height, const T& constants) const {
         dispatch(width, height, &constants, sizeof(T));
     }
@@ -76,6 +88,7 @@ private:
     const graph::PassContext& pass_;
     const ComputePassDesc& desc_;
     const vk::Pipeline& pipeline_;
+    const vk::Pipeline& restartPipeline_;
 };
 
 using ComputeRecordFn = std::function<void(const ComputeRecorder&)>;

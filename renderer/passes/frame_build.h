@@ -67,12 +67,14 @@ public:
     // std::logic_error for a view that is not a term's, a term given twice, or more terms than
     // the composite's slots (COMPOSITE_TERMS).
     void addCompositeTerm(const std::string& view, graph::ImageRef image);
-    // A compute pipeline for `desc` (compute_pass.cpp), made once and shared by every pass that
+    // A compute pipeline for `desc` at `spec` (its own, or its restart variant: compute_pass.h),
+    // made once and shared by every pass that
     // asks for the same shader, layout and specialization (the interleaved filter's two axes),
     // and by the builds of a renderer made from this one's parts (vk/pipeline_store.h).
     const vk::Pipeline& computePipeline(const ComputePassDesc& desc,
-                                        const std::vector<vk::LayoutBinding>& layout) {
-        return pipelines_.compute(desc.shader, layout, desc.pushSize, desc.spec);
+                                        const std::vector<vk::LayoutBinding>& layout,
+                                        const vk::Specialization& spec) {
+        return pipelines_.compute(desc.shader, layout, desc.pushSize, spec);
     }
     // A graphics pipeline, shared likewise.
     const vk::Pipeline& graphicsPipeline(const vk::GraphicsPipelineDesc& desc) {

@@ -27,11 +27,17 @@ graph::ImageRef addShadowPass(FrameBuild& build, const GBufferAndRsm& in) {
                     Use::Sampled}};
     pass.pushSize = sizeof(shader::ShadowConstants);
     const Settings& settings = build.settings;
-    pass.spec = {
-        {{"TAPS", samplesPerFrame(settings, "shadow", int(settings.shadow_taps))},
-         {"VARIANT", int(settings.shadow_variant)},
-         {"DIRECTIONS", samplesPerFrame(settings, "shadow", int(settings.shadow_directions))},
-         {"STEPS", int(settings.shadow_steps)}}};
+    const auto spec = [&settings](bool restart) {
+        const auto samples = [&](double count) {
+            return samplesPerFrame(settings, "shadow", int(count), restart);
+        };
+        return vk::Specialization{{{"TAPS", samples(settings.shadow_taps)},
+                                   {"VARIANT", int(settings.shadow_variant)},
+                                   {"DIRECTIONS", samples(settings.shadow_directions)},
+                                   {"STEPS", int(settings.shadow_steps)}}};
+    };
+    pass.spec = spec(false);
+    pass.restartSpec = spec(true);
     return addCachedComputePass(build, in.gbuffer, std::move(pass),
                                 [&build](const CachedRecorder& r) {
                                     shader::ShadowConstants constants{};

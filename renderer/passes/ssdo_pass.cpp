@@ -25,8 +25,13 @@ graph::ImageRef addSsdoPass(FrameBuild& build, const GBufferAndRsm& in, graph::I
                    {"directRadiance", direct, Use::Sampled},
                    secondLayerInput(in)};
     pass.pushSize = sizeof(shader::SsdoConstants);
-    pass.spec = {{{"SAMPLES", samplesPerFrame(settings, "ssdo", int(settings.ssdo_samples))},
-                  {"PEELING", in.secondLayer.valid() ? 1 : 0}}};
+    const auto spec = [&settings, &in](bool restart) {
+        return vk::Specialization{
+            {{"SAMPLES", samplesPerFrame(settings, "ssdo", int(settings.ssdo_samples), restart)},
+             {"PEELING", in.secondLayer.valid() ? 1 : 0}}};
+    };
+    pass.spec = spec(false);
+    pass.restartSpec = spec(true);
     return addCachedComputePass(build, in.gbuffer, std::move(pass),
                                 [&build, rMax](const CachedRecorder& r) {
                                     shader::SsdoConstants constants{};

@@ -122,10 +122,11 @@ namespace ssgi {
       "method 3: cells looked up at the top-left pixel of every 2x2 block (every pixel still "     \
       "finds or makes its own), the bounce upsampled from those on a pixel's surface (a pixel "    \
       "with none is looked up alone)")                                                             \
-    X(world_sky_visibility, bool, false, 0, 1, "World cache",                                       \
+    X(world_sky_visibility, bool, false, 0, 1, "World cache",                                      \
       "method 3: the sky's visibility beyond the AO (sky_visibility) held in the cells beside "    \
-      "the bounce and looked up with it, rather than computed at each pixel and cached there (off: "  \
-      "a cell keeps the value at the point the view it was made in chose; docs/world-cache.md)")     \
+      "the bounce and looked up with it, rather than computed at each pixel and cached there "     \
+      "(off: "                                                                                     \
+      "a cell keeps the value at the point the view it was made in chose; docs/world-cache.md)")   \
     X(world_vpls, int, 48, 2, 1024, "World cache",                                                 \
       "method 3: VPLs a cell gathers, with their visibility, in a frame's refresh (half by flux, " \
       "half next to it)")                                                                          \
@@ -180,7 +181,8 @@ namespace ssgi {
     X(cache_samples, double, 1.0, 0.01, 1, "Temporal cache",                                       \
       "share of a cached effect's samples a frame takes, the cache accumulating the rest: the "    \
       "AO's directions and steps, the shadow's directions (variant 1) or taps (variant 0), "       \
-      "SSDO's samples (1: as many as uncached; docs/temporal-cache.md)")                           \
+      "SSDO's samples (1: as many as uncached; a frame whose history restarts takes them all; "    \
+      "docs/temporal-cache.md)")                                                                   \
     X(cache_shadow, bool, true, 0, 1, "Temporal cache",                                            \
       "the shadow term cached (1), or computed anew every frame")                                  \
     X(cache_ao, bool, true, 0, 1, "Temporal cache", "the AO cached (1), or computed anew")         \
