@@ -68,9 +68,9 @@ public:
     // the composite's slots (COMPOSITE_TERMS).
     void addCompositeTerm(const std::string& view, graph::ImageRef image);
     // A compute pipeline for `desc` at `spec` (its own, or its restart variant: compute_pass.h),
-    // made once and shared by every pass that
-    // asks for the same shader, layout and specialization (the interleaved filter's two axes),
-    // and by the builds of a renderer made from this one's parts (vk/pipeline_store.h).
+    // made once and shared by every pass that asks for the same shader, layout and
+    // specialization (the interleaved filter's two axes), and by the builds of a renderer made
+    // from this one's parts (vk/pipeline_store.h).
     const vk::Pipeline& computePipeline(const ComputePassDesc& desc,
                                         const std::vector<vk::LayoutBinding>& layout,
                                         const vk::Specialization& spec) {

@@ -125,8 +125,8 @@ namespace ssgi {
     X(world_sky_visibility, bool, false, 0, 1, "World cache",                                      \
       "method 3: the sky's visibility beyond the AO (sky_visibility) held in the cells beside "    \
       "the bounce and looked up with it, rather than computed at each pixel and cached there "     \
-      "(off: "                                                                                     \
-      "a cell keeps the value at the point the view it was made in chose; docs/world-cache.md)")   \
+      "(off: a cell keeps the value at the point the view it was made in chose; "                  \
+      "docs/world-cache.md)")                                                                      \
     X(world_vpls, int, 48, 2, 1024, "World cache",                                                 \
       "method 3: VPLs a cell gathers, with their visibility, in a frame's refresh (half by flux, " \
       "half next to it)")                                                                          \
