@@ -178,7 +178,7 @@ namespace ssgi {
     X(cache_temporal_slots, int, 4, 1, 4, "Temporal cache",                                        \
       "cached effects one temporal dispatch blends (4: all of a frame's in one; 1: a dispatch "    \
       "per effect, the same values)")                                                              \
-    X(cache_samples, double, 1.0, 0.01, 1, "Temporal cache",                                       \
+    X(cache_samples, double, 0.5, 0.01, 1, "Temporal cache",                                       \
       "share of a cached effect's samples a frame takes, the cache accumulating the rest: the "    \
       "AO's directions and steps, the shadow's directions (variant 1) or taps (variant 0), "       \
       "SSDO's samples (1: as many as uncached; a frame whose history restarts takes them all; "    \
