@@ -100,13 +100,17 @@ TEST_F(CacheTest, ConvergedPixelsAreSkippedAndASettledFrameComputesNothing) {
     EXPECT_EQ(firstFrame, 1.0);
 }
 
-// cache_samples: a cached effect takes that share of its samples a frame (at least one), an
-// effect computed anew every frame, or a frame where its history restarts, all of them.
+// cache_samples: a cached effect takes that share of its samples a frame (at least one); an
+// effect computed anew every frame, a frame where its history restarts, or an effect whose
+// history a moving camera does not keep (its blur budget 0), all of them.
 TEST(CacheSamples, ACachedEffectTakesItsShareOfItsSamples) {
     Settings half;
     half.cache_samples = 0.5;
     EXPECT_EQ(samplesPerFrame(half, "ao", 8, false), 4);
     EXPECT_EQ(samplesPerFrame(half, "ao", 8, true), 8);
+    EXPECT_EQ(samplesPerFrame(half, "shadow", 12, false), 12); // cache_blur_shadow 0
+    EXPECT_EQ(samplesPerFrame(half, "ssdo", 16, false), 16);   // cache_blur_ssdo 0
+    half.cache_blur_shadow = 4.0;
     EXPECT_EQ(samplesPerFrame(half, "shadow", 49, false), 25); // 24.5 rounds up
     EXPECT_EQ(samplesPerFrame(half, "ao", 1, false), 1);
     half.cache_samples = 0.01;
@@ -125,6 +129,7 @@ TEST(CacheSamples, ACachedEffectTakesItsShareOfItsSamples) {
 TEST_F(CacheTest, AFrameWhoseHistoryRestartsTakesEverySampleTheNextItsShare) {
     scene.settings.indirect = false;
     scene.settings.cache_samples = 1.0;
+    scene.settings.cache_blur_shadow = 4.0; // a shadow history kept while moving takes the share
     using Frame = std::pair<std::vector<float>, std::vector<float>>; // the raw AO and shadow
     auto twoFrames = [&](const Scene& s) {
         Renderer renderer(test::context(), s, {64, 64, "final", {"ao", "shadow"}});

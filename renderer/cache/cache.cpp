@@ -21,7 +21,10 @@ bool effectCached(const Settings& settings, const std::string& name) {
 }
 
 int samplesPerFrame(const Settings& settings, const std::string& name, int count, bool restart) {
-    if (restart || !effectCached(settings, name)) return count;
+    // An effect without a blur budget (cache_blur_<name> 0) cuts its history's weight wherever
+    // a moving camera resamples it, so that a moving frame holds that frame's samples alone.
+    const bool keptWhileMoving = settingValue(settings, "cache_blur_" + name) > 0.0;
+    if (restart || !effectCached(settings, name) || !keptWhileMoving) return count;
     return std::max(1, int(std::lround(double(count) * settings.cache_samples)));
 }
 

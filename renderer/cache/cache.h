@@ -97,11 +97,12 @@ struct CacheSet {
 // Whether the settings cache the effect `name`: cache and cache_<name> on.
 bool effectCached(const Settings& settings, const std::string& name);
 // Of an effect's `count` samples of one kind (directions, steps along them, taps), those a
-// frame takes: all of them where the effect is computed anew every frame, or where its cache's
+// frame takes: all of them where the effect is computed anew every frame, where its cache's
 // history restarts this frame (`restart`: the first frame, a cut, a moved light for an effect
-// of the light), which has no frames before it; where its cache accumulates frames, the share
-// cache_samples of them (at least one), the frames before supplying the rest
-// (docs/temporal-cache.md, "Samples a frame").
+// of the light), which has no frames before it, or where a moving camera cuts its history's
+// weight (a blur budget of 0, cache_blur_<name>: the shadow's and SSDO's by default); where its
+// cache accumulates frames, the share cache_samples of them (at least one), the frames before
+// supplying the rest (docs/temporal-cache.md, "Samples a frame").
 int samplesPerFrame(const Settings& settings, const std::string& name, int count, bool restart);
 
 // The temporal cache of `effect` when the settings cache it (effectCached), made in `graph` at
