@@ -26,9 +26,14 @@ graph::ImageRef addAoPass(FrameBuild& build, const GBufferAndRsm& in) {
         const auto samples = [&](double count) {
             return samplesPerFrame(settings, "ao", int(count), restart);
         };
-        return vk::Specialization{{{"VARIANT", int(settings.ao_variant)},
-                                   {"DIRECTIONS", samples(settings.ao_directions)},
-                                   {"STEPS", samples(settings.ao_steps)}}};
+        // The horizon variant's steps place each side's horizon, the highest of them, which no
+        // number of frames refines: they stay whole (the other variants average their steps,
+        // and the thesis's strata turn with the frame).
+        const bool horizon = settings.ao_variant == 2;
+        return vk::Specialization{
+            {{"VARIANT", int(settings.ao_variant)},
+             {"DIRECTIONS", samples(settings.ao_directions)},
+             {"STEPS", horizon ? int(settings.ao_steps) : samples(settings.ao_steps)}}};
     };
     pass.spec = spec(false);
     pass.restartSpec = spec(true);
