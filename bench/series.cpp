@@ -38,8 +38,8 @@ const Method& cheapFrames() {
 }
 
 // The world cache's bounce with every sample a frame of the effects the cache accumulates
-// (cache_samples 1: the AO's 8 directions of 4 steps), where the default takes half of them and
-// the accumulation supplies the rest: what the share buys along a moving camera.
+// (cache_samples 1: the AO's 8 directions), where the default takes half of them and the
+// accumulation supplies the rest: what the share buys along a moving camera.
 const Method& worldCacheEverySample() {
     static const Method method = {"cache: world cache, every sample a frame",
                                   {{"cache", 1}, {"indirect_method", 3}, {"cache_samples", 1.0}}};

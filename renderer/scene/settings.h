@@ -181,9 +181,9 @@ namespace ssgi {
     X(cache_samples, double, 0.5, 0.01, 1, "Temporal cache",                                       \
       "share of a cached effect's samples a frame takes, the cache accumulating the rest, where "  \
       "its history outlasts a moving camera (a cache_blur_ budget above 0: the AO's by "           \
-      "default): the AO's directions and steps, the shadow's directions (variant 1) or taps "      \
-      "(variant 0), SSDO's samples (1: as many as uncached; a frame whose history restarts takes " \
-      "them all; docs/temporal-cache.md)")                                                         \
+      "default): the AO's directions and steps (not the horizon variant's), the shadow's "         \
+      "directions (variant 1) or taps (variant 0), SSDO's samples (1: as many as uncached; a "     \
+      "frame whose history restarts takes them all; docs/temporal-cache.md)")                      \
     X(cache_shadow, bool, true, 0, 1, "Temporal cache",                                            \
       "the shadow term cached (1), or computed anew every frame")                                  \
     X(cache_ao, bool, true, 0, 1, "Temporal cache", "the AO cached (1), or computed anew")         \
