@@ -84,6 +84,11 @@ graph::ImageRef addCachedComputePass(FrameBuild& build, const GBuffer& gbuffer,
     ComputePassDesc pass{name, desc.shader, std::move(desc.inputs)};
     for (ShaderImage& history : cacheBindings(build, cache, gbuffer.viewDepth))
         pass.images.push_back(std::move(history));
+    if (desc.bindsHistory)
+        pass.images.push_back(
+            {"historyValue",
+             cache ? graph::FrameGraph::previous(cache->valueHistory) : gbuffer.viewDepth,
+             graph::Use::Sampled});
     pass.images.push_back({name + "Image", raw, graph::Use::StorageWrite});
     pass.uniforms = std::move(desc.uniforms);
     pass.pushSize = desc.pushSize;

@@ -46,7 +46,8 @@ private:
 // A cached effect computed by one compute shader at full resolution. Its shader binds, in this
 // order: `inputs`, then "historyViewDepth", "reprojection" and "historyCount" (last frame's
 // G-buffer view depths, this frame's reprojection and the effect's rotation counts, to skip
-// converged pixels; temporal.glsl), then
+// converged pixels; temporal.glsl), then "historyValue" where `bindsHistory` (last frame's
+// blended values, to check a value it would reuse), then
 // "<name>Image", the RGBA16F image it writes (named <name> in the graph); then `uniforms`.
 // With a `term` (a term's view in views.h), what it returns is also handed to the composite as
 // that lighting term.
@@ -57,6 +58,7 @@ struct CachedComputePass {
     std::vector<ShaderImage> inputs;
     std::vector<ShaderBuffer> uniforms;
     uint32_t pushSize = 0;
+    bool bindsHistory = false;
     vk::Specialization spec;
     // Its variant for a frame where the history restarts and every pixel is computed anew: the
     // first frame, a cut, a moved light for an effect of the light (all of its samples, where

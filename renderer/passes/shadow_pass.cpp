@@ -2,7 +2,8 @@
 // light-space horizons over the map's front and back faces (shadow_variant 1), or by
 // percentage-closer filtering with a kernel sized from the disk (0: thesis 3.4, PCSS); cached.
 //   reads:  gbuffer.view_depth, gbuffer.normal, shadow_map.depth (rsm.depth where the two are
-//           the same size), shadow_map_back.depth (variant 1; and its cache's history)
+//           the same size), shadow_map_back.depth (variant 1; and its cache's history, whose
+//           values it checks before reusing one while the camera moves)
 //   writes: shadow (the fraction of the disk seen, in r; the history's blur in g), shadow.history
 #include "passes/passes.h"
 
@@ -26,6 +27,7 @@ graph::ImageRef addShadowPass(FrameBuild& build, const GBufferAndRsm& in) {
                    {"shadowMapBack", in.shadowMapBack.valid() ? in.shadowMapBack : in.shadowMap,
                     Use::Sampled}};
     pass.pushSize = sizeof(shader::ShadowConstants);
+    pass.bindsHistory = true;
     const Settings& settings = build.settings;
     const auto spec = [&settings](bool restart) {
         const auto samples = [&](double count) {

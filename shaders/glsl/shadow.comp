@@ -26,7 +26,8 @@ layout(set = 0, binding = 4) uniform sampler2D shadowMapBack;
 layout(set = 0, binding = 5) uniform sampler2D historyViewDepth;
 layout(set = 0, binding = 6) uniform usampler2D reprojection;
 layout(set = 0, binding = 7) uniform sampler2D historyCount;
-layout(set = 0, binding = 8) uniform writeonly image2D shadowImage; // r16f: the shadow (r)
+layout(set = 0, binding = 8) uniform sampler2D historyValue; // last frame's blended shadow (r)
+layout(set = 0, binding = 9) uniform writeonly image2D shadowImage; // r16f: the shadow (r)
 layout(push_constant) uniform ShadowBlock { ShadowConstants constants; };
 
 #include "gbuffer_position.glsl"
@@ -176,11 +177,24 @@ void main() {
         imageStore(shadowImage, pixel, vec4(1.0));
         return;
     }
-    if (converged(pixel, position.xyz, constants.cache)) {
+    vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
+    Reprojection history = reproject(pixel, position.xyz, constants.cache);
+    bool reuse = convergedAround(pixel, history, constants.cache, 0);
+    if (reuse && !cameraMoved()) {
         imageStore(shadowImage, pixel, SCALAR_SKIPPED); // converged: the cache holds it
         return;
     }
-    vec3 n = texelFetch(gbufferNormal, pixel, 0).xyz;
+    // The light's disk wholly behind p's tangent plane: p sees none of it, whatever stands in
+    // between, and the direct light there is 0 however lit (direct.comp spotIrradiance). The
+    // disk's farthest point in front of the plane lies its radius times the normal's part
+    // across the light's axis beyond its centre.
+    vec3 axis = frame.lightDirection.xyz;
+    float ahead = dot(n, frame.lightPosition.xyz - position.xyz) +
+                  frame.lightPosition.w * length(n - dot(n, axis) * axis);
+    if (ahead <= 0.0) {
+        imageStore(shadowImage, pixel, vec4(0.0, 0.0, 0.0, 1.0));
+        return;
+    }
     // Normal-offset lookup, scaled by the cosine at which the light meets the surface. The
     // receiver's depth is compared at each texel's centre, where the map's depth was rasterised
     // (receiverPlaneDepth), so a flat receiver needs no offset at any slope; what the offset is
@@ -203,6 +217,19 @@ void main() {
     float receiver = clip.w;
     setReceiverPlane(p, n);
     float bias = receiver * texelAngle; // one texel of depth quantisation
+    // While the camera moves, a value reused was computed at the history's texels around p, not
+    // at p: a shadow thinner than their spacing (a thin blocker's, a needle's) can fall between
+    // them, all lit, and onto p. The map's one texel at p's own point says whether the light's
+    // centre is blocked there; a value that says the opposite (lit where the centre is
+    // blocked, or dark where it is seen) is computed again.
+    if (reuse) {
+        float kept = texelFetch(historyValue, history.texel, 0).r;
+        bool centreBlocked = occluderDepth(uv) + bias < receiverPlaneDepth(uv, receiver);
+        if (centreBlocked ? kept <= 0.75 : kept >= 0.25) {
+            imageStore(shadowImage, pixel, SCALAR_SKIPPED);
+            return;
+        }
+    }
     float rotation = pixelRotation(pixel) + constants.rotation;
     float ring = radialOffset(constants.radialOffset, 0.5);
 
