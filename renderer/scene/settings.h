@@ -162,10 +162,11 @@ namespace ssgi {
       "turn of every sampling pattern a frame")                                                    \
     X(cache_scale_jitter, double, 0.1, 0, 0.9, "Temporal cache",                                   \
       "relative change of pattern size a frame")                                                   \
-    X(cache_reuse_moving, bool, false, 0, 1, "Temporal cache",                                     \
+    X(cache_reuse_moving, bool, true, 0, 1, "Temporal cache",                                      \
       "while the camera moves, reuse a pixel whose history reprojects onto its surface and holds " \
       "one computation or more, until its resampling blur reaches the effect's budget "            \
-      "(cache_blur_<effect>); 0: only converged pixels are reused")                                \
+      "(cache_blur_<effect>; the shadow's where its texels agree and the shadow map's texel at "   \
+      "the pixel does not contradict them); 0: only converged pixels are reused")                  \
     X(cache_refresh, bool, true, 0, 1, "Temporal cache",                                           \
       "tiled refresh: one tile a frame computed anew")                                             \
     X(cache_cut_angle_deg, double, 45.0, 0, 180, "Temporal cache",                                 \
