@@ -230,10 +230,11 @@ TEST_F(ReuseWhileMovingTest, ReuseWhileMovingSkipsMostPixelsUnderBothRules) {
 TEST_F(ReuseWhileMovingTest, AKeptShadowNeverContradictsTheMapAtItsPixel) {
     Scene church = loadScene(test::sourcePath("scenes/sibenik.json"));
     church.settings.cache_reuse_moving = true;
-    const uint32_t size = 128, frames = 24;
+    // The walkthrough's 48 frames along the path, up to its first error frame (23).
+    const uint32_t size = 128, pathFrames = 48, frames = pathFrames / 2;
     const float duration = church.cameraPath.keys.back().time;
     const auto cameraOf = [&](uint32_t f) {
-        return cameraAt(church.cameraPath, duration * float(f) / 47.0f);
+        return cameraAt(church.cameraPath, duration * float(f) / float(pathFrames - 1));
     };
     Renderer cached(test::context(), church, {size, size, "final", {"shadow"}});
     for (uint32_t f = 0; f < frames; ++f)
